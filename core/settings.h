@@ -1,0 +1,89 @@
+// All parameters of a Slime run in one plain struct: camera, light, floor, slime, render, sim.
+// Filled from the embedded default scene (assets/default.json), then an optional scene file, then
+// `--set key=value` overrides (see settings_io.h); validated once (validateSettings). Units are SI:
+// metres, kilograms, seconds; angles in degrees; colours linear RGB in [0, 1].
+#pragma once
+
+#include <glm/vec3.hpp>
+
+#include <string>
+
+namespace slime {
+
+struct CameraSettings {
+  glm::dvec3 position{0.0, -0.22, 0.10};  // eye position, m
+  double yaw = 90.0;     // heading in degrees: 0 looks along +x, 90 along +y (counter-clockwise about +z)
+  double pitch = -20.0;  // elevation in degrees: positive looks up, limited to (-90, 90)
+  double fov = 45.0;     // vertical field of view, degrees
+  int width = 734;       // image width in pixels
+  int height = 564;      // image height in pixels
+};
+
+struct LightSettings {
+  glm::dvec3 position{0.25, -0.15, 0.6};  // point light position, m
+  glm::dvec3 color{1.0, 1.0, 1.0};        // point light intensity I_l per channel
+  glm::dvec3 ambient{0.25, 0.25, 0.28};   // ambient intensity I_a per channel
+};
+
+struct FloorSettings {
+  std::string pattern = "planks";          // tiles | planks | checker | image
+  double scale = 0.10;                     // size of one tile / plank width / checker cell, m
+  glm::dvec3 colorA{0.60, 0.42, 0.26};     // first pattern colour (linear RGB)
+  glm::dvec3 colorB{0.45, 0.30, 0.18};     // second pattern colour (linear RGB)
+  std::string image;                       // PNG path when pattern == "image"
+  double diffuse = 0.8;                    // k_d of the floor
+  double specular = 0.1;                   // k_s of the floor (reflection of the slime in it)
+};
+
+struct SlimeSettings {
+  std::string shape = "mesh";            // mesh (the simulated icosphere) | sphere (analytic reference)
+  double radius = 0.04;                  // rest radius, m
+  int level = 4;                         // icosphere subdivision level 0..7: 20*4^level faces
+  bool autoLevel = false;                // slime.level=auto: smallest level whose image error is invisible
+  double mass = 0.268;                   // total mass, kg (≈ 1000 kg/m^3 at radius 4 cm)
+  double stiffness = 40.0;               // elementary spring stiffness k_e, N/m (series rule k = k_e d_e / d)
+  double damping = 0.02;                 // damper coefficient k_d along each spring, N·s/m
+  double pressure = 1.0;                 // volume preservation strength, relative (0 = none)
+  double bending = 1.0;                  // shape (bending) term strength, relative (0 = none)
+  double friction = 0.6;                 // Coulomb friction coefficient against the floor
+  glm::dvec3 position{0.0, 0.0, 0.10};   // start position of the centre, m
+  glm::dvec3 color{0.25, 0.85, 0.35};    // slime colour: surface tint and per-channel transmittance
+  double transmission = 0.7;             // k_t: weight of the refracted ray
+  double absorption = 8.0;               // Beer–Lambert absorption coefficient, 1/m
+  double ior = 1.35;                     // index of refraction
+  double specular = 0.4;                 // k_s: Phong highlight and reflected-ray weight
+  double diffuse = 0.3;                  // k_d
+  double ambient = 0.1;                  // k_a
+  double shininess = 80.0;               // Phong exponent n
+};
+
+struct RenderSettings {
+  int depth = 3;                     // Whitted recursion depth (1 = primary rays only)
+  int spp = 1;                       // samples per pixel (1, 4, 9, 16: a stratified n×n grid)
+  int threads = 0;                   // worker threads for TBB and Embree, 0 = all cores
+  std::string normals = "smooth";    // smooth | flat shading normals
+  std::string optics = "fresnel";    // fresnel (dielectric) | seed (constant k_s / k_t weights)
+  std::string backend = "embree";    // embree | brute (the seed's algorithm, the oracle)
+  double scale = 1.0;                // resolution scale of the viewer's traced image (0.1..1)
+  bool shadows = true;               // trace shadow rays to the point light
+};
+
+struct SimSettings {
+  double dt = 0.001;                       // fixed time step, s
+  std::string integrator = "symplectic_euler";  // explicit_euler | symplectic_euler | rk4 | implicit_euler | xpbd
+  int substeps = 1;                        // substeps per step (xpbd)
+  double gravity = 9.81;                   // |g|, m/s^2, pointing along -z
+  double timeScale = 1.0;                  // simulated seconds per wall-clock second in the viewer
+  bool paused = false;                     // viewer: physics paused
+};
+
+struct Settings {
+  CameraSettings camera;
+  LightSettings light;
+  FloorSettings floor;
+  SlimeSettings slime;
+  RenderSettings render;
+  SimSettings sim;
+};
+
+}  // namespace slime

@@ -1,0 +1,67 @@
+// The ray tracer: one Embree device and scene holding the slime (a dynamic triangle mesh refitted
+// every frame) over the analytic floor z = 0, traced Whitted-style in parallel TBB tiles.
+// Rendering is one call: render(settings, image). The window shows the image, the snapshot writes it,
+// the benchmark times it: the same code path.
+//
+// CONTRACT used by app/ (keep these signatures; add whatever else rendering needs):
+//   Image, RayCounts, RenderStats, Renderer(settings), updateSlime, render, pick.
+#pragma once
+
+#include "core/icosphere.h"
+#include "core/settings.h"
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <vector>
+
+namespace slime {
+
+// A linear-RGB float image, row-major, top row first.
+struct Image {
+  int width = 0;
+  int height = 0;
+  std::vector<glm::vec3> pixels;
+  void resize(int w, int h);
+  glm::vec3& at(int x, int y) { return pixels[static_cast<std::size_t>(y) * width + x]; }
+  const glm::vec3& at(int x, int y) const { return pixels[static_cast<std::size_t>(y) * width + x]; }
+};
+
+struct RayCounts {
+  std::uint64_t primary = 0;
+  std::uint64_t shadow = 0;
+  std::uint64_t reflection = 0;
+  std::uint64_t refraction = 0;
+  std::uint64_t total() const { return primary + shadow + reflection + refraction; }
+};
+
+struct RenderStats {
+  double refitMs = 0.0;  // BVH refit/rebuild in the last updateSlime
+  double traceMs = 0.0;  // tracing and shading the image
+  RayCounts rays;
+};
+
+class Renderer {
+ public:
+  explicit Renderer(const Settings& settings);  // device, floor texture; throws on a bad texture
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // Writes the slime's vertices into the Embree buffer and refits; rebuilds when the topology changes.
+  void updateSlime(const std::vector<glm::dvec3>& positions, const std::vector<Triangle>& triangles);
+
+  // Traces the scene seen by settings.camera into `image` at the image's current size.
+  RenderStats render(const Settings& settings, Image& image);
+
+  // The point where the ray through image point (u, v) in [0,1]² first hits the slime, if it does.
+  std::optional<glm::dvec3> pick(const Settings& settings, double u, double v) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace slime
