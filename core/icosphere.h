@@ -3,6 +3,8 @@
 // 30·4^L edges; every triangle is wound counter-clockwise seen from outside (outward normals).
 #pragma once
 
+#include <glm/ext/vector_uint2_sized.hpp>
+#include <glm/ext/vector_uint3_sized.hpp>
 #include <glm/vec3.hpp>
 
 #include <cstdint>

@@ -1,6 +1,7 @@
 #include "core/camera.h"
 
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 #include <gtest/gtest.h>
 
 namespace slime {

@@ -1,0 +1,131 @@
+#include "core/default_scene.h"
+#include "core/settings_io.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+
+namespace slime {
+namespace {
+
+using nlohmann::json;
+
+// The message of the SettingsError that `action` throws ("" when it throws none).
+template <class Action>
+std::string errorOf(Action&& action) {
+  try {
+    action();
+  } catch (const SettingsError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Settings, EmbeddedDefaultSceneMatchesTheStructDefaults) {
+  // assets/default.json and the in-class defaults of core/settings.h must say the same thing.
+  EXPECT_EQ(settingsToJson(defaultSettings()), settingsToJson(Settings{}));
+}
+
+TEST(Settings, EmbeddedDefaultSceneSetsEveryKey) {
+  const json scene = json::parse(defaultSceneJson());
+  for (const std::string& key : settingKeys()) {
+    if (key == "slime.autoLevel") continue;  // written as slime.level = "auto"
+    std::string pointer = "/" + key;
+    std::replace(pointer.begin(), pointer.end(), '.', '/');
+    EXPECT_TRUE(scene.contains(json::json_pointer(pointer))) << key << " missing from assets/default.json";
+  }
+}
+
+TEST(Settings, OverridesSetNumbersVectorsStringsAndBooleans) {
+  Settings settings = defaultSettings();
+  applyOverride(settings, "slime.level=5");
+  applyOverride(settings, "slime.color=0.2,0.8,0.3");
+  applyOverride(settings, "sim.integrator=rk4");
+  applyOverride(settings, "render.shadows=false");
+  applyOverride(settings, "slime.mass=0.5");
+  EXPECT_EQ(settings.slime.level, 5);
+  EXPECT_EQ(settings.slime.color, glm::dvec3(0.2, 0.8, 0.3));
+  EXPECT_EQ(settings.sim.integrator, "rk4");
+  EXPECT_FALSE(settings.render.shadows);
+  EXPECT_DOUBLE_EQ(settings.slime.mass, 0.5);
+  EXPECT_NO_THROW(validateSettings(settings));
+}
+
+TEST(Settings, LevelAutoIsAccepted) {
+  Settings settings = defaultSettings();
+  applyOverride(settings, "slime.level=auto");
+  EXPECT_TRUE(settings.slime.autoLevel);
+  applyOverride(settings, "slime.level=3");
+  EXPECT_FALSE(settings.slime.autoLevel);
+  EXPECT_EQ(settings.slime.level, 3);
+}
+
+TEST(Settings, OutOfRangeValueNamesKeyValueAndRange) {
+  Settings settings = defaultSettings();
+  const std::string message = errorOf([&] { applyOverride(settings, "slime.level=12"); });
+  EXPECT_NE(message.find("slime.level"), std::string::npos) << message;
+  EXPECT_NE(message.find("12"), std::string::npos) << message;
+  EXPECT_NE(message.find("0 to 7"), std::string::npos) << message;
+  EXPECT_EQ(settings.slime.level, 4) << "a rejected value must leave the setting unchanged";
+}
+
+TEST(Settings, RejectsWrongTypesNaNAndInfinity) {
+  Settings settings = defaultSettings();
+  for (const char* bad : {"slime.mass=heavy", "slime.mass=nan", "slime.mass=inf", "slime.mass=-1",
+                          "slime.level=2.5", "slime.color=1,2", "slime.color=0.1,0.2,nan",
+                          "slime.color=0.1,0.2,0.3,0.4", "render.shadows=maybe", "sim.integrator=verlet",
+                          "camera.width=0", "camera.width=100000", "sim.dt=0", "render.spp=0"}) {
+    EXPECT_FALSE(errorOf([&] { applyOverride(settings, bad); }).empty()) << bad;
+  }
+  EXPECT_EQ(settingsToJson(settings), settingsToJson(defaultSettings()));
+}
+
+TEST(Settings, UnknownKeySuggestsTheNearestOne) {
+  Settings settings = defaultSettings();
+  const std::string message = errorOf([&] { applyOverride(settings, "slime.stifness=10"); });
+  EXPECT_NE(message.find("did you mean 'slime.stiffness'"), std::string::npos) << message;
+}
+
+TEST(Settings, MalformedOverrideIsRejected) {
+  Settings settings = defaultSettings();
+  EXPECT_FALSE(errorOf([&] { applyOverride(settings, "slime.level"); }).empty());
+  EXPECT_FALSE(errorOf([&] { applyOverride(settings, "=3"); }).empty());
+}
+
+TEST(Settings, CrossFieldRulesAreValidated) {
+  Settings settings = defaultSettings();
+  settings.render.spp = 5;
+  EXPECT_NE(errorOf([&] { validateSettings(settings); }).find("render.spp"), std::string::npos);
+  settings = defaultSettings();
+  settings.slime.position.z = 0.01;
+  EXPECT_NE(errorOf([&] { validateSettings(settings); }).find("slime.position"), std::string::npos);
+  settings = defaultSettings();
+  settings.slime.mass = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_NE(errorOf([&] { validateSettings(settings); }).find("slime.mass"), std::string::npos);
+}
+
+TEST(Settings, SceneFileAppliesNestedKeysAndReportsItsErrors) {
+  const std::string path = std::string(SLIME_TEST_OUTPUT_DIR) + "/scene_test.json";
+  std::ofstream(path) << R"({"slime": {"level": 2, "color": [1, 0, 0]}, "sim": {"dt": 0.0005}})";
+  Settings settings = defaultSettings();
+  applySceneFile(settings, path);
+  EXPECT_EQ(settings.slime.level, 2);
+  EXPECT_EQ(settings.slime.color, glm::dvec3(1, 0, 0));
+  EXPECT_DOUBLE_EQ(settings.sim.dt, 0.0005);
+
+  std::ofstream(path) << R"({"slime": {"levle": 2}})";
+  EXPECT_NE(errorOf([&] { applySceneFile(settings, path); }).find("did you mean 'slime.level'"), std::string::npos);
+  std::ofstream(path) << "{ not json";
+  EXPECT_NE(errorOf([&] { applySceneFile(settings, path); }).find("not valid JSON"), std::string::npos);
+  std::ofstream(path) << "[1, 2]";
+  EXPECT_NE(errorOf([&] { applySceneFile(settings, path); }).find("JSON object"), std::string::npos);
+  std::remove(path.c_str());
+  EXPECT_NE(errorOf([&] { applySceneFile(settings, path); }).find("cannot open"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace slime
