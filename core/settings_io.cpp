@@ -36,6 +36,9 @@ std::string describe(const Choices& choices) {
   return text;
 }
 
+// A JSON value as text for a message; bytes that are not UTF-8 are shown as U+FFFD.
+std::string shown(const json& value) { return value.dump(-1, ' ', false, json::error_handler_t::replace); }
+
 [[noreturn]] void fail(std::string_view key, const std::string& value, const std::string& allowed) {
   throw SettingsError(std::string(key) + ": " + value + " is not allowed; expected " + allowed);
 }
@@ -70,11 +73,11 @@ std::size_t editDistance(std::string_view a, std::string_view b) {
 }
 
 double checkedNumber(std::string_view key, const json& value, const Limits& limits, bool integer) {
-  if (!value.is_number()) fail(key, value.dump(), describe(limits, integer));
+  if (!value.is_number()) fail(key, shown(value), describe(limits, integer));
   const double number = value.get<double>();
-  if (!std::isfinite(number)) fail(key, value.dump(), describe(limits, integer));
-  if (integer && number != std::floor(number)) fail(key, value.dump(), describe(limits, integer));
-  if (number < limits.min || number > limits.max) fail(key, value.dump(), describe(limits, integer));
+  if (!std::isfinite(number)) fail(key, shown(value), describe(limits, integer));
+  if (integer && number != std::floor(number)) fail(key, shown(value), describe(limits, integer));
+  if (number < limits.min || number > limits.max) fail(key, shown(value), describe(limits, integer));
   return number;
 }
 
@@ -89,25 +92,25 @@ struct Assign {
   }
   void operator()(glm::dvec3& field, const Limits& limits) const {
     const std::string allowed = "three numbers [x, y, z], each " + describe(limits, false);
-    if (!value.is_array() || value.size() != 3) fail(key, value.dump(), allowed);
+    if (!value.is_array() || value.size() != 3) fail(key, shown(value), allowed);
     glm::dvec3 result;
     for (int i = 0; i < 3; ++i) {
-      if (!value[i].is_number() || !std::isfinite(value[i].get<double>())) fail(key, value.dump(), allowed);
+      if (!value[i].is_number() || !std::isfinite(value[i].get<double>())) fail(key, shown(value), allowed);
       result[i] = value[i].get<double>();
-      if (result[i] < limits.min || result[i] > limits.max) fail(key, value.dump(), allowed);
+      if (result[i] < limits.min || result[i] > limits.max) fail(key, shown(value), allowed);
     }
     field = result;
   }
   void operator()(std::string& field, const Choices& choices) const {
     const std::string allowed = choices.empty() ? std::string("a text") : describe(choices);
-    if (!value.is_string()) fail(key, value.dump(), allowed);
+    if (!value.is_string()) fail(key, shown(value), allowed);
     const std::string text = value.get<std::string>();
     if (!choices.empty() && std::find(choices.begin(), choices.end(), text) == choices.end())
       fail(key, "\"" + text + "\"", allowed);
     field = text;
   }
   void operator()(bool& field, const Choices&) const {
-    if (!value.is_boolean()) fail(key, value.dump(), "true or false");
+    if (!value.is_boolean()) fail(key, shown(value), "true or false");
     field = value.get<bool>();
   }
 };

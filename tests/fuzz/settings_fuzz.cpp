@@ -1,0 +1,33 @@
+// libFuzzer target for everything a user can type or feed as settings: scene files (JSON) and
+// `--set key=value` overrides. The first byte picks the reader; the rest is the input. Any exception
+// other than SettingsError (or a crash, hang or leak) is a bug.
+#include "core/settings_io.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  if (size == 0) return 0;
+  const std::string text(reinterpret_cast<const char*>(data) + 1, size - 1);
+  slime::Settings settings = slime::defaultSettings();
+  try {
+    if (data[0] % 2 == 0) {
+      const nlohmann::json scene = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+      if (scene.is_discarded()) return 0;
+      slime::applySceneJson(settings, scene, "fuzz");
+    } else {
+      for (std::size_t start = 0; start <= text.size();) {  // one override per line
+        const std::size_t end = std::min(text.find('\n', start), text.size());
+        slime::applyOverride(settings, std::string_view(text).substr(start, end - start));
+        start = end + 1;
+      }
+    }
+    slime::validateSettings(settings);
+    (void)slime::settingsToJson(settings).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  } catch (const slime::SettingsError&) {
+  }
+  return 0;
+}
