@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Runs the whole test suite under AddressSanitizer + UndefinedBehaviorSanitizer, and the threaded
+# renderer and physics tests under ThreadSanitizer. Any sanitizer report fails the run.
+# Usage: scripts/sanitize.sh [asan|tsan]...   (default: both)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:suppressions=$PWD/scripts/asan.supp"
+export LSAN_OPTIONS="suppressions=$PWD/scripts/lsan.supp:print_suppressions=0"
+export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
+export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:suppressions=$PWD/scripts/tsan.supp"
+for preset in "${@:-asan tsan}"; do
+  for p in $preset; do
+    cmake --preset "$p" -G Ninja >/dev/null
+    case "$p" in
+      asan)
+        cmake --build --preset asan
+        ctest --preset asan -j2 --timeout 900 ;;
+      tsan)
+        cmake --build --preset tsan --target core_tests render_tests
+        ctest --preset tsan -j2 --timeout 900 -L '^(core|render)$' ;;
+    esac
+  done
+done
