@@ -9,6 +9,7 @@
 
 #include "core/icosphere.h"
 #include "core/settings.h"
+#include "render/image.h"  // Image: a linear-RGB float image, row-major, top row first
 
 #include <glm/vec3.hpp>
 
@@ -18,16 +19,6 @@
 #include <vector>
 
 namespace slime {
-
-// A linear-RGB float image, row-major, top row first.
-struct Image {
-  int width = 0;
-  int height = 0;
-  std::vector<glm::vec3> pixels;
-  void resize(int w, int h);
-  glm::vec3& at(int x, int y) { return pixels[static_cast<std::size_t>(y) * width + x]; }
-  const glm::vec3& at(int x, int y) const { return pixels[static_cast<std::size_t>(y) * width + x]; }
-};
 
 struct RayCounts {
   std::uint64_t primary = 0;
@@ -40,7 +31,8 @@ struct RayCounts {
 struct RenderStats {
   double refitMs = 0.0;  // BVH refit/rebuild in the last updateSlime
   double traceMs = 0.0;  // tracing and shading the image
-  RayCounts rays;
+  RayCounts rays;        // every ray by kind, whether it met Embree or only the analytic floor/sky
+  std::uint64_t slimeQueries = 0;  // rays that could reach the slime's bounds and were tested against it
 };
 
 class Renderer {

@@ -1,0 +1,29 @@
+// The snapshot pipeline as one reusable call: settings → a settled slime → one traced Image.
+// `slime snapshot` writes it to a PNG; the viewer's `--ui` mode can call the same function.
+#pragma once
+
+#include "core/settings.h"
+#include "render/renderer.h"
+
+#include <string>
+
+namespace slime {
+
+struct SnapshotResult {
+  Image image;              // linear RGB, settings.camera.width × settings.camera.height
+  RenderStats stats;        // the traced frame's timing and ray counts
+  double simulatedSeconds = 0.0;
+};
+
+// Simulates the slime for `settleSeconds` (negative: until it rests, at most kMaxSettleSeconds) and
+// renders one frame of it with the settings' camera and image size. Deterministic: the same settings
+// give the same pixels.
+SnapshotResult takeSnapshot(const Settings& settings, double settleSeconds);
+
+constexpr double kMaxSettleSeconds = 3.0;
+
+// Parses an image size "WxH" into the settings' camera; W and H are integers in 1..8192.
+// Throws SettingsError naming --size and the allowed range otherwise.
+void applyImageSize(Settings& settings, const std::string& size);
+
+}  // namespace slime

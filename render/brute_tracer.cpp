@@ -1,0 +1,64 @@
+#include "render/brute_tracer.h"
+
+#include <glm/geometric.hpp>
+
+#include <cmath>
+
+namespace slime {
+
+float intersectTriangle(const Ray& ray, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, float& u, float& v) {
+  const glm::vec3 edge1 = b - a, edge2 = c - a;
+  const glm::vec3 p = glm::cross(ray.direction, edge2);
+  const float determinant = glm::dot(edge1, p);
+  if (determinant == 0.0f || !std::isfinite(determinant)) return kInfinity;  // parallel or degenerate
+  const float inverse = 1.0f / determinant;
+  const glm::vec3 s = ray.origin - a;
+  u = glm::dot(s, p) * inverse;
+  if (u < 0.0f || u > 1.0f) return kInfinity;
+  const glm::vec3 q = glm::cross(s, edge1);
+  v = glm::dot(ray.direction, q) * inverse;
+  if (v < 0.0f || u + v > 1.0f) return kInfinity;
+  const float t = glm::dot(edge2, q) * inverse;
+  return t >= ray.tNear && t <= ray.tFar ? t : kInfinity;
+}
+
+float intersectSphere(const Ray& ray, const glm::vec3& center, float radius) {
+  // t² − 2 t (d·(c−o)) + |c−o|² − r² = 0 with unit d; the half-b form keeps precision.
+  const glm::vec3 toCenter = center - ray.origin;
+  const float halfB = glm::dot(ray.direction, toCenter);
+  const glm::vec3 perpendicular = toCenter - halfB * ray.direction;
+  const float discriminant = radius * radius - glm::dot(perpendicular, perpendicular);
+  if (discriminant < 0.0f) return kInfinity;
+  const float root = std::sqrt(discriminant);
+  const float nearT = halfB - root, farT = halfB + root;
+  if (nearT >= ray.tNear && nearT <= ray.tFar) return nearT;
+  if (farT >= ray.tNear && farT <= ray.tFar) return farT;
+  return kInfinity;
+}
+
+SlimeHit BruteTracer::intersect(const Ray& ray) const {
+  SlimeHit hit;
+  if (!geometry_.mayHit(ray)) return hit;
+  if (geometry_.analyticSphere) {
+    const float t = intersectSphere(ray, geometry_.sphereCenter, geometry_.sphereRadius);
+    if (t < kInfinity) {
+      hit.t = t;
+      hit.primitive = 0;
+    }
+    return hit;
+  }
+  Ray segment = ray;
+  const auto& positions = geometry_.positions;
+  for (std::size_t i = 0; i < geometry_.triangles.size(); ++i) {
+    const Triangle& triangle = geometry_.triangles[i];
+    float u = 0.0f, v = 0.0f;
+    const float t = intersectTriangle(segment, positions[triangle.x], positions[triangle.y], positions[triangle.z], u, v);
+    if (t < segment.tFar) {
+      segment.tFar = t;
+      hit = SlimeHit{t, static_cast<std::uint32_t>(i), u, v};
+    }
+  }
+  return hit;
+}
+
+}  // namespace slime

@@ -1,0 +1,179 @@
+#include "render/embree_scene.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace slime {
+namespace {
+
+// A refitted BVH degrades as the mesh deforms (SPEC §10: ≈ 0.65–0.7× on a squashed slime): rebuild
+// when the bounding radius has changed by this fraction since the last build, or after this many refits.
+constexpr float kRebuildRadiusChange = 0.2f;
+constexpr int kRebuildAfterRefits = 600;
+
+void recordError(void* userPtr, RTCError code, const char* message) {
+  auto* error = static_cast<std::string*>(userPtr);
+  *error = "Embree error " + std::to_string(static_cast<int>(code)) + ": " + (message ? message : "(no message)");
+}
+
+void initRay(RTCRay& out, const Ray& ray) {
+  out.org_x = ray.origin.x;
+  out.org_y = ray.origin.y;
+  out.org_z = ray.origin.z;
+  out.dir_x = ray.direction.x;
+  out.dir_y = ray.direction.y;
+  out.dir_z = ray.direction.z;
+  out.tnear = ray.tNear;
+  out.tfar = ray.tFar;
+  out.time = 0.0f;
+  out.mask = 0xFFFFFFFFu;  // Debian's Embree is built with ray masks
+  out.id = 0;
+  out.flags = 0;
+}
+
+}  // namespace
+
+EmbreeScene::EmbreeScene(int threads) {
+  // No start_threads: with a thread limit below the core count Embree 3.13.5 can deadlock (SPEC §10).
+  const std::string config = threads > 0 ? "threads=" + std::to_string(threads) + ",set_affinity=0" : "set_affinity=0";
+  device_ = rtcNewDevice(config.c_str());
+  if (!device_) throw std::runtime_error("Embree: cannot create a device (" + std::to_string(rtcGetDeviceError(nullptr)) + ")");
+  rtcSetDeviceErrorFunction(device_, recordError, &error_);
+  scene_ = rtcNewScene(device_);
+  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_DYNAMIC);
+  rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_LOW);
+
+  sphere_ = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+  auto* point = static_cast<float*>(
+      rtcSetNewGeometryBuffer(sphere_, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
+  if (point) point[0] = point[1] = point[2] = point[3] = 0.0f;
+  rtcCommitGeometry(sphere_);
+  sphereId_ = rtcAttachGeometry(scene_, sphere_);
+  rtcDisableGeometry(sphere_);
+  rtcCommitScene(scene_);
+  throwOnError("creating the scene");
+}
+
+EmbreeScene::~EmbreeScene() {
+  if (mesh_) rtcReleaseGeometry(mesh_);
+  if (sphere_) rtcReleaseGeometry(sphere_);
+  if (scene_) rtcReleaseScene(scene_);
+  if (device_) rtcReleaseDevice(device_);
+}
+
+void EmbreeScene::throwOnError(const char* during) {
+  if (error_.empty()) return;
+  const std::string message = error_ + " (while " + during + ")";
+  error_.clear();
+  throw std::runtime_error(message);
+}
+
+void EmbreeScene::attachMesh(const SlimeGeometry& geometry) {
+  if (mesh_) {
+    rtcDetachGeometry(scene_, meshId_);
+    rtcReleaseGeometry(mesh_);
+    mesh_ = nullptr;
+  }
+  if (geometry.triangles.empty()) return;
+  mesh_ = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+  rtcSetGeometryBuildQuality(mesh_, RTC_BUILD_QUALITY_REFIT);
+  // Shared buffers: the positions array carries one padding vertex (Embree reads 16 bytes at a time).
+  rtcSetSharedGeometryBuffer(mesh_, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, geometry.positions.data(), 0,
+                             sizeof(glm::vec3), geometry.vertexCount());
+  rtcSetSharedGeometryBuffer(mesh_, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, geometry.triangles.data(), 0,
+                             sizeof(Triangle), geometry.triangles.size());
+  rtcCommitGeometry(mesh_);
+  meshId_ = rtcAttachGeometry(scene_, mesh_);
+}
+
+void EmbreeScene::update(const SlimeGeometry& geometry, bool topologyChanged) {
+  if (topologyChanged || !mesh_) {
+    attachMesh(geometry);
+    builtRadius_ = geometry.boundRadius;
+    refitsSinceBuild_ = 0;
+    ++rebuilds_;
+  } else {
+    const bool drifted = std::abs(geometry.boundRadius - builtRadius_) > kRebuildRadiusChange * builtRadius_;
+    if (drifted || ++refitsSinceBuild_ >= kRebuildAfterRefits) {
+      // Touching the index buffer makes Embree build this mesh's BVH from scratch.
+      rtcUpdateGeometryBuffer(mesh_, RTC_BUFFER_TYPE_INDEX, 0);
+      builtRadius_ = geometry.boundRadius;
+      refitsSinceBuild_ = 0;
+      ++rebuilds_;
+    }
+    rtcUpdateGeometryBuffer(mesh_, RTC_BUFFER_TYPE_VERTEX, 0);
+    rtcCommitGeometry(mesh_);
+  }
+
+  if (geometry.analyticSphere) {
+    auto* point = static_cast<float*>(rtcGetGeometryBufferData(sphere_, RTC_BUFFER_TYPE_VERTEX, 0));
+    point[0] = geometry.sphereCenter.x;
+    point[1] = geometry.sphereCenter.y;
+    point[2] = geometry.sphereCenter.z;
+    point[3] = geometry.sphereRadius;
+    rtcUpdateGeometryBuffer(sphere_, RTC_BUFFER_TYPE_VERTEX, 0);
+    rtcCommitGeometry(sphere_);
+  }
+  if (geometry.analyticSphere != sphereEnabled_) {
+    sphereEnabled_ = geometry.analyticSphere;
+    if (sphereEnabled_) rtcEnableGeometry(sphere_); else rtcDisableGeometry(sphere_);
+  }
+  if (mesh_) {
+    if (geometry.analyticSphere) rtcDisableGeometry(mesh_); else rtcEnableGeometry(mesh_);
+  }
+  rtcCommitScene(scene_);
+  throwOnError("refitting the slime");
+}
+
+SlimeHit EmbreeScene::intersect(const Ray& ray) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rayHit;
+  initRay(rayHit.ray, ray);
+  rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rayHit.hit.primID = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(scene_, &context, &rayHit);
+  SlimeHit hit;
+  if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
+  hit.t = rayHit.ray.tfar;
+  hit.primitive = rayHit.hit.geomID == sphereId_ ? 0u : rayHit.hit.primID;
+  hit.u = rayHit.hit.u;
+  hit.v = rayHit.hit.v;
+  return hit;
+}
+
+void EmbreeScene::intersect8(const Ray* rays, const bool* active, SlimeHit* hits) const {
+  alignas(32) int valid[8];
+  alignas(32) RTCRayHit8 packet;
+  for (int i = 0; i < 8; ++i) {
+    valid[i] = active[i] ? -1 : 0;
+    packet.ray.org_x[i] = rays[i].origin.x;
+    packet.ray.org_y[i] = rays[i].origin.y;
+    packet.ray.org_z[i] = rays[i].origin.z;
+    packet.ray.dir_x[i] = rays[i].direction.x;
+    packet.ray.dir_y[i] = rays[i].direction.y;
+    packet.ray.dir_z[i] = rays[i].direction.z;
+    packet.ray.tnear[i] = rays[i].tNear;
+    packet.ray.tfar[i] = rays[i].tFar;
+    packet.ray.time[i] = 0.0f;
+    packet.ray.mask[i] = 0xFFFFFFFFu;
+    packet.ray.id[i] = static_cast<unsigned>(i);
+    packet.ray.flags[i] = 0;
+    packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+    packet.hit.primID[i] = RTC_INVALID_GEOMETRY_ID;
+  }
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  rtcIntersect8(valid, scene_, &context, &packet);
+  for (int i = 0; i < 8; ++i) {
+    hits[i] = SlimeHit{};
+    if (!active[i] || packet.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) continue;
+    hits[i].t = packet.ray.tfar[i];
+    hits[i].primitive = packet.hit.geomID[i] == sphereId_ ? 0u : packet.hit.primID[i];
+    hits[i].u = packet.hit.u[i];
+    hits[i].v = packet.hit.v[i];
+  }
+}
+
+}  // namespace slime

@@ -1,0 +1,50 @@
+// The slime in Embree 3: one device, one dynamic scene holding the slime as a triangle mesh that
+// shares SlimeGeometry's vertex and index arrays (written in place every frame, then refitted), and
+// the analytic sphere of slime.shape=sphere as a one-point sphere primitive. The floor and sky are
+// not in Embree: they are analytic (see whitted_tracer.h).
+#pragma once
+
+#include "render/ray.h"
+#include "render/slime_geometry.h"
+
+#include <embree3/rtcore.h>
+
+#include <string>
+
+namespace slime {
+
+class EmbreeScene final : public SlimeIntersector {
+ public:
+  explicit EmbreeScene(int threads);  // threads = 0: all cores
+  ~EmbreeScene() override;
+  EmbreeScene(const EmbreeScene&) = delete;
+  EmbreeScene& operator=(const EmbreeScene&) = delete;
+
+  // Re-reads `geometry` (which must outlive this scene's use of it). Refits the BVH when only the
+  // positions moved; attaches new buffers and rebuilds when the topology changed or the shape
+  // drifted far from the one the BVH was built for. Throws std::runtime_error on an Embree error.
+  void update(const SlimeGeometry& geometry, bool topologyChanged);
+
+  SlimeHit intersect(const Ray& ray) const override;
+  void intersect8(const Ray* rays, const bool* active, SlimeHit* hits) const override;
+
+  int rebuildCount() const { return rebuilds_; }
+
+ private:
+  void attachMesh(const SlimeGeometry& geometry);
+  void throwOnError(const char* during);
+
+  RTCDevice device_ = nullptr;
+  RTCScene scene_ = nullptr;
+  RTCGeometry mesh_ = nullptr;
+  RTCGeometry sphere_ = nullptr;
+  unsigned meshId_ = RTC_INVALID_GEOMETRY_ID;
+  unsigned sphereId_ = RTC_INVALID_GEOMETRY_ID;
+  bool sphereEnabled_ = false;
+  float builtRadius_ = 0.0f;      // bounding radius when the BVH was last built from scratch
+  int refitsSinceBuild_ = 0;
+  int rebuilds_ = 0;
+  std::string error_;             // the last message from the device error callback
+};
+
+}  // namespace slime

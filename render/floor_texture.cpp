@@ -1,0 +1,199 @@
+#include "render/floor_texture.h"
+
+#include "core/settings_io.h"
+#include "render/image_io.h"
+
+#include <glm/common.hpp>
+#include <glm/exponential.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace slime {
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+
+// A well-mixed integer hash (lowbias32) → [0, 1).
+float hash01(std::int32_t i, std::int32_t j) {
+  std::uint32_t x = static_cast<std::uint32_t>(i) * 0x9E3779B9u ^ (static_cast<std::uint32_t>(j) + 0x7F4A7C15u);
+  x ^= x >> 16;
+  x *= 0x7feb352du;
+  x ^= x >> 15;
+  x *= 0x846ca68bu;
+  x ^= x >> 16;
+  return static_cast<float>(x >> 8) * (1.0f / 16777216.0f);
+}
+
+// The integral from 0 to x of a pulse train that is 1 on [k, k + width) for every integer k:
+//   P(x) = ⌊x⌋·width + min(x − ⌊x⌋, width).
+float pulseIntegral(float x, float width) {
+  const float whole = std::floor(x);
+  return whole * width + std::min(x - whole, width);
+}
+
+// The pulse train box-filtered over [x − halfWidth, x + halfWidth]: (P(x+h) − P(x−h)) / 2h.
+float filteredPulse(float x, float halfWidth, float width) {
+  if (halfWidth < 1e-6f) return x - std::floor(x) < width ? 1.0f : 0.0f;
+  return (pulseIntegral(x + halfWidth, width) - pulseIntegral(x - halfWidth, width)) / (2.0f * halfWidth);
+}
+
+// The integral of the ±1 square wave (+1 on [0,1), −1 on [1,2)): the triangle wave 1 − |x mod 2 − 1|.
+float squareIntegral(float x) { return 1.0f - std::abs(x - 2.0f * std::floor(0.5f * x) - 1.0f); }
+
+float filteredSquare(float x, float halfWidth) {
+  if (halfWidth < 1e-6f) return x - 2.0f * std::floor(0.5f * x) < 1.0f ? 1.0f : -1.0f;
+  return (squareIntegral(x + halfWidth) - squareIntegral(x - halfWidth)) / (2.0f * halfWidth);
+}
+
+// How much of a detail of `period` survives a box of half width h: 1 well below, 0 at and above.
+float detailVisibility(float halfWidth, float period) { return glm::clamp(1.0f - 2.0f * halfWidth / period, 0.0f, 1.0f); }
+
+glm::vec3 toVec3(const glm::dvec3& v) { return glm::vec3(v); }
+
+}  // namespace
+
+FloorTexture::FloorTexture(const FloorSettings& settings)
+    : scale_(static_cast<float>(settings.scale)), colorA_(toVec3(settings.colorA)), colorB_(toVec3(settings.colorB)) {
+  if (!(scale_ > 0.0f)) throw SettingsError("floor.scale must be > 0 m, got " + std::to_string(settings.scale));
+  if (settings.pattern == "planks") pattern_ = Pattern::Planks;
+  else if (settings.pattern == "tiles") pattern_ = Pattern::Tiles;
+  else if (settings.pattern == "checker") pattern_ = Pattern::Checker;
+  else if (settings.pattern == "image") pattern_ = Pattern::Image;
+  else throw SettingsError("floor.pattern must be one of planks, tiles, checker, image; got '" + settings.pattern + "'");
+
+  if (pattern_ == Pattern::Image) {
+    loadImage(settings.image);
+    mean_ = mips_.back().texels.front();
+  } else {
+    // Far away every procedural pattern tends to its area average; sample it with a huge footprint.
+    mean_ = albedo({0.37f * scale_, 0.61f * scale_}, glm::vec2(1000.0f * scale_));
+  }
+}
+
+glm::vec3 FloorTexture::albedo(glm::vec2 point, glm::vec2 footprint) const {
+  switch (pattern_) {
+    case Pattern::Planks: return planks(point, footprint);
+    case Pattern::Tiles: return tiles(point, footprint);
+    case Pattern::Checker: return checker(point, footprint);
+    case Pattern::Image: return image(point, footprint);
+  }
+  return mean_;
+}
+
+// Boards `scale` wide running along x, six widths long, each row's joints staggered; each board has
+// its own shade between colorA and colorB, wavy grain along its length and dark seams between boards.
+glm::vec3 FloorTexture::planks(glm::vec2 p, glm::vec2 footprint) const {
+  constexpr float kLength = 6.0f;      // board length in board widths
+  constexpr float kSeam = 0.03f;       // seam width as a fraction of the board width
+  constexpr float kGrainPerBoard = 7.0f;
+  const glm::vec2 q = p / scale_;               // in board widths
+  const glm::vec2 h = footprint / scale_;
+  const float row = std::floor(q.y);
+  const float stagger = hash01(static_cast<std::int32_t>(row), 17) * kLength;
+  const float along = (q.x + stagger) / kLength;  // in board lengths
+  const float board = std::floor(along);
+
+  // Per-board shade and brightness, faded to their mean once a board is smaller than the footprint.
+  const float boardVisibility = detailVisibility(std::max(h.x, h.y), 1.0f);
+  const float shade = glm::mix(0.5f, hash01(static_cast<std::int32_t>(board), static_cast<std::int32_t>(row)), boardVisibility);
+  const float brightness = 1.0f + 0.18f * boardVisibility * (hash01(static_cast<std::int32_t>(row), static_cast<std::int32_t>(board) + 911) - 0.5f);
+  glm::vec3 color = glm::mix(colorA_, colorB_, shade) * brightness;
+
+  // Grain: stripes across y that wander along x; each sine fades as the footprint reaches its period.
+  const float phase = hash01(static_cast<std::int32_t>(board), static_cast<std::int32_t>(row) + 3) * 2.0f * kPi;
+  const float wander = 0.35f * std::sin(q.x * 1.3f + phase) + 0.15f * std::sin(q.x * 3.7f + 2.0f * phase);
+  const float grainPeriod = 1.0f / kGrainPerBoard;
+  const float grain = std::sin(2.0f * kPi * (q.y + wander * grainPeriod * 3.0f) * kGrainPerBoard + phase);
+  const float fineGrain = std::sin(2.0f * kPi * (q.y * 3.1f + 0.7f * wander) * kGrainPerBoard + 1.7f * phase);
+  const float grainAmount = 0.10f * grain * detailVisibility(h.y, grainPeriod) +
+                            0.05f * fineGrain * detailVisibility(h.y, grainPeriod / 3.1f);
+  color *= 1.0f + grainAmount;
+
+  // Seams: the long ones between rows (exactly filtered), the joints between boards of one row.
+  const float longSeam = filteredPulse(q.y + 0.5f * kSeam, h.y, kSeam);
+  const float joint = filteredPulse(along + 0.5f * kSeam / kLength, h.x / kLength, kSeam / kLength);
+  const float seam = 1.0f - (1.0f - longSeam) * (1.0f - joint);
+  return glm::mix(color, colorB_ * 0.35f, seam);
+}
+
+// Square tiles of side `scale` in colorA, with grout lines in colorB and a slight shade per tile.
+glm::vec3 FloorTexture::tiles(glm::vec2 p, glm::vec2 footprint) const {
+  constexpr float kGrout = 0.06f;
+  const glm::vec2 q = p / scale_, h = footprint / scale_;
+  const float visibility = detailVisibility(std::max(h.x, h.y), 1.0f);
+  const float shade = 1.0f + 0.12f * visibility *
+      (hash01(static_cast<std::int32_t>(std::floor(q.x)), static_cast<std::int32_t>(std::floor(q.y))) - 0.5f);
+  const float groutX = filteredPulse(q.x + 0.5f * kGrout, h.x, kGrout);
+  const float groutY = filteredPulse(q.y + 0.5f * kGrout, h.y, kGrout);
+  const float grout = 1.0f - (1.0f - groutX) * (1.0f - groutY);
+  return glm::mix(colorA_ * shade, colorB_, grout);
+}
+
+// Alternating cells of side `scale`: the box filter of s(x)·s(y) is the product of the filtered waves.
+glm::vec3 FloorTexture::checker(glm::vec2 p, glm::vec2 footprint) const {
+  const glm::vec2 q = p / scale_, h = footprint / scale_;
+  const float sign = filteredSquare(q.x, h.x) * filteredSquare(q.y, h.y);
+  return glm::mix(colorB_, colorA_, 0.5f + 0.5f * sign);
+}
+
+// One copy of the image covers scale × scale·(height/width) metres, repeated; trilinear mipmapping.
+glm::vec3 FloorTexture::image(glm::vec2 p, glm::vec2 footprint) const {
+  const MipLevel& base = mips_.front();
+  const float texelsPerMetre = static_cast<float>(base.width) / scale_;
+  const float footprintTexels = 2.0f * std::max(footprint.x, footprint.y) * texelsPerMetre;
+  const float lod = glm::clamp(std::log2(std::max(footprintTexels, 1.0f)), 0.0f, static_cast<float>(mips_.size() - 1));
+  const int lower = static_cast<int>(lod);
+  const int upper = std::min(lower + 1, static_cast<int>(mips_.size()) - 1);
+  const float blend = lod - static_cast<float>(lower);
+  auto sample = [&](const MipLevel& level) {
+    const float perMetre = static_cast<float>(level.width) / scale_;
+    return level.bilinear(p.x * perMetre - 0.5f, -p.y * perMetre - 0.5f);
+  };
+  return glm::mix(sample(mips_[lower]), sample(mips_[upper]), blend);
+}
+
+glm::vec3 FloorTexture::MipLevel::bilinear(float x, float y) const {
+  const float fx = std::floor(x), fy = std::floor(y);
+  const float tx = x - fx, ty = y - fy;
+  auto wrap = [](float value, int size) {
+    const int i = static_cast<int>(std::fmod(value, static_cast<float>(size)));
+    return i < 0 ? i + size : i;
+  };
+  const int x0 = wrap(fx, width), x1 = (x0 + 1) % width;
+  const int y0 = wrap(fy, height), y1 = (y0 + 1) % height;
+  auto texel = [&](int i, int j) { return texels[static_cast<std::size_t>(j) * width + i]; };
+  return glm::mix(glm::mix(texel(x0, y0), texel(x1, y0), tx), glm::mix(texel(x0, y1), texel(x1, y1), tx), ty);
+}
+
+void FloorTexture::loadImage(const std::string& path) {
+  if (path.empty()) throw SettingsError("floor.image: floor.pattern is 'image' but no PNG file is given");
+  LinearImage loaded;
+  try {
+    loaded = readPng(path);
+  } catch (const std::exception& e) {
+    throw SettingsError(std::string("floor.image: ") + e.what());
+  }
+  MipLevel level{loaded.width, loaded.height, std::move(loaded.pixels)};
+  mips_.push_back(std::move(level));
+  // Each coarser level averages 2×2 texels of the one above (odd sizes wrap the last column/row).
+  while (mips_.back().width > 1 || mips_.back().height > 1) {
+    const MipLevel& fine = mips_.back();
+    MipLevel coarse{std::max(1, fine.width / 2), std::max(1, fine.height / 2), {}};
+    coarse.texels.resize(static_cast<std::size_t>(coarse.width) * coarse.height);
+    for (int j = 0; j < coarse.height; ++j) {
+      for (int i = 0; i < coarse.width; ++i) {
+        glm::vec3 sum(0.0f);
+        for (int dj = 0; dj < 2; ++dj)
+          for (int di = 0; di < 2; ++di)
+            sum += fine.texels[static_cast<std::size_t>(std::min(2 * j + dj, fine.height - 1)) * fine.width +
+                               std::min(2 * i + di, fine.width - 1)];
+        coarse.texels[static_cast<std::size_t>(j) * coarse.width + i] = 0.25f * sum;
+      }
+    }
+    mips_.push_back(std::move(coarse));
+  }
+}
+
+}  // namespace slime

@@ -1,0 +1,45 @@
+// Geometric optics as free functions over plain values: reflection, Snell refraction with total
+// internal reflection, the dielectric Fresnel reflectance, Beer–Lambert absorption, the slime's
+// per-channel absorption coefficient and the secondary-ray origin offset.
+#pragma once
+
+#include <glm/vec3.hpp>
+
+#include <optional>
+
+namespace slime {
+
+// Mirror reflection of direction v about unit normal n: v_r = v − 2 (n·v) n.
+glm::vec3 reflect(const glm::vec3& v, const glm::vec3& n);
+
+// Refraction of unit direction v through a surface with unit normal n facing the incoming side
+// (n·v < 0), from index etaFrom into index etaTo (Snell: etaFrom sin θi = etaTo sin θt):
+//   t = η v + (η cos θi − cos θt) n,  η = etaFrom / etaTo,  cos θt = √(1 − η² (1 − cos² θi)).
+// Empty when sin θt > 1: total internal reflection.
+std::optional<glm::vec3> refract(const glm::vec3& v, const glm::vec3& n, float etaFrom, float etaTo);
+
+// Unpolarised dielectric Fresnel reflectance, the mean of the s and p terms:
+//   r_s = (η1 cos θi − η2 cos θt)/(η1 cos θi + η2 cos θt), r_p = (η2 cos θi − η1 cos θt)/(η2 cos θi + η1 cos θt),
+//   F = (r_s² + r_p²)/2; F = 1 under total internal reflection. cosIncident = |n·v|.
+float fresnelDielectric(float cosIncident, float etaFrom, float etaTo);
+
+// Beer–Lambert transmittance per channel after a path of `length` metres: T = exp(−σ l).
+glm::vec3 beerLambert(const glm::vec3& sigma, float length);
+
+// The slime's per-channel absorption coefficient (1/m) from its colour and absorption k:
+//   σ_c = k · (−ln max(color_c, 1/1000)),
+// so a path of 1/k metres through the jelly transmits exactly `color` (T_c = color_c^(k l)): the
+// slime's hue comes from what it absorbs, k says how quickly; k = 0 or white means clear.
+glm::vec3 absorptionCoefficients(const glm::vec3& color, float absorption);
+
+// The secondary-ray offset, in metres: a new ray starts at p + kRayOffset · n_g on the side of the
+// geometric normal n_g it leaves towards, with tNear = 0. 1e-5 m is ≈ 1,000 float ulps at the scene's
+// 0.1 m coordinates and 1/4,000 of the slime's radius, far below a pixel's footprint
+// (render_tests: SecondaryOffset.* measure the self-intersection threshold and check this margin).
+constexpr float kRayOffset = 1e-5f;
+
+// p moved by `offset` along n_g towards the side `direction` points to.
+glm::vec3 offsetRayOrigin(const glm::vec3& p, const glm::vec3& geometricNormal, const glm::vec3& direction,
+                          float offset = kRayOffset);
+
+}  // namespace slime

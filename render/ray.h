@@ -1,0 +1,42 @@
+// A ray, a hit on the slime, and the one query both intersection back-ends answer (Embree and the
+// brute-force oracle). Everything downstream of the hit (normals, shading, transport) is shared.
+#pragma once
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <limits>
+
+namespace slime {
+
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
+constexpr std::uint32_t kNoPrimitive = 0xFFFFFFFFu;
+
+struct Ray {
+  glm::vec3 origin{0.0f};
+  glm::vec3 direction{0.0f, 0.0f, 1.0f};  // unit length
+  float tNear = 0.0f;
+  float tFar = kInfinity;
+};
+
+// The first crossing of a ray with the slime's surface.
+struct SlimeHit {
+  float t = kInfinity;
+  std::uint32_t primitive = kNoPrimitive;  // triangle index (mesh) or 0 (analytic sphere)
+  float u = 0.0f, v = 0.0f;                // barycentrics of vertices 1 and 2 (mesh)
+  bool valid() const { return primitive != kNoPrimitive; }
+};
+
+// Closest-hit queries against the slime alone (the floor and sky are analytic, see whitted_tracer.h).
+class SlimeIntersector {
+ public:
+  virtual ~SlimeIntersector() = default;
+  // The closest crossing with t in [ray.tNear, ray.tFar]; an invalid hit if none.
+  virtual SlimeHit intersect(const Ray& ray) const = 0;
+  // Up to 8 coherent primary rays at once; rays with active[i] == false are skipped.
+  virtual void intersect8(const Ray* rays, const bool* active, SlimeHit* hits) const {
+    for (int i = 0; i < 8; ++i) hits[i] = active[i] ? intersect(rays[i]) : SlimeHit{};
+  }
+};
+
+}  // namespace slime

@@ -1,0 +1,191 @@
+#include "render/renderer.h"
+
+#include "core/camera.h"
+#include "render/brute_tracer.h"
+#include "render/embree_scene.h"
+#include "render/floor_texture.h"
+#include "render/slime_geometry.h"
+#include "render/whitted_tracer.h"
+
+#include <tbb/blocked_range2d.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <glm/geometric.hpp>
+
+#include <xmmintrin.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace slime {
+namespace {
+
+constexpr int kTileRows = 8;
+constexpr int kTileColumns = 32;  // a multiple of the 8-ray packet width
+constexpr int kPacket = 8;
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+bool sameFloor(const FloorSettings& a, const FloorSettings& b) {
+  return a.pattern == b.pattern && a.scale == b.scale && a.colorA == b.colorA && a.colorB == b.colorB && a.image == b.image;
+}
+
+// Flush-to-zero and denormals-are-zero for the tile (SPEC §10), restoring the caller's MXCSR after.
+class FlushDenormals {
+ public:
+  FlushDenormals() : saved_(_mm_getcsr()) { _mm_setcsr(saved_ | 0x8040u); }  // FTZ = bit 15, DAZ = bit 6
+  ~FlushDenormals() { _mm_setcsr(saved_); }
+  FlushDenormals(const FlushDenormals&) = delete;
+  FlushDenormals& operator=(const FlushDenormals&) = delete;
+
+ private:
+  unsigned saved_;
+};
+
+}  // namespace
+
+struct Renderer::Impl {
+  SlimeGeometry geometry;
+  EmbreeScene embree;
+  BruteTracer brute{geometry};
+  FloorSettings floorSettings;
+  FloorTexture floor;
+  int threads = 0;
+  std::unique_ptr<tbb::task_arena> arena;
+  tbb::enumerable_thread_specific<TraceCounters> counters;
+  double refitMs = 0.0;
+
+  explicit Impl(const Settings& settings)
+      : embree(settings.render.threads), floorSettings(settings.floor), floor(settings.floor) {
+    makeArena(settings.render.threads);
+  }
+
+  void makeArena(int count) {
+    threads = count;
+    arena = count > 0 ? std::make_unique<tbb::task_arena>(count) : std::make_unique<tbb::task_arena>();
+  }
+
+  // Keeps the floor texture, thread count and slime shape in step with the settings of this frame.
+  void sync(const Settings& settings) {
+    if (!sameFloor(settings.floor, floorSettings)) {
+      floor = FloorTexture(settings.floor);
+      floorSettings = settings.floor;
+    }
+    if (settings.render.threads != threads) makeArena(settings.render.threads);
+    const bool sphere = settings.slime.shape == "sphere";
+    const float radius = static_cast<float>(settings.slime.radius);
+    if (sphere != geometry.analyticSphere || (sphere && radius != geometry.sphereRadius)) {
+      geometry.setAnalyticSphere(sphere, radius);
+      embree.update(geometry, false);
+    }
+  }
+
+  // Traces the pixels [rows) × [columns): primary rays 8 at a time as one coherent packet (only
+  // those that can reach the slime's bounding sphere), then shading ray by ray.
+  void traceTile(const WhittedTracer& tracer, const SlimeIntersector& intersector, const Camera& camera,
+                 int samplesPerAxis, int rowBegin, int rowEnd, int columnBegin, int columnEnd, Image& image,
+                 TraceCounters& counts) const {
+    FlushDenormals flush;
+    const float inverseSamples = 1.0f / static_cast<float>(samplesPerAxis * samplesPerAxis);
+    const glm::vec3 eye(camera.position);
+    for (int y = rowBegin; y < rowEnd; ++y) {
+      for (int x0 = columnBegin; x0 < columnEnd; x0 += kPacket) {
+        glm::vec3 sums[kPacket] = {};
+        for (int sampleY = 0; sampleY < samplesPerAxis; ++sampleY) {
+          for (int sampleX = 0; sampleX < samplesPerAxis; ++sampleX) {
+            // Stratified supersampling: the centre of each cell of an n × n grid in the pixel.
+            Ray rays[kPacket];
+            bool active[kPacket] = {};
+            SlimeHit hits[kPacket];
+            int activeCount = 0;
+            for (int i = 0; i < kPacket && x0 + i < columnEnd; ++i) {
+              const double u = (x0 + i + (sampleX + 0.5) / samplesPerAxis) / image.width;
+              const double v = (y + (sampleY + 0.5) / samplesPerAxis) / image.height;
+              rays[i] = Ray{eye, glm::vec3(camera.rayDirection(u, v)), 0.0f, kInfinity};
+              active[i] = geometry.mayHit(rays[i]);
+              activeCount += active[i];
+            }
+            if (activeCount > 0) {
+              counts.slimeQueries += static_cast<std::uint64_t>(activeCount);
+              intersector.intersect8(rays, active, hits);
+            }
+            for (int i = 0; i < kPacket && x0 + i < columnEnd; ++i) sums[i] += tracer.tracePrimary(rays[i], hits[i], counts);
+          }
+        }
+        for (int i = 0; i < kPacket && x0 + i < columnEnd; ++i) {
+          const glm::vec3 color = sums[i] * inverseSamples;
+          // A non-finite colour would be a bug upstream; never let it reach the image.
+          image.at(x0 + i, y) = std::isfinite(color.x + color.y + color.z) ? color : glm::vec3(0.0f);
+        }
+      }
+    }
+  }
+};
+
+Renderer::Renderer(const Settings& settings) : impl_(std::make_unique<Impl>(settings)) {}
+
+Renderer::~Renderer() = default;
+
+void Renderer::updateSlime(const std::vector<glm::dvec3>& positions, const std::vector<Triangle>& triangles) {
+  const auto start = std::chrono::steady_clock::now();
+  const bool topologyChanged = impl_->geometry.update(positions, triangles);
+  impl_->embree.update(impl_->geometry, topologyChanged);
+  impl_->refitMs = millisecondsSince(start);
+}
+
+RenderStats Renderer::render(const Settings& settings, Image& image) {
+  Impl& impl = *impl_;
+  impl.sync(settings);
+  RenderStats stats;
+  stats.refitMs = impl.refitMs;
+  if (image.width <= 0 || image.height <= 0) return stats;
+
+  const auto start = std::chrono::steady_clock::now();
+  const ShadingParameters parameters = makeShadingParameters(settings, image.height);
+  const Camera camera = makeCamera(settings.camera, image.width, image.height);
+  const int samplesPerAxis = std::max(1, static_cast<int>(std::lround(std::sqrt(std::max(1, settings.render.spp)))));
+  const bool brute = settings.render.backend == "brute";
+  const SlimeIntersector& intersector = brute ? static_cast<const SlimeIntersector&>(impl.brute) : impl.embree;
+  const WhittedTracer tracer(impl.geometry, intersector, impl.floor, parameters);
+
+  for (TraceCounters& counts : impl.counters) counts = TraceCounters{};
+  if (brute) {
+    // The seed's algorithm is the oracle: one thread, no packets that matter, every triangle.
+    impl.traceTile(tracer, intersector, camera, samplesPerAxis, 0, image.height, 0, image.width, image,
+                   impl.counters.local());
+  } else {
+    impl.arena->execute([&] {
+      tbb::parallel_for(tbb::blocked_range2d<int>(0, image.height, kTileRows, 0, image.width, kTileColumns),
+                        [&](const tbb::blocked_range2d<int>& tile) {
+                          impl.traceTile(tracer, intersector, camera, samplesPerAxis, tile.rows().begin(),
+                                         tile.rows().end(), tile.cols().begin(), tile.cols().end(), image,
+                                         impl.counters.local());
+                        });
+    });
+  }
+  for (const TraceCounters& counts : impl.counters) {
+    stats.rays.primary += counts.rays.primary;
+    stats.rays.shadow += counts.rays.shadow;
+    stats.rays.reflection += counts.rays.reflection;
+    stats.rays.refraction += counts.rays.refraction;
+    stats.slimeQueries += counts.slimeQueries;
+  }
+  stats.traceMs = millisecondsSince(start);
+  return stats;
+}
+
+std::optional<glm::dvec3> Renderer::pick(const Settings& settings, double u, double v) const {
+  const Camera camera = makeCamera(settings.camera, std::max(1, settings.camera.width), std::max(1, settings.camera.height));
+  const Ray ray{glm::vec3(camera.position), glm::vec3(camera.rayDirection(u, v)), 0.0f, kInfinity};
+  if (!impl_->geometry.mayHit(ray)) return std::nullopt;
+  const SlimeHit hit = impl_->embree.intersect(ray);
+  if (!hit.valid()) return std::nullopt;
+  return glm::dvec3(ray.origin + hit.t * ray.direction);
+}
+
+}  // namespace slime

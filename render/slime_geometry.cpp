@@ -1,0 +1,93 @@
+#include "render/slime_geometry.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace slime {
+
+bool SlimeGeometry::update(const std::vector<glm::dvec3>& newPositions, const std::vector<Triangle>& newTriangles) {
+  const bool topologyChanged = newTriangles != triangles || newPositions.size() != vertexCount();
+  if (topologyChanged) triangles = newTriangles;
+  positions.resize(newPositions.size() + 1);
+  glm::vec3 low(kInfinity), high(-kInfinity);
+  for (std::size_t i = 0; i < newPositions.size(); ++i) {
+    positions[i] = glm::vec3(newPositions[i]);
+    low = glm::min(low, positions[i]);
+    high = glm::max(high, positions[i]);
+  }
+  positions.back() = glm::vec3(0.0f);
+
+  // Vertex normals: the sum of the faces' cross products, i.e. area-weighted face normals.
+  normals.assign(newPositions.size(), glm::vec3(0.0f));
+  for (const Triangle& t : triangles) {
+    const glm::vec3 faceNormal = glm::cross(positions[t.y] - positions[t.x], positions[t.z] - positions[t.x]);
+    normals[t.x] += faceNormal;
+    normals[t.y] += faceNormal;
+    normals[t.z] += faceNormal;
+  }
+  for (glm::vec3& n : normals) {
+    const float length = glm::length(n);
+    n = length > 0.0f && std::isfinite(length) ? n / length : glm::vec3(0.0f, 0.0f, 1.0f);
+  }
+
+  boundCenter = newPositions.empty() ? glm::vec3(0.0f) : 0.5f * (low + high);
+  float radius2 = 0.0f;
+  glm::vec3 sum(0.0f);
+  for (std::size_t i = 0; i < newPositions.size(); ++i) {
+    const glm::vec3 d = positions[i] - boundCenter;
+    radius2 = std::max(radius2, glm::dot(d, d));
+    sum += positions[i];
+  }
+  boundRadius = std::sqrt(radius2);
+  if (!newPositions.empty()) sphereCenter = sum / static_cast<float>(newPositions.size());
+  if (analyticSphere) {
+    boundCenter = sphereCenter;
+    boundRadius = sphereRadius;
+  }
+  return topologyChanged;
+}
+
+void SlimeGeometry::setAnalyticSphere(bool enabled, float radius) {
+  analyticSphere = enabled;
+  sphereRadius = radius;
+  if (enabled) {
+    boundCenter = sphereCenter;
+    boundRadius = sphereRadius;
+  }
+}
+
+bool SlimeGeometry::mayHit(const Ray& ray) const {
+  if (boundRadius <= 0.0f && !analyticSphere) return false;
+  // Closest approach of the ray to the centre, clamped to the segment; slack covers float rounding.
+  const float radius = boundRadius * 1.0001f + 1e-6f;
+  const glm::vec3 toCenter = boundCenter - ray.origin;
+  const float tClosest = std::clamp(glm::dot(toCenter, ray.direction), ray.tNear, ray.tFar);
+  const glm::vec3 offset = ray.origin + tClosest * ray.direction - boundCenter;
+  return glm::dot(offset, offset) <= radius * radius;
+}
+
+glm::vec3 SlimeGeometry::geometricNormal(const SlimeHit& hit, const glm::vec3& point) const {
+  if (analyticSphere) return glm::normalize(point - sphereCenter);
+  const Triangle& t = triangles[hit.primitive];
+  const glm::vec3 n = glm::cross(positions[t.y] - positions[t.x], positions[t.z] - positions[t.x]);
+  const float length = glm::length(n);
+  // A collapsed (zero-area) triangle has no normal of its own: fall back to its vertex normals.
+  if (!(length > 0.0f) || !std::isfinite(length)) {
+    const glm::vec3 average = normals[t.x] + normals[t.y] + normals[t.z];
+    const float averageLength = glm::length(average);
+    return averageLength > 0.0f ? average / averageLength : glm::vec3(0.0f, 0.0f, 1.0f);
+  }
+  return n / length;
+}
+
+glm::vec3 SlimeGeometry::shadingNormal(const SlimeHit& hit, const glm::vec3& point, bool smooth) const {
+  if (analyticSphere || !smooth) return geometricNormal(hit, point);
+  const Triangle& t = triangles[hit.primitive];
+  const glm::vec3 n = (1.0f - hit.u - hit.v) * normals[t.x] + hit.u * normals[t.y] + hit.v * normals[t.z];
+  const float length = glm::length(n);
+  return length > 1e-6f && std::isfinite(length) ? n / length : geometricNormal(hit, point);
+}
+
+}  // namespace slime

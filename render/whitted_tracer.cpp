@@ -1,0 +1,230 @@
+#include "render/whitted_tracer.h"
+
+#include "render/optics.h"
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace slime {
+namespace {
+
+// A shadow ray through a deformed slime may cross its surface several times; beyond this many
+// crossings the light is taken as blocked.
+constexpr int kMaxShadowCrossings = 8;
+
+float largest(const glm::vec3& v) { return std::max(v.x, std::max(v.y, v.z)); }
+
+// The plane z = 0 seen from above: t = −o_z / d_z (a ray starting below it hits it at once).
+float floorDistance(const Ray& ray) {
+  if (ray.direction.z >= 0.0f) return kInfinity;
+  const float t = std::max(0.0f, ray.origin.z) / -ray.direction.z;
+  return t <= ray.tFar ? t : kInfinity;
+}
+
+// Phong's specular lobe (R·V)^n with R the mirror image of the light direction about the normal.
+float phongLobe(const glm::vec3& normal, const glm::vec3& toLight, const glm::vec3& toViewer, float shininess) {
+  const glm::vec3 mirrored = reflect(-toLight, normal);
+  const float cosine = glm::dot(mirrored, toViewer);
+  return cosine > 0.0f ? std::pow(cosine, shininess) : 0.0f;
+}
+
+}  // namespace
+
+SlimeHit WhittedTracer::findSlime(const Ray& ray, TraceCounters& counters) const {
+  if (!geometry_.mayHit(ray)) return {};
+  ++counters.slimeQueries;
+  return intersector_.intersect(ray);
+}
+
+glm::vec3 WhittedTracer::tracePrimary(const Ray& ray, const SlimeHit& hit, TraceCounters& counters) const {
+  ++counters.rays.primary;
+  return trace(ray, &hit, Path{}, Kind::Primary, counters);
+}
+
+glm::vec3 WhittedTracer::tracePrimary(const Ray& ray, TraceCounters& counters) const {
+  const SlimeHit hit = findSlime(ray, counters);
+  return tracePrimary(ray, hit, counters);
+}
+
+glm::vec3 WhittedTracer::trace(const Ray& ray, const SlimeHit* knownHit, const Path& path, Kind kind,
+                               TraceCounters& counters) const {
+  if (kind == Kind::Reflection) ++counters.rays.reflection;
+  if (kind == Kind::Refraction) ++counters.rays.refraction;
+  const SlimeHit hit = knownHit ? *knownHit : findSlime(ray, counters);
+  const float tFloor = floorDistance(ray);
+  if (hit.valid() && hit.t <= tFloor) return shadeSlime(ray, hit, path, counters);
+  if (tFloor == kInfinity) return sky(ray.direction);
+  const glm::vec3 floorColor = shadeFloor(ray, tFloor, path, counters);
+  // Under the jelly (the contact patch) the floor is seen through Beer–Lambert absorption.
+  return path.inside ? floorColor * beerLambert(parameters_.slimeAbsorption, tFloor) : floorColor;
+}
+
+glm::vec3 WhittedTracer::shadeSlime(const Ray& ray, const SlimeHit& hit, const Path& path, TraceCounters& counters) const {
+  const ShadingParameters& p = parameters_;
+  const glm::vec3 point = ray.origin + hit.t * ray.direction;
+  const glm::vec3 outward = geometry_.geometricNormal(hit, point);
+  const bool entering = glm::dot(ray.direction, outward) < 0.0f;
+  // Normals facing the incoming ray: geometric (for offsets) and shading (for optics).
+  const glm::vec3 facing = entering ? outward : -outward;
+  glm::vec3 normal = geometry_.shadingNormal(hit, point, p.smoothNormals);
+  if (!entering) normal = -normal;
+  if (glm::dot(normal, ray.direction) >= 0.0f) normal = facing;  // interpolated normal behind a silhouette
+  const float cosIncident = -glm::dot(ray.direction, normal);
+  const float etaFrom = entering ? 1.0f : p.ior, etaTo = entering ? p.ior : 1.0f;
+
+  // A ray that reaches the surface from inside has crossed the jelly: Beer–Lambert over its length.
+  const glm::vec3 absorbed = entering ? glm::vec3(1.0f) : beerLambert(p.slimeAbsorption, hit.t);
+  glm::vec3 color(0.0f);
+  if (entering) {
+    // Local Phong: I = k_a I_a C + T_light I_l (k_d (N·L) C + k_s (R·V)^n).
+    color += p.ambient * p.ambientLight * p.slimeColor;
+    const glm::vec3 toLight = glm::normalize(p.lightPosition - point);
+    const float cosLight = glm::dot(normal, toLight);
+    if (cosLight > 0.0f && glm::dot(facing, toLight) > 0.0f) {
+      const glm::vec3 visible = p.shadows ? lightTransmittance(offsetRayOrigin(point, facing, toLight), counters)
+                                          : glm::vec3(1.0f);
+      if (largest(visible) > 0.0f)
+        color += visible * p.lightColor *
+                 (p.diffuse * cosLight * p.slimeColor + p.specular * phongLobe(normal, toLight, -ray.direction, p.shininess));
+    }
+  }
+
+  // Snell's law; an empty result is total internal reflection.
+  std::optional<glm::vec3> refracted = refract(ray.direction, normal, etaFrom, etaTo);
+  if (refracted && glm::dot(*refracted, facing) >= 0.0f) refracted = refract(ray.direction, facing, etaFrom, etaTo);
+  float reflectWeight = 0.0f, refractWeight = 0.0f;
+  if (p.optics == OpticsMode::Fresnel) {
+    const float fresnel = refracted ? fresnelDielectric(cosIncident, etaFrom, etaTo) : 1.0f;
+    reflectWeight = fresnel;
+    refractWeight = (1.0f - fresnel) * (entering ? p.transmission : 1.0f);
+  } else {
+    reflectWeight = p.specular;
+    refractWeight = refracted ? p.transmission : 0.0f;
+    if (!refracted) reflectWeight += p.transmission;
+  }
+
+  const glm::vec3 weight = path.weight * absorbed;
+  Path next;
+  next.segment = path.segment + 1;
+  next.travelled = path.travelled + hit.t;
+  if (path.segment < p.depth) {
+    if (reflectWeight > 0.0f && largest(weight * reflectWeight) >= kMinRayWeight) {
+      glm::vec3 direction = reflect(ray.direction, normal);
+      if (glm::dot(direction, facing) <= 0.0f) direction = reflect(ray.direction, facing);
+      next.weight = weight * reflectWeight;
+      next.inside = !entering;
+      const Ray reflectedRay{offsetRayOrigin(point, facing, direction), direction, 0.0f, kInfinity};
+      color += reflectWeight * trace(reflectedRay, nullptr, next, Kind::Reflection, counters);
+    }
+    if (refracted && refractWeight > 0.0f && largest(weight * refractWeight) >= kMinRayWeight) {
+      next.weight = weight * refractWeight;
+      next.inside = entering;
+      const Ray refractedRay{offsetRayOrigin(point, facing, *refracted), *refracted, 0.0f, kInfinity};
+      color += refractWeight * trace(refractedRay, nullptr, next, Kind::Refraction, counters);
+    }
+  } else if (!entering && refracted && refractWeight > 0.0f) {
+    // Out of segments on the way out of the jelly: what lies beyond is the analytic floor or sky.
+    ++counters.rays.refraction;
+    const Ray leaving{offsetRayOrigin(point, facing, *refracted), *refracted, 0.0f, kInfinity};
+    color += refractWeight * environment(leaving, next.travelled);
+  }
+  return color * absorbed;
+}
+
+glm::vec3 WhittedTracer::shadeFloor(const Ray& ray, float t, const Path& path, TraceCounters& counters) const {
+  const ShadingParameters& p = parameters_;
+  glm::vec3 point = ray.origin + t * ray.direction;
+  point.z = 0.0f;
+  const float distance = path.travelled + t;
+  glm::vec3 color = floorLocal(point, ray.direction, distance, true, counters);
+  if (path.segment < p.depth && p.floorSpecular > 0.0f && largest(path.weight * p.floorSpecular) >= kMinRayWeight) {
+    // The varnish mirrors what is above: the reflected ray (d_x, d_y, −d_z).
+    const glm::vec3 direction{ray.direction.x, ray.direction.y, -ray.direction.z};
+    Path next{path.segment + 1, path.weight * p.floorSpecular, distance, path.inside};
+    const Ray reflectedRay{point + glm::vec3(0.0f, 0.0f, kRayOffset), direction, 0.0f, kInfinity};
+    color += p.floorSpecular * trace(reflectedRay, nullptr, next, Kind::Reflection, counters);
+  }
+  // Far floor fades into the horizon haze so that the horizon is a soft line.
+  return glm::mix(color, p.skyHorizon, 1.0f - std::exp(-distance / p.hazeDistance));
+}
+
+glm::vec3 WhittedTracer::floorLocal(const glm::vec3& point, const glm::vec3& direction, float distance, bool shadowed,
+                                    TraceCounters& counters) const {
+  const ShadingParameters& p = parameters_;
+  // The pixel's cone (width = distance × spread) cuts the floor in an ellipse stretched by 1/cos θ
+  // along the ray's horizontal direction; the texture averages over that ellipse's bounding box.
+  const float width = distance * p.pixelSpread;
+  const float cosTheta = std::max(std::abs(direction.z), 1e-3f);
+  const float horizontal = std::hypot(direction.x, direction.y);
+  const float hx = horizontal > 1e-6f ? direction.x / horizontal : 1.0f;
+  const float hy = horizontal > 1e-6f ? direction.y / horizontal : 0.0f;
+  const float along = 0.5f * width / cosTheta, across = 0.5f * width;
+  const glm::vec2 footprint{std::sqrt(along * along * hx * hx + across * across * hy * hy),
+                            std::sqrt(along * along * hy * hy + across * across * hx * hx)};
+  const glm::vec3 albedo = floor_.albedo({point.x, point.y}, footprint);
+
+  glm::vec3 color = albedo * p.ambientLight;
+  const glm::vec3 toLight = p.lightPosition - point;
+  if (toLight.z <= 0.0f) return color;
+  const glm::vec3 lightDirection = glm::normalize(toLight);
+  const glm::vec3 visible = shadowed && p.shadows
+      ? lightTransmittance(point + glm::vec3(0.0f, 0.0f, kRayOffset), counters) : glm::vec3(1.0f);
+  if (largest(visible) <= 0.0f) return color;
+  const glm::vec3 up{0.0f, 0.0f, 1.0f};
+  const float highlight = p.floorSpecular * phongLobe(up, lightDirection, -direction, p.floorShininess);
+  return color + visible * p.lightColor * (p.floorDiffuse * lightDirection.z * albedo + highlight);
+}
+
+glm::vec3 WhittedTracer::lightTransmittance(const glm::vec3& point, TraceCounters& counters) const {
+  const ShadingParameters& p = parameters_;
+  ++counters.rays.shadow;
+  const glm::vec3 toLight = p.lightPosition - point;
+  const float distance = glm::length(toLight);
+  Ray ray{point, toLight / distance, 0.0f, distance};
+  glm::vec3 transmittance(1.0f);
+  if (!(distance > 0.0f) || !geometry_.mayHit(ray)) return transmittance;
+  // Walk the crossings along the straight shadow ray (shadow rays are not bent): each crossing passes
+  // the surface's transmitted fraction, each stretch inside loses exp(−σ l).
+  for (int crossing = 0; crossing < kMaxShadowCrossings; ++crossing) {
+    ++counters.slimeQueries;
+    const SlimeHit hit = intersector_.intersect(ray);
+    if (!hit.valid()) return transmittance;
+    const glm::vec3 hitPoint = ray.origin + hit.t * ray.direction;
+    const glm::vec3 outward = geometry_.geometricNormal(hit, hitPoint);
+    const bool entering = glm::dot(ray.direction, outward) < 0.0f;
+    if (!entering) transmittance *= beerLambert(p.slimeAbsorption, hit.t);
+    if (p.optics == OpticsMode::Fresnel) {
+      const float cosine = std::abs(glm::dot(ray.direction, outward));
+      const float fresnel = entering ? fresnelDielectric(cosine, 1.0f, p.ior) : fresnelDielectric(cosine, p.ior, 1.0f);
+      transmittance *= (1.0f - fresnel) * (entering ? p.transmission : 1.0f);
+    } else {
+      transmittance *= p.transmission;
+    }
+    if (largest(transmittance) < kMinRayWeight) return glm::vec3(0.0f);
+    ray.origin = offsetRayOrigin(hitPoint, outward, ray.direction);
+    ray.tFar = std::max(0.0f, ray.tFar - hit.t);
+  }
+  return glm::vec3(0.0f);
+}
+
+glm::vec3 WhittedTracer::environment(const Ray& ray, float travelled) const {
+  const float t = floorDistance(ray);
+  if (t == kInfinity) return sky(ray.direction);
+  TraceCounters unused;
+  glm::vec3 point = ray.origin + t * ray.direction;
+  point.z = 0.0f;
+  const float distance = travelled + t;
+  const glm::vec3 color = floorLocal(point, ray.direction, distance, false, unused);
+  return glm::mix(color, parameters_.skyHorizon, 1.0f - std::exp(-distance / parameters_.hazeDistance));
+}
+
+glm::vec3 WhittedTracer::sky(const glm::vec3& direction) const {
+  // Pale at the horizon, deeper blue towards the zenith.
+  const float elevation = std::sqrt(std::clamp(direction.z, 0.0f, 1.0f));
+  return glm::mix(parameters_.skyHorizon, parameters_.skyZenith, elevation);
+}
+
+}  // namespace slime

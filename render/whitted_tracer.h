@@ -1,0 +1,67 @@
+// Whitted ray tracing (SPEC §4) shared by both back-ends: only SlimeIntersector differs. The floor
+// z = 0 and the sky are analytic, so a ray is tested against the slime only when it can reach the
+// slime's bounding sphere; every other ray costs a plane test or nothing.
+//
+// At a slime surface: I = local Phong + w_r I_reflected + w_t I_refracted, with
+//   fresnel mode: w_r = F (dielectric Fresnel), w_t = (1 − F)·k_t entering, (1 − F) leaving;
+//   seed mode:    w_r = k_s, w_t = k_t (constants, as the seed);
+// and the light inside attenuated by Beer–Lambert exp(−σ l) over the path length l in the jelly.
+#pragma once
+
+#include "render/floor_texture.h"
+#include "render/ray.h"
+#include "render/renderer.h"
+#include "render/shading_parameters.h"
+#include "render/slime_geometry.h"
+
+namespace slime {
+
+// What a tracing thread counts (no shared writes): rays by kind plus slime queries actually made.
+struct TraceCounters {
+  RayCounts rays;
+  std::uint64_t slimeQueries = 0;  // rays that reached Embree / the triangle loop
+};
+
+class WhittedTracer {
+ public:
+  WhittedTracer(const SlimeGeometry& geometry, const SlimeIntersector& intersector, const FloorTexture& floor,
+                const ShadingParameters& parameters)
+      : geometry_(geometry), intersector_(intersector), floor_(floor), parameters_(parameters) {}
+
+  // Radiance along a primary ray whose slime hit has already been found (or found not to exist).
+  glm::vec3 tracePrimary(const Ray& ray, const SlimeHit& hit, TraceCounters& counters) const;
+
+  // Radiance along a primary ray (finds the slime hit itself).
+  glm::vec3 tracePrimary(const Ray& ray, TraceCounters& counters) const;
+
+  // Fraction of the point light reaching `point` (per channel): 1 in the open, partial and coloured
+  // behind the translucent slime (surface transmission and Beer–Lambert along the chord), 0 if opaque.
+  glm::vec3 lightTransmittance(const glm::vec3& point, TraceCounters& counters) const;
+
+  // The closest slime hit along a ray, or none: the bounding-sphere test first, then the intersector.
+  SlimeHit findSlime(const Ray& ray, TraceCounters& counters) const;
+
+ private:
+  enum class Kind { Primary, Reflection, Refraction };
+  struct Path {
+    int segment = 1;            // 1 for primary rays
+    glm::vec3 weight{1.0f};     // product of the factors so far
+    float travelled = 0.0f;     // distance from the eye to the ray origin (footprint cone)
+    bool inside = false;        // the ray runs inside the slime
+  };
+
+  glm::vec3 trace(const Ray& ray, const SlimeHit* knownHit, const Path& path, Kind kind, TraceCounters& counters) const;
+  glm::vec3 shadeSlime(const Ray& ray, const SlimeHit& hit, const Path& path, TraceCounters& counters) const;
+  glm::vec3 shadeFloor(const Ray& ray, float t, const Path& path, TraceCounters& counters) const;
+  glm::vec3 floorLocal(const glm::vec3& point, const glm::vec3& direction, float distance, bool shadowed,
+                       TraceCounters& counters) const;
+  glm::vec3 environment(const Ray& ray, float travelled) const;  // floor (unshadowed) or sky, no slime
+  glm::vec3 sky(const glm::vec3& direction) const;
+
+  const SlimeGeometry& geometry_;
+  const SlimeIntersector& intersector_;
+  const FloorTexture& floor_;
+  const ShadingParameters& parameters_;
+};
+
+}  // namespace slime
