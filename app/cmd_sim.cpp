@@ -1,16 +1,141 @@
-// TEMPORARY until the sim subcommand lands: registers the name so the program links.
+// `slime sim`: run the physics headless for a number of simulated seconds, print a one-line summary
+// and optionally write a JSON report. The same inputs give a bitwise identical report, apart from the
+// timing fields (ms_per_step, wall_seconds).
 #include "app/commands.h"
+#include "core/integrators.h"
+#include "core/scenario.h"
+#include "core/settings_io.h"
+#include "core/simulation.h"
 
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <optional>
 
 namespace slime {
+namespace {
+
+using nlohmann::json;
+
+constexpr double kMaxSeconds = 3600.0;    // simulated seconds a run may ask for
+constexpr double kSeriesInterval = 0.01;  // s between series samples
+constexpr std::size_t kMaxRollbacks = 20; // give up after this many divergences
+
+struct SimOptions {
+  SceneOptions scene;
+  double seconds = 3.0;
+  std::string reportFile;
+};
+
+void checkSeconds(double seconds) {
+  if (!std::isfinite(seconds) || seconds <= 0.0 || seconds > kMaxSeconds)
+    throw SettingsError("--seconds: " + std::to_string(seconds) + " is not allowed; expected a number greater than 0 and at most " +
+                        std::to_string(static_cast<int>(kMaxSeconds)) + " (s)");
+}
+
+json metricsSample(double t, const SlimeMetrics& metrics) {
+  return {{"t", t}, {"volume_ratio", metrics.volumeRatio}, {"height", metrics.height},
+          {"kinetic_energy", metrics.kineticEnergy}};
+}
+
+int runSim(const SimOptions& options) {
+  checkSeconds(options.seconds);
+  Settings settings = loadSettings(options.scene);
+  std::optional<ScenarioPlayer> player;
+  if (!options.scene.scenarioFile.empty()) player.emplace(loadScenario(options.scene.scenarioFile));
+
+  Simulation simulation(settings);
+  const double dt = settings.sim.dt;
+  const auto totalSteps = static_cast<std::int64_t>(std::llround(options.seconds / dt));
+  const auto sampleEvery = std::max<std::int64_t>(1, std::llround(kSeriesInterval / dt));
+
+  SlimeMetrics metrics = simulation.metrics();
+  double volumeMin = metrics.volumeRatio, volumeMax = metrics.volumeRatio;
+  double minZ = metrics.minZ, maxSpeed = metrics.maxSpeed;
+  json series = json::array();
+  series.push_back(metricsSample(0.0, metrics));
+  std::int64_t stepsRun = 0;
+  double stepSeconds = 0.0;
+  while (simulation.stepCount() < totalSteps && simulation.divergences().size() <= kMaxRollbacks) {
+    if (player) player->advanceTo(simulation.time(), simulation, settings);
+    const auto start = std::chrono::steady_clock::now();
+    simulation.step();
+    stepSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    ++stepsRun;
+    metrics = simulation.metrics();
+    volumeMin = std::min(volumeMin, metrics.volumeRatio);
+    volumeMax = std::max(volumeMax, metrics.volumeRatio);
+    minZ = std::min(minZ, metrics.minZ);
+    maxSpeed = std::max(maxSpeed, metrics.maxSpeed);
+    if (simulation.stepCount() % sampleEvery == 0)
+      series.push_back(metricsSample(static_cast<double>(simulation.stepCount()) * dt, metrics));
+  }
+  metrics = simulation.metrics();
+  const bool nan = !std::isfinite(metrics.volumeRatio) || !std::isfinite(metrics.kineticEnergy) ||
+                   std::any_of(simulation.divergences().begin(), simulation.divergences().end(),
+                               [](const DivergenceEvent& e) { return e.what.find("NaN") != std::string::npos; });
+  const double msPerStep = stepsRun > 0 ? 1000.0 * stepSeconds / static_cast<double>(stepsRun) : 0.0;
+  const std::size_t rollbacks = simulation.divergences().size();
+
+  std::printf("sim: %.3f s, %lld steps of %g s, %s, level %d (%zu vertices), %.4f ms/step, volume %.4f, "
+              "aspect %.3f, min z %.2e m, KE %.2e J, rollbacks %zu%s\n",
+              simulation.time(), static_cast<long long>(simulation.stepCount()), dt,
+              settings.sim.integrator.c_str(), settings.slime.level, simulation.positions().size(), msPerStep,
+              metrics.volumeRatio, metrics.aspect, metrics.minZ, metrics.kineticEnergy, rollbacks,
+              nan ? ", NaN" : "");
+
+  if (!options.reportFile.empty()) {
+    json divergences = json::array();
+    for (const DivergenceEvent& e : simulation.divergences())
+      divergences.push_back({{"step", e.step}, {"time", e.time}, {"integrator", e.integrator}, {"what", e.what}});
+    json report = {
+        {"seconds", options.seconds},
+        {"steps", simulation.stepCount()},
+        {"steps_run", stepsRun},
+        {"dt", dt},
+        {"substeps", simulation.substepsPerStep()},
+        {"integrator", settings.sim.integrator},
+        {"level", settings.slime.level},
+        {"vertices", simulation.positions().size()},
+        {"springs", simulation.body().springs.size()},
+        {"ms_per_step", msPerStep},
+        {"wall_seconds", stepSeconds},
+        {"nan", nan},
+        {"rollbacks", rollbacks},
+        {"divergences", divergences},
+        {"final", {{"volume_ratio", metrics.volumeRatio}, {"height", metrics.height}, {"width", metrics.width},
+                   {"aspect", metrics.aspect}, {"min_z", metrics.minZ}, {"kinetic_energy", metrics.kineticEnergy},
+                   {"max_speed", metrics.maxSpeed}}},
+        {"range", {{"volume_ratio_min", volumeMin}, {"volume_ratio_max", volumeMax}, {"min_z", minZ},
+                   {"max_speed", maxSpeed}}},
+        {"series", series},
+    };
+    std::ofstream out(options.reportFile);
+    if (!out) throw SettingsError("--report: cannot write " + options.reportFile);
+    out << report.dump(2) << "\n";
+    if (!out) throw SettingsError("--report: failed writing " + options.reportFile);
+  }
+  return rollbacks > kMaxRollbacks ? 1 : 0;
+}
+
+}  // namespace
 
 void registerSimCommand(CLI::App& root, int& exitCode) {
-  auto* command = root.add_subcommand("sim", "(not yet implemented)");
-  command->callback([&exitCode] {
-    std::fprintf(stderr, "slime sim: not implemented yet\n");
-    exitCode = 1;
-  });
+  auto options = std::make_shared<SimOptions>();
+  std::string integrators;
+  for (const std::string& name : integratorNames()) integrators += (integrators.empty() ? "" : ", ") + name;
+  auto* command = root.add_subcommand(
+      "sim", "Run the physics headless and report shape, volume and energy (integrators: " + integrators +
+                 "; choose with --set sim.integrator=NAME)");
+  command->add_option("--seconds", options->seconds, "Simulated seconds to run (> 0, at most 3600)")
+      ->capture_default_str();
+  command->add_option("--report", options->reportFile, "Write a JSON report to this file");
+  addSceneOptions(*command, options->scene);
+  command->callback([options, &exitCode] { exitCode = runSim(*options); });
 }
 
 }  // namespace slime

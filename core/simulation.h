@@ -7,8 +7,13 @@
 //   metrics, divergences, grab, dragTo, release, grabbing, grabTarget, grabbedIndices.
 #pragma once
 
+#include "core/force_model.h"
 #include "core/icosphere.h"
+#include "core/implicit_euler.h"
+#include "core/integrators.h"
 #include "core/settings.h"
+#include "core/slime_body.h"
+#include "core/xpbd.h"
 
 #include <glm/vec3.hpp>
 
@@ -60,8 +65,48 @@ class Simulation {
   glm::dvec3 grabTarget() const;
   const std::vector<std::uint32_t>& grabbedIndices() const;
 
+  // More for tests, reports and tools.
+  const ParticleState& state() const { return body_.state; }
+  const SlimeBody& body() const { return body_; }
+  const Settings& settings() const { return settings_; }
+  double restVolume() const { return body_.restVolume; }
+  double volume() const;
+  int substepsPerStep() const;  // sim.substeps times the guard's refinement after rollbacks
+  int lastSolverIterations() const { return lastSolverIterations_; }  // CG iterations (implicit_euler)
+
  private:
-  // Owned by the physics implementation.
+  void rebuildModels();
+  void substep(double h);
+  void driveGrabbedPoints(double h);
+  void saveGoodState();
+  void rollBack(const std::string& what);
+
+  Settings settings_;
+  SlimeBody body_;
+  Integrator integrator_ = Integrator::SymplecticEuler;
+  ForceModel forceModel_;
+  XpbdModel xpbdModel_;
+  AccelerationField accelerationField_;
+  ForceScratch forceScratch_;
+  IntegratorScratch integratorScratch_;
+  ImplicitEulerScratch implicitScratch_;
+  XpbdScratch xpbdScratch_;
+  double time_ = 0.0;
+  std::int64_t stepCount_ = 0;
+  int refinement_ = 1;  // extra substeps the divergence guard asked for
+  int lastSolverIterations_ = 0;
+  std::vector<DivergenceEvent> divergences_;
+
+  // The last good state the guard rolls back to.
+  ParticleState goodState_;
+  double goodTime_ = 0.0;
+  std::int64_t goodStep_ = 0;
+
+  bool grabbing_ = false;
+  glm::dvec3 grabTarget_{0.0};
+  glm::dvec3 grabAnchor_{0.0};  // where the grabbed points are now (rate-limited towards the target)
+  std::vector<std::uint32_t> grabbed_;
+  std::vector<glm::dvec3> grabOffsets_;
 };
 
 }  // namespace slime

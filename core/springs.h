@@ -1,0 +1,46 @@
+// Springs on the mesh edges as flat arrays, and the seed's spring and damper forces (SPEC §3).
+//   Hooke:  F_j = -k (|x_ij| - l_ij) x_ij/|x_ij|,                 x_ij = p_j - p_i, F_i = -F_j
+//   damper: F_j = -k_d ((v_ij · x_ij)/(x_ij · x_ij)) x_ij/|x_ij|,  v_ij = v_j - v_i
+//   series rule: a spring of length d is a chain of d/d_e elementary springs of stiffness k_e,
+//   so k = k_e d_e / d (longer springs are softer).
+// The damper as SPEC §3 writes it acts on the strain rate (v_ij·x̂)/|x_ij|, so k_d is in N·s: a
+// membrane viscosity that does not change with the subdivision level.
+#pragma once
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace slime {
+
+struct SpringSet {
+  std::vector<glm::u32vec2> ends;    // vertex index pairs (i, j)
+  std::vector<double> restLengths;   // l_ij, m
+  std::vector<double> stiffnesses;   // k, N/m
+
+  std::size_t size() const { return ends.size(); }
+};
+
+// k = k_e d_e / d.
+double seriesStiffness(double elementaryStiffness, double elementaryLength, double length);
+
+// Force on the second end j of one spring (the first end i feels the opposite).
+glm::dvec3 springForce(const glm::dvec3& positionI, const glm::dvec3& positionJ, double restLength,
+                       double stiffness);
+glm::dvec3 damperForce(const glm::dvec3& positionI, const glm::dvec3& positionJ,
+                       const glm::dvec3& velocityI, const glm::dvec3& velocityJ, double damping);
+
+// Adds the Hooke and damper forces of every spring into `forces` (same length as positions).
+void addSpringForces(const SpringSet& springs, const std::vector<glm::dvec3>& positions,
+                     const std::vector<glm::dvec3>& velocities, double damping,
+                     std::vector<glm::dvec3>& forces);
+
+// Springs on the unique edges of `triangles`, rest lengths = current edge length / (1 + prestrain),
+// stiffness by the series rule with d_e = the mean edge length.
+SpringSet makeEdgeSprings(const std::vector<glm::dvec3>& positions,
+                          const std::vector<glm::u32vec3>& triangles, double elementaryStiffness,
+                          double prestrain);
+
+}  // namespace slime

@@ -1,0 +1,39 @@
+// Extended position-based dynamics: Macklin, Müller & Chentanez, "XPBD: Position-Based Simulation of
+// Compliant Constrained Dynamics", MIG 2016, run as Macklin et al., "Small Steps in Physics
+// Simulation", SCA 2019: many substeps h, one Gauss–Seidel pass per substep, λ reset every substep.
+//   predict:  v += h g,  x* = x + h v
+//   springs:  C = |x_ij| - l, α = 1/k, α̃ = α/h², damping γ = α β / h with β = k_d/|x_ij| (the same
+//             strain-rate damper as springs.h), Δλ = (-C - γ ∇C·(x - x_prev)) / ((1 + γ)(w_i + w_j) + α̃)
+//             (eq. 26 of the 2016 paper with λ = 0 at the start of the pass)
+//   volume:   C = V - V0, a hard constraint (α = 0): Δλ = -C / Σ w_i |∇_i V|², Δx_i = w_i ∇_i V Δλ
+//   velocity: v = (x - x_prev)/h, then the floor contact of floor_contact.h.
+// Unconditionally stable; with one pass per substep the springs act softer than k unless
+// w k h² ≪ 1, so substeps should shrink with the subdivision level like an explicit step.
+#pragma once
+
+#include "core/particle_state.h"
+#include "core/springs.h"
+
+#include <glm/vec3.hpp>
+
+#include <vector>
+
+namespace slime {
+
+struct XpbdModel {
+  const SpringSet* springs = nullptr;
+  double damping = 0.0;                                  // k_d, N·s (strain-rate damper)
+  const std::vector<glm::u32vec3>* triangles = nullptr;  // null: no volume constraint
+  double restVolume = 0.0;
+  glm::dvec3 gravity{0.0, 0.0, -9.81};
+};
+
+struct XpbdScratch {
+  std::vector<glm::dvec3> previousPositions;
+  std::vector<glm::dvec3> volumeGradient;
+};
+
+// One substep of length h (the caller applies floor contact afterwards).
+void xpbdSubstep(ParticleState& state, double h, const XpbdModel& model, XpbdScratch& scratch);
+
+}  // namespace slime
