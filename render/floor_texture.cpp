@@ -101,15 +101,12 @@ glm::vec3 FloorTexture::planks(glm::vec2 p, glm::vec2 footprint) const {
   const float brightness = 1.0f + 0.18f * boardVisibility * (hash01(static_cast<std::int32_t>(row), static_cast<std::int32_t>(board) + 911) - 0.5f);
   glm::vec3 color = glm::mix(colorA_, colorB_, shade) * brightness;
 
-  // Grain: stripes across y that wander along x; each sine fades as the footprint reaches its period.
+  // Grain: stripes across y that wander slowly along x, fading as the footprint reaches their period.
   const float phase = hash01(static_cast<std::int32_t>(board), static_cast<std::int32_t>(row) + 3) * 2.0f * kPi;
-  const float wander = 0.35f * std::sin(q.x * 1.3f + phase) + 0.15f * std::sin(q.x * 3.7f + 2.0f * phase);
   const float grainPeriod = 1.0f / kGrainPerBoard;
-  const float grain = std::sin(2.0f * kPi * (q.y + wander * grainPeriod * 3.0f) * kGrainPerBoard + phase);
-  const float fineGrain = std::sin(2.0f * kPi * (q.y * 3.1f + 0.7f * wander) * kGrainPerBoard + 1.7f * phase);
-  const float grainAmount = 0.10f * grain * detailVisibility(h.y, grainPeriod) +
-                            0.05f * fineGrain * detailVisibility(h.y, grainPeriod / 3.1f);
-  color *= 1.0f + grainAmount;
+  const float wander = 0.6f * std::sin(q.x * 1.3f + phase);
+  const float grain = std::sin(2.0f * kPi * kGrainPerBoard * q.y + 2.0f * wander + phase);
+  color *= 1.0f + 0.10f * grain * detailVisibility(h.y, grainPeriod);
 
   // Seams: the long ones between rows (exactly filtered), the joints between boards of one row.
   const float longSeam = filteredPulse(q.y + 0.5f * kSeam, h.y, kSeam);

@@ -16,7 +16,7 @@ std::optional<glm::vec3> refract(const glm::vec3& v, const glm::vec3& n, float e
   // Handle total internal reflection: no transmitted angle exists.
   if (sin2Transmitted > 1.0f) return std::nullopt;
   const float cosTransmitted = std::sqrt(1.0f - sin2Transmitted);
-  return glm::normalize(eta * v + (eta * cosIncident - cosTransmitted) * n);
+  return eta * v + (eta * cosIncident - cosTransmitted) * n;  // unit when v and n are
 }
 
 float fresnelDielectric(float cosIncident, float etaFrom, float etaTo) {

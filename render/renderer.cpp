@@ -79,7 +79,7 @@ struct Renderer::Impl {
     if (settings.render.threads != threads) makeArena(settings.render.threads);
     const bool sphere = settings.slime.shape == "sphere";
     const float radius = static_cast<float>(settings.slime.radius);
-    if (sphere != geometry.analyticSphere || (sphere && radius != geometry.sphereRadius)) {
+    if (sphere != geometry.sphereRequested || (sphere && radius != geometry.sphereRadius)) {
       geometry.setAnalyticSphere(sphere, radius);
       embree.update(geometry, false);
     }
@@ -92,7 +92,9 @@ struct Renderer::Impl {
                  TraceCounters& counts) const {
     FlushDenormals flush;
     const float inverseSamples = 1.0f / static_cast<float>(samplesPerAxis * samplesPerAxis);
-    const glm::vec3 eye(camera.position);
+    const glm::vec3 eye(camera.position), forward(camera.forward);
+    // Camera::rayDirection in float: forward + x right + y up, x and y scaled by the fov.
+    const glm::vec3 right(camera.right * (camera.tanHalfFov * camera.aspect)), up(camera.up * camera.tanHalfFov);
     for (int y = rowBegin; y < rowEnd; ++y) {
       for (int x0 = columnBegin; x0 < columnEnd; x0 += kPacket) {
         glm::vec3 sums[kPacket] = {};
@@ -104,9 +106,10 @@ struct Renderer::Impl {
             SlimeHit hits[kPacket];
             int activeCount = 0;
             for (int i = 0; i < kPacket && x0 + i < columnEnd; ++i) {
-              const double u = (x0 + i + (sampleX + 0.5) / samplesPerAxis) / image.width;
-              const double v = (y + (sampleY + 0.5) / samplesPerAxis) / image.height;
-              rays[i] = Ray{eye, glm::vec3(camera.rayDirection(u, v)), 0.0f, kInfinity};
+              const float u = (x0 + i + (sampleX + 0.5f) / samplesPerAxis) / image.width;
+              const float v = (y + (sampleY + 0.5f) / samplesPerAxis) / image.height;
+              const glm::vec3 direction = forward + (2.0f * u - 1.0f) * right + (1.0f - 2.0f * v) * up;
+              rays[i] = Ray{eye, glm::normalize(direction), 0.0f, kInfinity};
               active[i] = geometry.mayHit(rays[i]);
               activeCount += active[i];
             }
@@ -119,8 +122,10 @@ struct Renderer::Impl {
         }
         for (int i = 0; i < kPacket && x0 + i < columnEnd; ++i) {
           const glm::vec3 color = sums[i] * inverseSamples;
-          // A non-finite colour would be a bug upstream; never let it reach the image.
-          image.at(x0 + i, y) = std::isfinite(color.x + color.y + color.z) ? color : glm::vec3(0.0f);
+          // A non-finite colour would be a bug upstream: count it (tests demand 0), never show it.
+          const bool finite = std::isfinite(color.x + color.y + color.z);
+          counts.nonFinitePixels += !finite;
+          image.at(x0 + i, y) = finite ? color : glm::vec3(0.0f);
         }
       }
     }
@@ -174,6 +179,7 @@ RenderStats Renderer::render(const Settings& settings, Image& image) {
     stats.rays.reflection += counts.rays.reflection;
     stats.rays.refraction += counts.rays.refraction;
     stats.slimeQueries += counts.slimeQueries;
+    stats.nonFinitePixels += counts.nonFinitePixels;
   }
   stats.traceMs = millisecondsSince(start);
   return stats;

@@ -33,6 +33,7 @@ struct RenderStats {
   double traceMs = 0.0;  // tracing and shading the image
   RayCounts rays;        // every ray by kind, whether it met Embree or only the analytic floor/sky
   std::uint64_t slimeQueries = 0;  // rays that could reach the slime's bounds and were tested against it
+  std::uint64_t nonFinitePixels = 0;  // pixels whose colour came out NaN/inf (written black); must stay 0
 };
 
 class Renderer {

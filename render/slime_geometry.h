@@ -7,6 +7,7 @@
 #include "render/ray.h"
 
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include <vector>
 
@@ -18,9 +19,23 @@ struct SlimeGeometry {
   std::vector<Triangle> triangles;
   glm::vec3 boundCenter{0.0f};       // a sphere that contains every vertex
   float boundRadius = 0.0f;
-  bool analyticSphere = false;       // slime.shape == sphere: the exact sphere below replaces the mesh
+  glm::vec3 meshBoundCenter{0.0f};   // the mesh's own bounds (the sphere's replace them in sphere mode)
+  float meshBoundRadius = 0.0f;
+  bool sphereRequested = false;      // slime.shape == sphere
+  bool analyticSphere = false;       // ... and there is a slime: the exact sphere below replaces the mesh
+  // Every edge's dihedral angle is convex (within kConvexTolerance): a ray leaving the outside of
+  // the surface cannot meet it again, so such rays need no intersection query (see whitted_tracer.h).
+  bool convex = false;
+  // Per unique edge: the two vertices opposite it in its two triangles, and the edge's own two.
+  std::vector<glm::u32vec4> edgeQuads;
   glm::vec3 sphereCenter{0.0f};
   float sphereRadius = 0.0f;
+
+  // A vertex may stand this far (relative to the bounding radius) above the plane of a neighbouring
+  // triangle and still count as convex: 1e-4·R is 4 µm on the default slime, far below a pixel.
+  static constexpr float kConvexTolerance = 1e-4f;
+
+  bool isConvex() const { return analyticSphere || convex; }
 
   std::size_t vertexCount() const { return positions.empty() ? 0 : positions.size() - 1; }
 

@@ -28,7 +28,9 @@ float floorDistance(const Ray& ray) {
 float phongLobe(const glm::vec3& normal, const glm::vec3& toLight, const glm::vec3& toViewer, float shininess) {
   const glm::vec3 mirrored = reflect(-toLight, normal);
   const float cosine = glm::dot(mirrored, toViewer);
-  return cosine > 0.0f ? std::pow(cosine, shininess) : 0.0f;
+  // cos^n < 2^-12 (invisible) once n·log2(cos) < −12, i.e. n·(1 − cos) ≳ 8.3: skip the pow there.
+  if (cosine <= 0.0f || shininess * (1.0f - cosine) > 8.5f) return 0.0f;
+  return std::pow(cosine, shininess);
 }
 
 }  // namespace
@@ -53,7 +55,8 @@ glm::vec3 WhittedTracer::trace(const Ray& ray, const SlimeHit* knownHit, const P
                                TraceCounters& counters) const {
   if (kind == Kind::Reflection) ++counters.rays.reflection;
   if (kind == Kind::Refraction) ++counters.rays.refraction;
-  const SlimeHit hit = knownHit ? *knownHit : findSlime(ray, counters);
+  const bool cannotMeetSlime = path.leavesSlime && geometry_.isConvex();
+  const SlimeHit hit = knownHit ? *knownHit : cannotMeetSlime ? SlimeHit{} : findSlime(ray, counters);
   const float tFloor = floorDistance(ray);
   if (hit.valid() && hit.t <= tFloor) return shadeSlime(ray, hit, path, counters);
   if (tFloor == kInfinity) return sky(ray.direction);
@@ -84,7 +87,7 @@ glm::vec3 WhittedTracer::shadeSlime(const Ray& ray, const SlimeHit& hit, const P
     const glm::vec3 toLight = glm::normalize(p.lightPosition - point);
     const float cosLight = glm::dot(normal, toLight);
     if (cosLight > 0.0f && glm::dot(facing, toLight) > 0.0f) {
-      const glm::vec3 visible = p.shadows ? lightTransmittance(offsetRayOrigin(point, facing, toLight), counters)
+      const glm::vec3 visible = p.shadows ? lightTransmittance(offsetRayOrigin(point, facing, toLight), counters, true)
                                           : glm::vec3(1.0f);
       if (largest(visible) > 0.0f)
         color += visible * p.lightColor *
@@ -116,12 +119,14 @@ glm::vec3 WhittedTracer::shadeSlime(const Ray& ray, const SlimeHit& hit, const P
       if (glm::dot(direction, facing) <= 0.0f) direction = reflect(ray.direction, facing);
       next.weight = weight * reflectWeight;
       next.inside = !entering;
+      next.leavesSlime = entering;
       const Ray reflectedRay{offsetRayOrigin(point, facing, direction), direction, 0.0f, kInfinity};
       color += reflectWeight * trace(reflectedRay, nullptr, next, Kind::Reflection, counters);
     }
     if (refracted && refractWeight > 0.0f && largest(weight * refractWeight) >= kMinRayWeight) {
       next.weight = weight * refractWeight;
       next.inside = entering;
+      next.leavesSlime = !entering;
       const Ray refractedRay{offsetRayOrigin(point, facing, *refracted), *refracted, 0.0f, kInfinity};
       color += refractWeight * trace(refractedRay, nullptr, next, Kind::Refraction, counters);
     }
@@ -143,7 +148,7 @@ glm::vec3 WhittedTracer::shadeFloor(const Ray& ray, float t, const Path& path, T
   if (path.segment < p.depth && p.floorSpecular > 0.0f && largest(path.weight * p.floorSpecular) >= kMinRayWeight) {
     // The varnish mirrors what is above: the reflected ray (d_x, d_y, −d_z).
     const glm::vec3 direction{ray.direction.x, ray.direction.y, -ray.direction.z};
-    Path next{path.segment + 1, path.weight * p.floorSpecular, distance, path.inside};
+    Path next{path.segment + 1, path.weight * p.floorSpecular, distance, path.inside, false};
     const Ray reflectedRay{point + glm::vec3(0.0f, 0.0f, kRayOffset), direction, 0.0f, kInfinity};
     color += p.floorSpecular * trace(reflectedRay, nullptr, next, Kind::Reflection, counters);
   }
@@ -158,7 +163,7 @@ glm::vec3 WhittedTracer::floorLocal(const glm::vec3& point, const glm::vec3& dir
   // along the ray's horizontal direction; the texture averages over that ellipse's bounding box.
   const float width = distance * p.pixelSpread;
   const float cosTheta = std::max(std::abs(direction.z), 1e-3f);
-  const float horizontal = std::hypot(direction.x, direction.y);
+  const float horizontal = std::sqrt(direction.x * direction.x + direction.y * direction.y);
   const float hx = horizontal > 1e-6f ? direction.x / horizontal : 1.0f;
   const float hy = horizontal > 1e-6f ? direction.y / horizontal : 0.0f;
   const float along = 0.5f * width / cosTheta, across = 0.5f * width;
@@ -178,14 +183,15 @@ glm::vec3 WhittedTracer::floorLocal(const glm::vec3& point, const glm::vec3& dir
   return color + visible * p.lightColor * (p.floorDiffuse * lightDirection.z * albedo + highlight);
 }
 
-glm::vec3 WhittedTracer::lightTransmittance(const glm::vec3& point, TraceCounters& counters) const {
+glm::vec3 WhittedTracer::lightTransmittance(const glm::vec3& point, TraceCounters& counters, bool leavesSlime) const {
   const ShadingParameters& p = parameters_;
   ++counters.rays.shadow;
   const glm::vec3 toLight = p.lightPosition - point;
   const float distance = glm::length(toLight);
   Ray ray{point, toLight / distance, 0.0f, distance};
   glm::vec3 transmittance(1.0f);
-  if (!(distance > 0.0f) || !geometry_.mayHit(ray)) return transmittance;
+  const bool convex = geometry_.isConvex();
+  if (!(distance > 0.0f) || (leavesSlime && convex) || !geometry_.mayHit(ray)) return transmittance;
   // Walk the crossings along the straight shadow ray (shadow rays are not bent): each crossing passes
   // the surface's transmitted fraction, each stretch inside loses exp(−σ l).
   for (int crossing = 0; crossing < kMaxShadowCrossings; ++crossing) {
@@ -204,6 +210,7 @@ glm::vec3 WhittedTracer::lightTransmittance(const glm::vec3& point, TraceCounter
       transmittance *= p.transmission;
     }
     if (largest(transmittance) < kMinRayWeight) return glm::vec3(0.0f);
+    if (!entering && convex) return transmittance;  // out of a convex slime for good
     ray.origin = offsetRayOrigin(hitPoint, outward, ray.direction);
     ray.tFar = std::max(0.0f, ray.tFar - hit.t);
   }

@@ -1,6 +1,7 @@
 // Whitted ray tracing (SPEC §4) shared by both back-ends: only SlimeIntersector differs. The floor
 // z = 0 and the sky are analytic, so a ray is tested against the slime only when it can reach the
-// slime's bounding sphere; every other ray costs a plane test or nothing.
+// slime's bounding sphere; every other ray costs a plane test or nothing. When the slime is convex
+// (SlimeGeometry::isConvex) a ray leaving its outside cannot meet it again and is not tested either.
 //
 // At a slime surface: I = local Phong + w_r I_reflected + w_t I_refracted, with
 //   fresnel mode: w_r = F (dielectric Fresnel), w_t = (1 − F)·k_t entering, (1 − F) leaving;
@@ -20,6 +21,7 @@ namespace slime {
 struct TraceCounters {
   RayCounts rays;
   std::uint64_t slimeQueries = 0;  // rays that reached Embree / the triangle loop
+  std::uint64_t nonFinitePixels = 0;
 };
 
 class WhittedTracer {
@@ -36,7 +38,8 @@ class WhittedTracer {
 
   // Fraction of the point light reaching `point` (per channel): 1 in the open, partial and coloured
   // behind the translucent slime (surface transmission and Beer–Lambert along the chord), 0 if opaque.
-  glm::vec3 lightTransmittance(const glm::vec3& point, TraceCounters& counters) const;
+  // `leavesSlime`: the point is on the slime's lit outside (a convex slime cannot shadow it).
+  glm::vec3 lightTransmittance(const glm::vec3& point, TraceCounters& counters, bool leavesSlime = false) const;
 
   // The closest slime hit along a ray, or none: the bounding-sphere test first, then the intersector.
   SlimeHit findSlime(const Ray& ray, TraceCounters& counters) const;
@@ -48,6 +51,7 @@ class WhittedTracer {
     glm::vec3 weight{1.0f};     // product of the factors so far
     float travelled = 0.0f;     // distance from the eye to the ray origin (footprint cone)
     bool inside = false;        // the ray runs inside the slime
+    bool leavesSlime = false;   // the ray starts on the slime's surface heading outwards
   };
 
   glm::vec3 trace(const Ray& ray, const SlimeHit* knownHit, const Path& path, Kind kind, TraceCounters& counters) const;

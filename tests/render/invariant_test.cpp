@@ -1,0 +1,137 @@
+// Physical invariants and oracles of the renderer: an invisible slime, Beer–Lambert through the centre,
+// Embree against the seed's brute-force algorithm, the mesh against the exact sphere, and no NaN.
+#include "render_fixture.h"
+
+#include "render/optics.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+namespace slime::testing {
+namespace {
+
+// ior 1, transmission 1, no absorption, no Phong terms: the slime bends, reflects and absorbs nothing.
+// The floor's own mirror term is off too: a path through the slime spends two of the depth-3 segments
+// in it, so the floor seen through it could not trace its reflection.
+TEST(Invariant, InvisibleSlimeLeavesTheImageUnchanged) {
+  Settings settings = smallScene(96, 72);
+  settings.slime.ior = 1.0;
+  settings.slime.transmission = 1.0;
+  settings.slime.absorption = 0.0;
+  settings.slime.specular = settings.slime.diffuse = settings.slime.ambient = 0.0;
+  settings.floor.specular = 0.0;
+  RenderStats stats;
+  const Image withSlime = renderScene(settings, &stats);
+  const Image without = renderMesh(settings, TriangleMesh{});
+  EXPECT_GT(stats.slimeQueries, 1000u);  // the slime is in view and was traced
+  const ImageDifference d = compareImages(withSlime, without, 1.0);
+  EXPECT_EQ(d.fractionAbove, 0.0) << "largest difference " << d.largest << "/255";
+  if (d.fractionAbove > 0.0) writePng(differenceImage(withSlime, without), outputPath("invisible_slime_diff.png"));
+}
+
+// With ior 1 the ray through the centre crosses a chord of 2R: the sky behind is dimmed by exp(−2σR).
+void expectCentreAttenuation(const std::string& shape, int level, float tolerance) {
+  Settings settings = smallScene(33, 33);
+  settings.slime.shape = shape;
+  settings.slime.level = level;
+  settings.slime.ior = 1.0;
+  settings.slime.transmission = 1.0;
+  settings.slime.absorption = 15.0;
+  settings.slime.specular = settings.slime.diffuse = settings.slime.ambient = 0.0;
+  settings.camera.position = {0.0, -0.2, settings.slime.radius};
+  settings.camera.yaw = 90.0;
+  settings.camera.pitch = 0.0;
+  const Image withSlime = renderScene(settings);
+  const Image without = renderMesh(settings, TriangleMesh{});
+  const glm::vec3 sigma = absorptionCoefficients(glm::vec3(settings.slime.color), static_cast<float>(settings.slime.absorption));
+  const glm::vec3 expected = without.at(16, 16) * beerLambert(sigma, 2.0f * static_cast<float>(settings.slime.radius));
+  const glm::vec3 seen = withSlime.at(16, 16);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(seen[c], expected[c], tolerance * expected[c]) << shape << " channel " << c;
+}
+
+TEST(Invariant, CentreRayIsAttenuatedByBeerLambertOverTheDiameter) {
+  expectCentreAttenuation("sphere", 4, 1e-3f);
+  expectCentreAttenuation("mesh", 5, 5e-3f);  // the inscribed mesh's chord is a little shorter
+}
+
+// The seed's algorithm (bounding sphere, then every triangle) and Embree must agree.
+TEST(Oracle, EmbreeMatchesBruteForce) {
+  for (const char* optics : {"fresnel", "seed"}) {
+    Settings settings = smallScene(160, 120);
+    settings.slime.level = 3;
+    settings.render.optics = optics;
+    const Image embree = renderScene(settings);
+    settings.render.backend = "brute";
+    const Image brute = renderScene(settings);
+    const ImageDifference d = compareImages(embree, brute, 1.0);
+    EXPECT_LE(d.fractionAbove, 0.001) << optics << ": largest difference " << d.largest << "/255";
+    if (d.fractionAbove > 0.001) writePng(differenceImage(embree, brute), outputPath(std::string("embree_vs_brute_") + optics + ".png"));
+  }
+}
+
+// The subdivided mesh against the exact sphere it approximates: at level 4 the two images differ only
+// along the silhouette and in a few refracted details.
+TEST(Oracle, MeshAtLevelFourAgreesWithTheAnalyticSphere) {
+  Settings settings = smallScene(160, 120);
+  settings.slime.level = 4;
+  const Image mesh = renderScene(settings);
+  settings.slime.shape = "sphere";
+  const Image sphere = renderScene(settings);
+  const ImageDifference d = compareImages(mesh, sphere, 8.0);
+  EXPECT_LT(d.fractionAbove, 0.02) << "largest " << d.largest << "/255, mean " << d.mean;
+  EXPECT_LT(d.mean, 1.0);
+  if (d.fractionAbove >= 0.02) writePng(differenceImage(mesh, sphere), outputPath("mesh_vs_sphere.png"));
+}
+
+void expectFinite(const Settings& settings, const TriangleMesh& mesh, const char* what) {
+  for (const char* backend : {"embree", "brute"}) {
+    Settings s = settings;
+    s.render.backend = backend;
+    RenderStats stats;
+    const Image image = renderMesh(s, mesh, &stats);
+    EXPECT_EQ(stats.nonFinitePixels, 0u) << what << " (" << backend << ")";
+    for (const glm::vec3& p : image.pixels)
+      ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) << what << " (" << backend << ")";
+  }
+}
+
+TEST(Robustness, NoNanPixelForDegenerateMeshes) {
+  Settings settings = smallScene(48, 36);
+  settings.slime.level = 2;
+  const TriangleMesh ball = restingMesh(settings);
+
+  TriangleMesh collapsed = ball;  // every vertex at one point: zero-area triangles only
+  for (auto& p : collapsed.positions) p = {0.0, 0.0, 0.04};
+  expectFinite(settings, collapsed, "collapsed to a point");
+
+  TriangleMesh pancake = ball;  // squashed flat onto the floor
+  for (auto& p : pancake.positions) p.z = 1e-4;
+  expectFinite(settings, pancake, "flattened");
+
+  TriangleMesh line = ball;  // collapsed onto a segment
+  for (auto& p : line.positions) p = {p.x, 0.0, 0.04};
+  expectFinite(settings, line, "collapsed to a line");
+
+  TriangleMesh crumpled = ball;  // random vertices: self-intersecting, inside out
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> jitter(-0.04, 0.04);
+  for (auto& p : crumpled.positions) p = {jitter(random), jitter(random), 0.04 + jitter(random)};
+  expectFinite(settings, crumpled, "crumpled");
+
+  TriangleMesh diverged = ball;  // a diverged simulation
+  diverged.positions[3] = {std::nan(""), 0.0, 0.0};
+  diverged.positions[5] = {1e30, -1e30, 1e30};
+  expectFinite(settings, diverged, "NaN and huge vertices");
+
+  Settings extreme = settings;  // extreme optics
+  extreme.slime.ior = 3.0;
+  extreme.slime.absorption = 10000.0;
+  extreme.slime.color = {0.0, 0.0, 0.0};
+  extreme.render.depth = 16;
+  expectFinite(extreme, ball, "extreme optics");
+}
+
+}  // namespace
+}  // namespace slime::testing

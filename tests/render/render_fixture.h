@@ -1,0 +1,89 @@
+// Helpers shared by the render tests: a small default scene, one-call rendering and image comparison.
+#pragma once
+
+#include "core/icosphere.h"
+#include "core/settings.h"
+#include "core/settings_io.h"
+#include "render/image_io.h"
+#include "render/renderer.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+namespace slime::testing {
+
+// The default scene at a small size with the slime resting on the floor, all threads.
+inline Settings smallScene(int width = 96, int height = 72) {
+  Settings settings = defaultSettings();
+  settings.camera.width = width;
+  settings.camera.height = height;
+  settings.slime.position = {0.0, 0.0, settings.slime.radius};
+  return settings;
+}
+
+inline TriangleMesh restingMesh(const Settings& settings) {
+  return makeIcosphere(settings.slime.level, settings.slime.radius, settings.slime.position);
+}
+
+// Renders `mesh` (or nothing when it is empty) with the given settings.
+inline Image renderMesh(const Settings& settings, const TriangleMesh& mesh, RenderStats* stats = nullptr) {
+  Renderer renderer(settings);
+  renderer.updateSlime(mesh.positions, mesh.triangles);
+  Image image;
+  image.resize(settings.camera.width, settings.camera.height);
+  const RenderStats result = renderer.render(settings, image);
+  if (stats) *stats = result;
+  return image;
+}
+
+inline Image renderScene(const Settings& settings, RenderStats* stats = nullptr) {
+  return renderMesh(settings, restingMesh(settings), stats);
+}
+
+// Per-pixel comparison in 8-bit sRGB, the units a person sees.
+struct ImageDifference {
+  double largest = 0.0;         // largest channel difference, in 1/255 steps
+  double fractionAbove = 0.0;   // fraction of pixels with any channel differing by more than the tolerance
+  double mean = 0.0;            // mean channel difference, in 1/255 steps
+};
+
+inline ImageDifference compareImages(const Image& a, const Image& b, double tolerance) {
+  ImageDifference difference;
+  const auto bytesA = toSrgb8(a), bytesB = toSrgb8(b);
+  if (bytesA.size() != bytesB.size() || bytesA.empty()) return {255.0, 1.0, 255.0};
+  std::size_t above = 0;
+  double sum = 0.0;
+  for (std::size_t pixel = 0; pixel < bytesA.size() / 3; ++pixel) {
+    double worst = 0.0;
+    for (int c = 0; c < 3; ++c) {
+      const double d = std::abs(static_cast<double>(bytesA[3 * pixel + c]) - bytesB[3 * pixel + c]);
+      worst = std::max(worst, d);
+      sum += d;
+    }
+    difference.largest = std::max(difference.largest, worst);
+    if (worst > tolerance) ++above;
+  }
+  difference.fractionAbove = static_cast<double>(above) / static_cast<double>(bytesA.size() / 3);
+  difference.mean = sum / static_cast<double>(bytesA.size());
+  return difference;
+}
+
+// |a − b| × 8 per channel, so that small differences are visible in the written PNG.
+inline Image differenceImage(const Image& a, const Image& b) {
+  Image d;
+  d.resize(a.width, a.height);
+  for (std::size_t i = 0; i < d.pixels.size() && i < b.pixels.size(); ++i)
+    d.pixels[i] = glm::min(glm::abs(a.pixels[i] - b.pixels[i]) * 8.0f, glm::vec3(1.0f));
+  return d;
+}
+
+inline std::string outputPath(const std::string& name) {
+  std::filesystem::create_directories(SLIME_TEST_OUTPUT_DIR);
+  return std::string(SLIME_TEST_OUTPUT_DIR) + "/" + name;
+}
+
+}  // namespace slime::testing
