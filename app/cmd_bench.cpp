@@ -1,16 +1,83 @@
-// TEMPORARY until the bench subcommand lands: registers the name so the program links.
+// `slime bench render|physics|accuracy`: the benchmarks behind docs/bench (scripts/bench.sh runs
+// all three and redraws the charts). Each prints a table, and writes every figure with --json/--csv.
+#include "app/bench_render.h"
+#include "app/bench_report.h"
 #include "app/commands.h"
+#include "core/settings_io.h"
 
-#include <cstdio>
+#include <memory>
+#include <stdexcept>
 
 namespace slime {
+namespace {
+
+// Parses "WxH" (each 1..8192) for --size.
+void parseSize(const std::string& text, int& width, int& height) {
+  const std::size_t x = text.find_first_of("xX");
+  try {
+    if (x == std::string::npos) throw std::invalid_argument("no x");
+    std::size_t usedWidth = 0, usedHeight = 0;
+    width = std::stoi(text.substr(0, x), &usedWidth);
+    height = std::stoi(text.substr(x + 1), &usedHeight);
+    if (usedWidth != x || usedHeight != text.size() - x - 1 || width < 1 || height < 1 || width > 8192 || height > 8192)
+      throw std::invalid_argument("range");
+  } catch (const std::exception&) {
+    throw SettingsError("--size must be WxH with W and H whole numbers in 1..8192 pixels, got '" + text + "'");
+  }
+}
+
+std::vector<int> parseList(const std::string& option, const std::string& text, int low, int high) {
+  std::vector<int> values;
+  try {
+    values = parseIntegerList(text);
+  } catch (const std::exception& e) {
+    throw SettingsError(option + ": " + e.what());
+  }
+  for (int value : values)
+    if (value < low || value > high)
+      throw SettingsError(option + " values must be in " + std::to_string(low) + ".." + std::to_string(high) +
+                          ", got " + std::to_string(value));
+  return values;
+}
+
+struct RenderCommand {
+  SceneOptions scene;
+  RenderBenchOptions bench;
+  std::string levels = "0-6", threads, bvhLevels = "4,6", size = "734x564";
+};
+
+void registerRender(CLI::App& bench, int& exitCode) {
+  auto options = std::make_shared<RenderCommand>();
+  auto* command = bench.add_subcommand("render", "Ray-tracing throughput vs faces and threads, against the Embree-only limit and the seed's brute force");
+  command->add_option("--levels", options->levels, "Subdivision levels, e.g. 0-6 or 2,4")->capture_default_str();
+  command->add_option("--threads", options->threads, "Thread counts, e.g. 1,2 (default: 1 and all cores)");
+  command->add_option("--frames", options->bench.frames, "Timed frames per configuration")->check(CLI::Range(1, 10000))->capture_default_str();
+  command->add_option("--warmup", options->bench.warmup, "Untimed frames first")->check(CLI::Range(0, 1000))->capture_default_str();
+  command->add_option("--size", options->size, "Image size WxH")->capture_default_str();
+  command->add_option("--depth", options->bench.depth, "Whitted recursion depth")->check(CLI::Range(1, 16))->capture_default_str();
+  command->add_option("--brute-max-level", options->bench.bruteMaxLevel, "Run the seed's brute-force tracer up to this level (-1: never)")
+      ->check(CLI::Range(-1, 7))->capture_default_str();
+  command->add_option("--bvh-levels", options->bvhLevels, "Levels of the refit-vs-rebuild measurement ('none' to skip)")->capture_default_str();
+  command->add_option("--json", options->bench.jsonFile, "Write every figure as JSON");
+  command->add_option("--csv", options->bench.csvFile, "Write the tables as CSV (FILE and FILE_bvh, FILE_seed)");
+  addSceneOptions(*command, options->scene);
+  command->callback([options, &exitCode] {
+    RenderBenchOptions bench = options->bench;
+    bench.levels = parseList("--levels", options->levels, 0, 7);
+    if (!options->threads.empty()) bench.threads = parseList("--threads", options->threads, 1, 1024);
+    bench.bvhLevels = options->bvhLevels == "none" ? std::vector<int>{} : parseList("--bvh-levels", options->bvhLevels, 0, 7);
+    parseSize(options->size, bench.width, bench.height);
+    runRenderBench(loadSettings(options->scene), bench);
+    exitCode = 0;
+  });
+}
+
+}  // namespace
 
 void registerBenchCommand(CLI::App& root, int& exitCode) {
-  auto* command = root.add_subcommand("bench", "(not yet implemented)");
-  command->callback([&exitCode] {
-    std::fprintf(stderr, "slime bench: not implemented yet\n");
-    exitCode = 1;
-  });
+  auto* bench = root.add_subcommand("bench", "Benchmarks: render throughput, physics cost and stability, image accuracy");
+  bench->require_subcommand(1);
+  registerRender(*bench, exitCode);
 }
 
 }  // namespace slime

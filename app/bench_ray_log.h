@@ -1,0 +1,39 @@
+// The slime queries of one frame, recorded so that they can be replayed through Embree alone: the
+// "limit" pass (the same rays, no shading, no ray generation, no analytic floor or sky) and the
+// trace time after a refit or a rebuild of the BVH. Recorded by running the renderer's own
+// WhittedTracer once over every pixel (one sample per pixel) with an intersector that logs each query.
+#pragma once
+
+#include "core/icosphere.h"
+#include "core/settings.h"
+#include "render/ray.h"
+
+#include <glm/vec3.hpp>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace slime {
+
+struct RayPacket {
+  std::array<Ray, 8> rays;
+  std::array<bool, 8> active{};
+};
+
+struct RayLog {
+  std::vector<RayPacket> primaryPackets;  // coherent primaries, 8 pixels of a row at a time
+  std::vector<Ray> secondary;             // reflection and refraction queries (tFar = ∞)
+  std::vector<Ray> shadow;                // shadow-ray crossings towards the light (finite tFar)
+  std::uint64_t hits = 0;                 // queries that found the slime while recording
+
+  std::uint64_t primaryQueries() const;
+  std::uint64_t queries() const { return primaryQueries() + secondary.size() + shadow.size(); }
+};
+
+// Traces the frame that `settings.camera` sees at width × height with the slime mesh given, and
+// returns every query the tracer made of the slime.
+RayLog recordSlimeQueries(const Settings& settings, const std::vector<glm::dvec3>& positions,
+                          const std::vector<Triangle>& triangles, int width, int height);
+
+}  // namespace slime
