@@ -37,11 +37,14 @@ void runSnapshot(const SnapshotOptions& options) {
   }
   validateSettings(settings);
 
-  const SnapshotResult snapshot = takeSnapshot(settings, options.settle);
+  const SnapshotResult snapshot = takeSnapshot(settings, options.settle, options.scene.scenarioFile);
   writePng(snapshot.image, options.output);
   const RayCounts& rays = snapshot.stats.rays;
   std::printf("wrote %s (%dx%d) after %.3f s simulated\n", options.output.c_str(), snapshot.image.width,
               snapshot.image.height, snapshot.simulatedSeconds);
+  const SlimeMetrics& m = snapshot.metrics;
+  std::printf("slime: height %.4f m, width %.4f m, min z %.2e m, max speed %.2e m/s, volume %.4f, rollbacks %zu\n",
+              m.height, m.width, m.minZ, m.maxSpeed, m.volumeRatio, snapshot.divergences);
   std::printf("render %.2f ms (refit %.3f ms)\n", snapshot.stats.traceMs, snapshot.stats.refitMs);
   std::printf("rays %llu: primary %llu, shadow %llu, reflection %llu, refraction %llu; slime queries %llu\n",
               static_cast<unsigned long long>(rays.total()), static_cast<unsigned long long>(rays.primary),

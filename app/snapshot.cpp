@@ -1,9 +1,13 @@
 #include "app/snapshot.h"
 
-#include "core/icosphere.h"
+#include "core/scenario.h"
 #include "core/settings_io.h"
+#include "core/simulation.h"
 
+#include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <optional>
 #include <string>
 
 namespace slime {
@@ -29,15 +33,37 @@ void applyImageSize(Settings& settings, const std::string& size) {
   settings.camera.height = parse(heightText);
 }
 
-SnapshotResult takeSnapshot(const Settings& settings, double settleSeconds) {
-  SnapshotResult result;
-  // TODO(render): simulate with slime::Simulation once core/simulation.cpp lands; until then the
-  // slime is the undeformed icosphere at its start position.
-  const TriangleMesh mesh = makeIcosphere(settings.slime.level, settings.slime.radius, settings.slime.position);
-  (void)settleSeconds;
+SnapshotResult takeSnapshot(const Settings& initialSettings, double settleSeconds, const std::string& scenarioFile) {
+  Settings settings = initialSettings;  // scenario "set" events change it as they fire
+  std::optional<ScenarioPlayer> player;
+  double lastEvent = 0.0;
+  if (!scenarioFile.empty()) {
+    Scenario scenario = loadScenario(scenarioFile);
+    for (const ScenarioEvent& event : scenario.events) lastEvent = std::max(lastEvent, event.time + event.duration);
+    player.emplace(std::move(scenario));
+  }
 
+  Simulation simulation(settings);
+  const double dt = settings.sim.dt;
+  const bool untilRest = settleSeconds < 0.0;
+  const double limit = untilRest ? lastEvent + kMaxSettleSeconds : settleSeconds;
+  const auto steps = static_cast<std::int64_t>(std::llround(limit / dt));
+  const auto checkEvery = std::max<std::int64_t>(1, std::llround(0.01 / dt));
+  while (simulation.stepCount() < steps) {
+    if (player) player->advanceTo(simulation.time(), simulation, settings);
+    simulation.step();
+    const bool scenarioDone = !player || (player->finished() && simulation.time() >= lastEvent);
+    if (untilRest && scenarioDone && simulation.time() >= kMinSettleSeconds &&
+        simulation.stepCount() % checkEvery == 0 && simulation.metrics().maxSpeed < kRestSpeed)
+      break;
+  }
+
+  SnapshotResult result;
+  result.simulatedSeconds = simulation.time();
+  result.metrics = simulation.metrics();
+  result.divergences = simulation.divergences().size();
   Renderer renderer(settings);
-  renderer.updateSlime(mesh.positions, mesh.triangles);
+  renderer.updateSlime(simulation.positions(), simulation.triangles());
   result.image.resize(settings.camera.width, settings.camera.height);
   result.stats = renderer.render(settings, result.image);
   return result;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "core/settings.h"
+#include "core/simulation.h"
 #include "render/renderer.h"
 
 #include <string>
@@ -13,14 +14,19 @@ struct SnapshotResult {
   Image image;              // linear RGB, settings.camera.width × settings.camera.height
   RenderStats stats;        // the traced frame's timing and ray counts
   double simulatedSeconds = 0.0;
+  SlimeMetrics metrics;     // the slime's shape when the frame was taken
+  std::size_t divergences = 0;  // steps the physics rolled back while settling
 };
 
-// Simulates the slime for `settleSeconds` (negative: until it rests, at most kMaxSettleSeconds) and
-// renders one frame of it with the settings' camera and image size. Deterministic: the same settings
-// give the same pixels.
-SnapshotResult takeSnapshot(const Settings& settings, double settleSeconds);
+// Simulates the slime for `settleSeconds` (negative: until it rests, at most kMaxSettleSeconds after
+// the scenario's last event), replaying `scenarioFile` if one is given, and renders one frame of it
+// with the settings' camera and image size. Deterministic: the same inputs give the same pixels.
+SnapshotResult takeSnapshot(const Settings& settings, double settleSeconds, const std::string& scenarioFile = "");
 
 constexpr double kMaxSettleSeconds = 3.0;
+// "At rest": no vertex faster than this (m/s), checked after at least kMinSettleSeconds.
+constexpr double kRestSpeed = 0.005;
+constexpr double kMinSettleSeconds = 0.3;
 
 // Parses an image size "WxH" into the settings' camera; W and H are integers in 1..8192.
 // Throws SettingsError naming --size and the allowed range otherwise.

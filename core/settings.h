@@ -28,11 +28,11 @@ struct LightSettings {
 struct FloorSettings {
   std::string pattern = "planks";          // tiles | planks | checker | image
   double scale = 0.10;                     // size of one tile / plank width / checker cell, m
-  glm::dvec3 colorA{0.60, 0.42, 0.26};     // first pattern colour (linear RGB)
-  glm::dvec3 colorB{0.45, 0.30, 0.18};     // second pattern colour (linear RGB)
+  glm::dvec3 colorA{0.52, 0.30, 0.13};     // first pattern colour (linear RGB)
+  glm::dvec3 colorB{0.34, 0.18, 0.07};     // second pattern colour (linear RGB)
   std::string image;                       // PNG path when pattern == "image"
   double diffuse = 0.8;                    // k_d of the floor
-  double specular = 0.1;                   // k_s of the floor (reflection of the slime in it)
+  double specular = 0.04;                  // k_s of the floor (reflection of the slime in it)
 };
 
 struct SlimeSettings {
@@ -49,7 +49,7 @@ struct SlimeSettings {
   glm::dvec3 position{0.0, 0.0, 0.10};   // start position of the centre, m
   glm::dvec3 color{0.25, 0.85, 0.35};    // slime colour: surface tint and per-channel transmittance
   double transmission = 0.7;             // k_t: weight of the refracted ray
-  double absorption = 8.0;               // Beer–Lambert absorption coefficient, 1/m
+  double absorption = 20.0;              // Beer–Lambert k, 1/m: a path of 1/k transmits exactly `color`
   double ior = 1.35;                     // index of refraction
   double specular = 0.4;                 // k_s: Phong highlight and reflected-ray weight
   double diffuse = 0.3;                  // k_d

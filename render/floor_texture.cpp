@@ -87,7 +87,7 @@ glm::vec3 FloorTexture::albedo(glm::vec2 point, glm::vec2 footprint) const {
 glm::vec3 FloorTexture::planks(glm::vec2 p, glm::vec2 footprint) const {
   constexpr float kLength = 6.0f;      // board length in board widths
   constexpr float kSeam = 0.03f;       // seam width as a fraction of the board width
-  constexpr float kGrainPerBoard = 7.0f;
+  constexpr float kGrainPerBoard = 11.0f;
   const glm::vec2 q = p / scale_;               // in board widths
   const glm::vec2 h = footprint / scale_;
   const float row = std::floor(q.y);
@@ -104,9 +104,10 @@ glm::vec3 FloorTexture::planks(glm::vec2 p, glm::vec2 footprint) const {
   // Grain: stripes across y that wander slowly along x, fading as the footprint reaches their period.
   const float phase = hash01(static_cast<std::int32_t>(board), static_cast<std::int32_t>(row) + 3) * 2.0f * kPi;
   const float grainPeriod = 1.0f / kGrainPerBoard;
-  const float wander = 0.6f * std::sin(q.x * 1.3f + phase);
-  const float grain = std::sin(2.0f * kPi * kGrainPerBoard * q.y + 2.0f * wander + phase);
-  color *= 1.0f + 0.10f * grain * detailVisibility(h.y, grainPeriod);
+  const float density = 0.7f + 0.6f * hash01(static_cast<std::int32_t>(row), static_cast<std::int32_t>(board) + 57);
+  const float wander = (1.0f + 1.5f * density) * std::sin(q.x * (0.9f + density) + phase);
+  const float grain = std::sin(2.0f * kPi * kGrainPerBoard * density * q.y + wander + phase);
+  color *= 1.0f + 0.05f * grain * detailVisibility(h.y, grainPeriod / density);
 
   // Seams: the long ones between rows (exactly filtered), the joints between boards of one row.
   const float longSeam = filteredPulse(q.y + 0.5f * kSeam, h.y, kSeam);

@@ -1,0 +1,93 @@
+// PNG output and input, and the floor texture: sRGB round trip, atomic writes, clear errors, and a
+// footprint filter that matches the true average of the pattern (no aliasing towards the horizon).
+#include "render_fixture.h"
+
+#include "render/floor_texture.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+namespace slime::testing {
+namespace {
+
+TEST(ImageIo, SrgbRoundTripIsExactInEightBits) {
+  Image image;
+  image.resize(16, 16);
+  for (int i = 0; i < 256; ++i) image.pixels[i] = glm::vec3(srgbToLinear(i / 255.0f), srgbToLinear((255 - i) / 255.0f), 0.5f);
+  const std::string path = outputPath("roundtrip.png");
+  writePng(image, path);
+  const Image back = readPng(path);
+  ASSERT_EQ(back.width, 16);
+  EXPECT_EQ(compareImages(image, back, 0.0).fractionAbove, 0.0);
+  EXPECT_NEAR(linearToSrgb(0.5f), 0.735357f, 1e-5f);  // IEC 61966-2-1
+}
+
+TEST(ImageIo, FailedWriteLeavesNoFile) {
+  Image image;
+  image.resize(4, 4);
+  const std::string path = outputPath("no_such_dir/out.png");
+  EXPECT_THROW(writePng(image, path), std::runtime_error);
+  EXPECT_FALSE(std::filesystem::exists(path));
+  EXPECT_FALSE(std::filesystem::exists(outputPath("no_such_dir")));
+}
+
+TEST(ImageIo, NonPngIsAClearSettingsError) {
+  const std::string path = outputPath("not_a_png.png");
+  std::ofstream(path) << "hello";
+  FloorSettings floor;
+  floor.pattern = "image";
+  floor.image = path;
+  try {
+    FloorTexture texture(floor);
+    FAIL() << "a text file was accepted as a PNG";
+  } catch (const SettingsError& e) {
+    EXPECT_NE(std::string(e.what()).find("floor.image"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("not a PNG"), std::string::npos) << e.what();
+  }
+  floor.image = "/nonexistent/wood.png";
+  EXPECT_THROW(FloorTexture{floor}, SettingsError);
+}
+
+TEST(ImageIo, ImageFloorUsesTheMipmapAverageFarAway) {
+  Image checker;
+  checker.resize(64, 64);
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) checker.at(x, y) = glm::vec3(((x + y) % 2) ? 1.0f : 0.0f);
+  const std::string path = outputPath("pixel_checker.png");
+  writePng(checker, path);
+  FloorSettings floor;
+  floor.pattern = "image";
+  floor.image = path;
+  floor.scale = 0.64;  // 1 cm texels
+  const FloorTexture texture(floor);
+  const glm::vec3 far = texture.albedo({0.123f, 0.456f}, {0.2f, 0.2f});
+  EXPECT_NEAR(far.x, 0.5f, 0.02f);
+}
+
+// The analytic box filter against brute-force averaging of point samples over the same box.
+TEST(FloorTexture, FilteredPatternsEqualTheirBoxAverage) {
+  for (const char* pattern : {"checker", "tiles", "planks"}) {
+    FloorSettings floor;
+    floor.pattern = pattern;
+    const FloorTexture texture(floor);
+    for (const float halfWidth : {0.004f, 0.03f, 0.3f}) {
+      const glm::vec2 centre{0.237f, -0.412f};
+      glm::vec3 sum(0.0f);
+      constexpr int kSamples = 200;
+      for (int j = 0; j < kSamples; ++j)
+        for (int i = 0; i < kSamples; ++i)
+          sum += texture.albedo(centre + halfWidth * glm::vec2((i + 0.5f) / kSamples * 2 - 1, (j + 0.5f) / kSamples * 2 - 1), {0.0f, 0.0f});
+      const glm::vec3 average = sum / float(kSamples * kSamples);
+      const glm::vec3 filtered = texture.albedo(centre, {halfWidth, halfWidth});
+      // Checker and grout lines are filtered exactly; planks fade per-board detail towards the mean.
+      const float tolerance = std::string(pattern) == "planks" ? 0.06f : 0.01f;
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(filtered[c], average[c], tolerance) << pattern << " half width " << halfWidth;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace slime::testing
