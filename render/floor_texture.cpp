@@ -15,6 +15,22 @@ namespace {
 
 constexpr float kPi = 3.14159265358979f;
 
+// ⌊x⌋ without a libm call (baseline x86-64 has no roundss); exact for |x| < 2^23, libm beyond.
+inline float floorOf(float x) {
+  if (!(std::abs(x) < 8388608.0f)) return std::floor(x);
+  const float truncated = static_cast<float>(static_cast<std::int32_t>(x));
+  return truncated > x ? truncated - 1.0f : truncated;
+}
+
+// sin x to ≈ 1e-3 (Bhaskara-style parabola with one refinement): plenty for a wood grain.
+inline float grainSine(float x) {
+  constexpr float kInverseTwoPi = 1.0f / (2.0f * kPi);
+  float turns = x * kInverseTwoPi;
+  turns -= floorOf(turns + 0.5f);           // in [−0.5, 0.5) turns
+  const float y = 8.0f * turns * (1.0f - 2.0f * std::abs(turns));  // parabola through the sine's zeros and peaks
+  return y * (0.775f + 0.225f * std::abs(y));
+}
+
 // A well-mixed integer hash (lowbias32) → [0, 1).
 float hash01(std::int32_t i, std::int32_t j) {
   std::uint32_t x = static_cast<std::uint32_t>(i) * 0x9E3779B9u ^ (static_cast<std::uint32_t>(j) + 0x7F4A7C15u);
@@ -29,21 +45,21 @@ float hash01(std::int32_t i, std::int32_t j) {
 // The integral from 0 to x of a pulse train that is 1 on [k, k + width) for every integer k:
 //   P(x) = ⌊x⌋·width + min(x − ⌊x⌋, width).
 float pulseIntegral(float x, float width) {
-  const float whole = std::floor(x);
+  const float whole = floorOf(x);
   return whole * width + std::min(x - whole, width);
 }
 
 // The pulse train box-filtered over [x − halfWidth, x + halfWidth]: (P(x+h) − P(x−h)) / 2h.
 float filteredPulse(float x, float halfWidth, float width) {
-  if (halfWidth < 1e-6f) return x - std::floor(x) < width ? 1.0f : 0.0f;
+  if (halfWidth < 1e-6f) return x - floorOf(x) < width ? 1.0f : 0.0f;
   return (pulseIntegral(x + halfWidth, width) - pulseIntegral(x - halfWidth, width)) / (2.0f * halfWidth);
 }
 
 // The integral of the ±1 square wave (+1 on [0,1), −1 on [1,2)): the triangle wave 1 − |x mod 2 − 1|.
-float squareIntegral(float x) { return 1.0f - std::abs(x - 2.0f * std::floor(0.5f * x) - 1.0f); }
+float squareIntegral(float x) { return 1.0f - std::abs(x - 2.0f * floorOf(0.5f * x) - 1.0f); }
 
 float filteredSquare(float x, float halfWidth) {
-  if (halfWidth < 1e-6f) return x - 2.0f * std::floor(0.5f * x) < 1.0f ? 1.0f : -1.0f;
+  if (halfWidth < 1e-6f) return x - 2.0f * floorOf(0.5f * x) < 1.0f ? 1.0f : -1.0f;
   return (squareIntegral(x + halfWidth) - squareIntegral(x - halfWidth)) / (2.0f * halfWidth);
 }
 
@@ -73,6 +89,8 @@ FloorTexture::FloorTexture(const FloorSettings& settings)
 }
 
 glm::vec3 FloorTexture::albedo(glm::vec2 point, glm::vec2 footprint) const {
+  // Kilometres away (a grazing ray) the footprint covers everything: the mean, and no integer overflow.
+  if (!(std::abs(point.x) < 1e5f && std::abs(point.y) < 1e5f)) return mean_;
   switch (pattern_) {
     case Pattern::Planks: return planks(point, footprint);
     case Pattern::Tiles: return tiles(point, footprint);
@@ -90,10 +108,10 @@ glm::vec3 FloorTexture::planks(glm::vec2 p, glm::vec2 footprint) const {
   constexpr float kGrainPerBoard = 11.0f;
   const glm::vec2 q = p / scale_;               // in board widths
   const glm::vec2 h = footprint / scale_;
-  const float row = std::floor(q.y);
+  const float row = floorOf(q.y);
   const float stagger = hash01(static_cast<std::int32_t>(row), 17) * kLength;
   const float along = (q.x + stagger) / kLength;  // in board lengths
-  const float board = std::floor(along);
+  const float board = floorOf(along);
 
   // Per-board shade and brightness, faded to their mean once a board is smaller than the footprint.
   const float boardVisibility = detailVisibility(std::max(h.x, h.y), 1.0f);
@@ -105,8 +123,8 @@ glm::vec3 FloorTexture::planks(glm::vec2 p, glm::vec2 footprint) const {
   const float phase = hash01(static_cast<std::int32_t>(board), static_cast<std::int32_t>(row) + 3) * 2.0f * kPi;
   const float grainPeriod = 1.0f / kGrainPerBoard;
   const float density = 0.7f + 0.6f * hash01(static_cast<std::int32_t>(row), static_cast<std::int32_t>(board) + 57);
-  const float wander = (1.0f + 1.5f * density) * std::sin(q.x * (0.9f + density) + phase);
-  const float grain = std::sin(2.0f * kPi * kGrainPerBoard * density * q.y + wander + phase);
+  const float wander = (1.0f + 1.5f * density) * grainSine(q.x * (0.9f + density) + phase);
+  const float grain = grainSine(2.0f * kPi * kGrainPerBoard * density * q.y + wander + phase);
   color *= 1.0f + 0.05f * grain * detailVisibility(h.y, grainPeriod / density);
 
   // Seams: the long ones between rows (exactly filtered), the joints between boards of one row.
@@ -122,7 +140,7 @@ glm::vec3 FloorTexture::tiles(glm::vec2 p, glm::vec2 footprint) const {
   const glm::vec2 q = p / scale_, h = footprint / scale_;
   const float visibility = detailVisibility(std::max(h.x, h.y), 1.0f);
   const float shade = 1.0f + 0.12f * visibility *
-      (hash01(static_cast<std::int32_t>(std::floor(q.x)), static_cast<std::int32_t>(std::floor(q.y))) - 0.5f);
+      (hash01(static_cast<std::int32_t>(floorOf(q.x)), static_cast<std::int32_t>(floorOf(q.y))) - 0.5f);
   const float groutX = filteredPulse(q.x + 0.5f * kGrout, h.x, kGrout);
   const float groutY = filteredPulse(q.y + 0.5f * kGrout, h.y, kGrout);
   const float grout = 1.0f - (1.0f - groutX) * (1.0f - groutY);
@@ -153,7 +171,7 @@ glm::vec3 FloorTexture::image(glm::vec2 p, glm::vec2 footprint) const {
 }
 
 glm::vec3 FloorTexture::MipLevel::bilinear(float x, float y) const {
-  const float fx = std::floor(x), fy = std::floor(y);
+  const float fx = floorOf(x), fy = floorOf(y);
   const float tx = x - fx, ty = y - fy;
   auto wrap = [](float value, int size) {
     const int i = static_cast<int>(std::fmod(value, static_cast<float>(size)));
