@@ -1,0 +1,50 @@
+// What the Stats panel shows: time per frame stage, rays traced, and a history of frame times.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+namespace slime {
+
+// Milliseconds spent in each named step of one frame.
+struct StageTimes {
+  double physics = 0.0;
+  double refit = 0.0;
+  double trace = 0.0;
+  double upload = 0.0;
+  double ui = 0.0;
+};
+
+struct FrameStats {
+  static constexpr int kHistory = 120;
+
+  StageTimes stages;                     // the last frame (trace, refit: the last traced frame)
+  double frameMs = 0.0;                  // wall time of the last frame
+  double fps = 0.0;                      // smoothed frames per second
+  std::uint64_t rays = 0;                // rays traced in the last frame
+  double megaraysPerSecond = 0.0;        // rays / trace time of the last traced frame
+  int physicsSteps = 0;                  // fixed steps run in the last frame
+  int imageWidth = 0;                    // traced image size of the last frame
+  int imageHeight = 0;
+  std::array<float, kHistory> frameHistoryMs{};  // ring buffer of frame times
+  int historyNext = 0;                   // where the next frame time goes
+  std::int64_t frames = 0;
+  double simulationSpeed = 1.0;          // simulated seconds per wall second, smoothed
+
+  void recordSimulatedTime(double simulatedSeconds, double wallSeconds) {
+    if (wallSeconds <= 0.0) return;
+    simulationSpeed = 0.9 * simulationSpeed + 0.1 * (simulatedSeconds / wallSeconds);
+  }
+
+  // Records the wall time of a finished frame.
+  void recordFrame(double milliseconds) {
+    frameMs = milliseconds;
+    frameHistoryMs[historyNext] = static_cast<float>(milliseconds);
+    historyNext = (historyNext + 1) % kHistory;
+    const double instantFps = milliseconds > 0.0 ? 1000.0 / milliseconds : 0.0;
+    fps = frames == 0 ? instantFps : 0.9 * fps + 0.1 * instantFps;
+    ++frames;
+  }
+};
+
+}  // namespace slime

@@ -1,0 +1,117 @@
+// The interactive viewer: the ray-traced slime with Dear ImGui panels over it. One frame is a list of
+// named steps — input → physics → refit → trace → upload → panels → present — run the same way in a
+// GLFW window and headless (the ViewerBackend seam), so `snapshot --ui` shows what the window shows.
+//
+// Ordering that matters: ImGui's frame starts before the input step so that io.WantCaptureMouse/
+// Keyboard can hide input the panels take; panel edits land in the settings at the end of a frame
+// and take effect from the next one.
+#pragma once
+
+#include "app/camera_controller.h"
+#include "app/frame_stats.h"
+#include "app/gl_blit.h"
+#include "app/interaction.h"
+#include "app/panels.h"
+#include "app/physics_clock.h"
+#include "app/viewer_backend.h"
+#include "core/scenario.h"
+#include "core/settings.h"
+#include "core/simulation.h"
+#include "render/renderer.h"
+
+#include <glm/vec3.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace slime {
+
+struct ViewerOptions {
+  int maxFrames = 0;                                // quit after this many frames; 0 = until Esc
+  std::string screenshotOnExit;                     // PNG of the last frame, if set
+  std::string reportPath;                           // JSON summary written at exit, if set
+  std::string screenshotPrefix = "slime-screenshot";  // F12 writes <prefix>-<n>.png
+  std::optional<Scenario> scenario;                 // timed grab/drag/press/set events to replay
+};
+
+class Viewer {
+ public:
+  static constexpr double kInteractiveScale = 0.5;  // image scale while the user moves things
+  static constexpr double kRefineAfterSeconds = 0.25;  // stillness before the full-resolution image
+  // Wall time physics may take per frame. When steps cost more than real time allows, the slime runs
+  // slower than real time (the Stats panel says how much) instead of the window freezing.
+  static constexpr double kPhysicsBudgetMs = 60.0;
+
+  Viewer(ViewerBackend& backend, const Settings& settings, ViewerOptions options = {});
+  ~Viewer();
+  Viewer(const Viewer&) = delete;
+  Viewer& operator=(const Viewer&) = delete;
+
+  // Runs one frame; false once the user has asked to quit (Esc, window closed, --frames reached).
+  bool frame();
+
+  // Frames until quit; writes the report; returns the exit code.
+  int run();
+
+  // The next frame also writes its picture (image and panels) to `path`.
+  void requestScreenshot(const std::string& path) { screenshotPaths_.push_back(path); }
+
+  Simulation& simulation() { return simulation_; }
+  const Settings& settings() const { return settings_; }
+  const FrameStats& stats() const { return stats_; }
+
+ private:
+  // The frame's steps, in order.
+  FrameInput readInput();
+  void handleInput(const FrameInput& input);
+  void stepPhysics(double wallSeconds);
+  void refitSlime();
+  void traceImage();
+  void uploadImage();
+  void drawPanelsAndOverlay();
+  void present();
+
+  // Helpers of the steps.
+  void handleButton(const MouseButtonEvent& event, const FrameInput& input);
+  void applyEdit(Panel panel);
+  void reloadSlime();
+  Settings frameSettings(glm::ivec2 imageSize) const;
+  glm::dvec3 slimeCentre() const;
+  bool interacting() const { return wallClock_ - lastInteraction_ < kRefineAfterSeconds; }
+  void writeReport() const;
+
+  ViewerBackend& backend_;
+  ViewerOptions options_;
+  Settings settings_;              // applied: what the simulation and renderer use
+  Settings draft_;                 // what the panels edit; becomes settings_ when valid
+  SlimeSettings builtSlime_;       // the slime settings the simulation was last built from
+  std::string editError_;
+  Panel errorPanel_ = Panel::None;
+  Simulation simulation_;
+  Renderer renderer_;
+  Image image_;
+  GlBlit blit_;
+  CameraController cameraController_;
+  GrabInteraction grab_;
+  PhysicsClock clock_;
+  FrameStats stats_;
+  SlimeMetrics metrics_;
+  std::optional<ScenarioPlayer> scenario_;
+
+  bool quit_ = false;
+  bool singleStepPending_ = false;
+  bool slimeMoved_ = true;         // the mesh changed since the last refit
+  bool sceneChanged_ = true;       // camera, settings or size changed since the last trace
+  bool imageTraced_ = false;       // this frame traced a new image
+  glm::dvec3 grabTargetDrawn_{0.0};  // the target the grabbed points were last pulled to
+  double wallClock_ = 0.0;
+  double lastInteraction_ = -1e9;
+  int grabCount_ = 0;
+  double peakHeightWhileGrabbing_ = 0.0;
+  int screenshotCount_ = 0;
+  std::vector<std::string> screenshotPaths_;
+  std::vector<std::string> screenshotsWritten_;
+};
+
+}  // namespace slime
