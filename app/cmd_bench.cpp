@@ -1,8 +1,10 @@
 // `slime bench render|physics|accuracy`: the benchmarks behind docs/bench (scripts/bench.sh runs
 // all three and redraws the charts). Each prints a table, and writes every figure with --json/--csv.
+#include "app/bench_physics.h"
 #include "app/bench_render.h"
 #include "app/bench_report.h"
 #include "app/commands.h"
+#include "core/integrators.h"
 #include "core/settings_io.h"
 
 #include <memory>
@@ -72,12 +74,47 @@ void registerRender(CLI::App& bench, int& exitCode) {
   });
 }
 
+struct PhysicsCommand {
+  SceneOptions scene;
+  PhysicsBenchOptions bench;
+  std::string levels = "3-6";
+};
+
+void registerPhysics(CLI::App& bench, int& exitCode) {
+  auto options = std::make_shared<PhysicsCommand>();
+  PhysicsBenchOptions& b = options->bench;
+  auto* command = bench.add_subcommand("physics", "Integrators: ms/step by level, stability map, accuracy against cost, roundness at rest");
+  command->add_option("--levels", options->levels, "Levels of the cost table, e.g. 3-6")->capture_default_str();
+  command->add_option("--integrators", b.integrators, "Integrators (default: all), e.g. rk4,xpbd")->delimiter(',')
+      ->check(CLI::IsMember(integratorNames()));
+  command->add_option("--seconds", b.secondsPerMeasurement, "Wall seconds spent timing each integrator and level")
+      ->check(CLI::Range(0.0, 600.0))->capture_default_str();
+  command->add_option("--stability-level", b.stabilityLevel, "Level of the stability map (-1: skip)")->check(CLI::Range(-1, 7))->capture_default_str();
+  command->add_option("--stiffnesses", b.stiffnesses, "Stiffnesses k_e of the stability map, N/m")->delimiter(',')
+      ->check(CLI::PositiveNumber);
+  command->add_option("--accuracy-level", b.accuracyLevel, "Level of the accuracy run (-1: skip)")->check(CLI::Range(-1, 7))->capture_default_str();
+  command->add_option("--steps", b.steps, "Time steps of the accuracy run, s (each must divide 10 ms)")->delimiter(',')
+      ->check(CLI::Range(1e-6, 0.01));
+  command->add_option("--settle", b.settleSeconds, "Seconds to settle for the roundness at rest (0: skip)")
+      ->check(CLI::Range(0.0, 60.0))->capture_default_str();
+  command->add_option("--json", b.jsonFile, "Write every figure as JSON");
+  command->add_option("--csv", b.csvFile, "Write the tables as CSV (FILE and FILE_stability, FILE_theory, FILE_accuracy)");
+  addSceneOptions(*command, options->scene);
+  command->callback([options, &exitCode] {
+    PhysicsBenchOptions bench = options->bench;
+    bench.levels = parseList("--levels", options->levels, 0, 7);
+    runPhysicsBench(loadSettings(options->scene), bench);
+    exitCode = 0;
+  });
+}
+
 }  // namespace
 
 void registerBenchCommand(CLI::App& root, int& exitCode) {
   auto* bench = root.add_subcommand("bench", "Benchmarks: render throughput, physics cost and stability, image accuracy");
   bench->require_subcommand(1);
   registerRender(*bench, exitCode);
+  registerPhysics(*bench, exitCode);
 }
 
 }  // namespace slime
