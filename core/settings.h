@@ -20,7 +20,7 @@ struct CameraSettings {
 };
 
 struct LightSettings {
-  glm::dvec3 position{0.25, -0.15, 0.6};  // point light position, m
+  glm::dvec3 position{0.30, -0.05, 0.35}; // point light position, m (low: a long, visible shadow)
   glm::dvec3 color{1.0, 1.0, 1.0};        // point light intensity I_l per channel
   glm::dvec3 ambient{0.25, 0.25, 0.28};   // ambient intensity I_a per channel
 };

@@ -32,8 +32,9 @@ struct SlimeGeometry {
   float sphereRadius = 0.0f;
 
   // A vertex may stand this far (relative to the bounding radius) above the plane of a neighbouring
-  // triangle and still count as convex: 1e-4·R is 4 µm on the default slime, far below a pixel.
-  static constexpr float kConvexTolerance = 1e-4f;
+  // triangle and still count as convex: 2e-3·R is 80 µm on the default slime, a quarter of a pixel
+  // of the default view; dents shallower than that are not seen in reflections anyway.
+  static constexpr float kConvexTolerance = 2e-3f;
 
   bool isConvex() const { return analyticSphere || convex; }
 
