@@ -1,6 +1,7 @@
 // `slime snapshot`: settle the slime, trace one frame, write it as a PNG, report time and rays.
 #include "app/commands.h"
 #include "app/snapshot.h"
+#include "app/ui_snapshot.h"
 #include "core/camera.h"
 #include "core/settings_io.h"
 #include "render/image_io.h"
@@ -19,6 +20,7 @@ struct SnapshotOptions {
   double settle = -1.0;
   std::vector<double> viewPoint, viewTarget;
   std::optional<double> fov;
+  bool ui = false;  // --ui: the whole viewer, panels included, drawn headless (app/ui_snapshot.h)
 };
 
 void runSnapshot(const SnapshotOptions& options) {
@@ -37,6 +39,14 @@ void runSnapshot(const SnapshotOptions& options) {
   }
   validateSettings(settings);
 
+  if (options.ui) {
+    writeUiSnapshot(settings, options.output, [&](Simulation& simulation) {
+      settleForSnapshot(simulation, settings, options.settle, options.scene.scenarioFile);
+    });
+    std::printf("wrote %s (%dx%d, viewer with panels)\n", options.output.c_str(), settings.camera.width,
+                settings.camera.height);
+    return;
+  }
   const SnapshotResult snapshot = takeSnapshot(settings, options.settle, options.scene.scenarioFile);
   writePng(snapshot.image, options.output);
   const RayCounts& rays = snapshot.stats.rays;
@@ -65,6 +75,7 @@ void registerSnapshotCommand(CLI::App& root, int& exitCode) {
   command->add_option("--vp", options->viewPoint, "Eye position x y z, m")->expected(3);
   command->add_option("--vi", options->viewTarget, "Point to look at x y z, m (sets yaw and pitch)")->expected(3);
   command->add_option("--fov", options->fov, "Vertical field of view, degrees");
+  command->add_flag("--ui", options->ui, "Draw the whole viewer (image and panels) headless, through EGL");
   addSceneOptions(*command, options->scene);
   command->callback([options, &exitCode] {
     runSnapshot(*options);

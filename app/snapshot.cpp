@@ -35,6 +35,7 @@ void applyImageSize(Settings& settings, const std::string& size) {
 
 SnapshotResult takeSnapshot(const Settings& initialSettings, double settleSeconds, const std::string& scenarioFile) {
   Settings settings = initialSettings;  // scenario "set" events change it as they fire
+  Renderer renderer(settings);           // first: a bad floor image fails before any simulating
   std::optional<ScenarioPlayer> player;
   double lastEvent = 0.0;
   if (!scenarioFile.empty()) {
@@ -62,7 +63,6 @@ SnapshotResult takeSnapshot(const Settings& initialSettings, double settleSecond
   result.simulatedSeconds = simulation.time();
   result.metrics = simulation.metrics();
   result.divergences = simulation.divergences().size();
-  Renderer renderer(settings);
   renderer.updateSlime(simulation.positions(), simulation.triangles());
   result.image.resize(settings.camera.width, settings.camera.height);
   result.stats = renderer.render(settings, result.image);
