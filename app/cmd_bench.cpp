@@ -1,5 +1,6 @@
 // `slime bench render|physics|accuracy`: the benchmarks behind docs/bench (scripts/bench.sh runs
 // all three and redraws the charts). Each prints a table, and writes every figure with --json/--csv.
+#include "app/bench_accuracy.h"
 #include "app/bench_physics.h"
 #include "app/bench_render.h"
 #include "app/bench_report.h"
@@ -108,6 +109,36 @@ void registerPhysics(CLI::App& bench, int& exitCode) {
   });
 }
 
+struct AccuracyCommand {
+  SceneOptions scene;
+  AccuracyBenchOptions bench;
+  std::string levels = "0-6", depths = "1-6", size = "734x564";
+};
+
+void registerAccuracy(CLI::App& bench, int& exitCode) {
+  auto options = std::make_shared<AccuracyCommand>();
+  AccuracyBenchOptions& b = options->bench;
+  auto* command = bench.add_subcommand("accuracy", "Image error of the mesh slime against the analytic sphere vs frame time");
+  command->add_option("--levels", options->levels, "Subdivision levels, e.g. 0-6")->capture_default_str();
+  command->add_option("--depths", options->depths, "Whitted depths, e.g. 1-6 (the largest is the reference's)")->capture_default_str();
+  command->add_option("--normals", b.normals, "Shading normals to compare")->delimiter(',')->check(CLI::IsMember({"flat", "smooth"}));
+  command->add_option("--frames", b.frames, "Timed frames per configuration")->check(CLI::Range(1, 1000))->capture_default_str();
+  command->add_option("--size", options->size, "Image size WxH")->capture_default_str();
+  command->add_option("--threads", b.threads, "Render threads (0: all cores)")->check(CLI::Range(0, 1024))->capture_default_str();
+  command->add_option("--images", b.imageDirectory, "Directory for the reference and per-level PNGs");
+  command->add_option("--json", b.jsonFile, "Write every figure as JSON");
+  command->add_option("--csv", b.csvFile, "Write the table as CSV");
+  addSceneOptions(*command, options->scene);
+  command->callback([options, &exitCode] {
+    AccuracyBenchOptions bench = options->bench;
+    bench.levels = parseList("--levels", options->levels, 0, 7);
+    bench.depths = parseList("--depths", options->depths, 1, 16);
+    parseSize(options->size, bench.width, bench.height);
+    runAccuracyBench(loadSettings(options->scene), bench);
+    exitCode = 0;
+  });
+}
+
 }  // namespace
 
 void registerBenchCommand(CLI::App& root, int& exitCode) {
@@ -115,6 +146,7 @@ void registerBenchCommand(CLI::App& root, int& exitCode) {
   bench->require_subcommand(1);
   registerRender(*bench, exitCode);
   registerPhysics(*bench, exitCode);
+  registerAccuracy(*bench, exitCode);
 }
 
 }  // namespace slime

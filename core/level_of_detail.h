@@ -1,0 +1,31 @@
+// slime.level=auto: the smallest icosphere level whose geometric error is invisible at the slime's
+// size on screen ("model no more than the scene needs", SPEC §8).
+//
+// The geometric error of a level is its sagitta: how far the flat faces sink below the sphere they
+// approximate, δ_L·R with δ_L = 1 − min over faces of (distance from the centre to the face's plane)/R
+// (measured on makeIcosphere; δ_L ≈ 0.07·4^−L for L ≥ 2: it quarters with each level). Seen from a
+// distance d with a vertical field of view φ on an image H pixels high, one metre spans
+// H / (2 d tan(φ/2)) pixels, so the error on screen is
+//   e_L = δ_L · R · H / (2 d tan(φ/2))  pixels.
+// The threshold kInvisibleSagittaPixels is the one `slime bench accuracy` justifies (docs/bench,
+// README): the largest on-screen sagitta at which the mesh's image was still indistinguishable from
+// the analytic sphere's.
+#pragma once
+
+namespace slime {
+
+// Sagitta in pixels below which the mesh looks like the sphere (see the accuracy bench).
+constexpr double kInvisibleSagittaPixels = 0.25;
+
+// δ_L: the sagitta of level L relative to the radius (levels beyond the table quarter per level).
+double icosphereSagitta(int level);
+
+// e_L in pixels for a slime of `radius` whose centre is `distance` from the eye (same units).
+double projectedSagittaPixels(int level, double radius, double distance, double fovDegrees, int imageHeight);
+
+// The smallest level in [0, kMaxLevel] with e_L ≤ maxErrorPixels; kMaxLevel when none is small enough.
+// A degenerate view (distance ≤ radius, no pixels) also gets kMaxLevel.
+int chooseLevel(double radius, double distance, double fovDegrees, int imageHeight,
+                double maxErrorPixels = kInvisibleSagittaPixels);
+
+}  // namespace slime

@@ -1,0 +1,66 @@
+// slime.level=auto: the sagitta table against the real icosphere, the projection, and the choice.
+#include "core/icosphere.h"
+#include "core/level_of_detail.h"
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace slime {
+namespace {
+
+// 1 − min over faces of the distance from the centre to the face's plane, on the unit icosphere.
+double measuredSagitta(int level) {
+  const TriangleMesh mesh = makeIcosphere(level, 1.0, glm::dvec3(0.0));
+  double nearest = 1.0;
+  for (const Triangle& t : mesh.triangles) {
+    const glm::dvec3 a = mesh.positions[t.x], b = mesh.positions[t.y], c = mesh.positions[t.z];
+    nearest = std::min(nearest, std::abs(glm::dot(glm::normalize(glm::cross(b - a, c - a)), a)));
+  }
+  return 1.0 - nearest;
+}
+
+TEST(LevelOfDetail, SagittaTableMatchesTheIcosphere) {
+  for (int level = 0; level <= 6; ++level) EXPECT_NEAR(icosphereSagitta(level), measuredSagitta(level), 1e-6 * (1 + level)) << level;
+}
+
+TEST(LevelOfDetail, SagittaQuartersPerLevel) {
+  for (int level = 2; level < kMaxLevel + 3; ++level)
+    EXPECT_NEAR(icosphereSagitta(level + 1) / icosphereSagitta(level), 0.25, 0.01) << level;
+}
+
+TEST(LevelOfDetail, ProjectionIsSagittaTimesPixelsPerMetre) {
+  // 90° field of view: tan 45° = 1, so 1 m at distance 1 m spans H/2 pixels.
+  EXPECT_NEAR(projectedSagittaPixels(3, 1.0, 1.0, 90.0, 600), icosphereSagitta(3) * 300.0, 1e-9);
+  // Twice as far: half the pixels.
+  EXPECT_NEAR(projectedSagittaPixels(4, 0.04, 0.5, 45.0, 564), 0.5 * projectedSagittaPixels(4, 0.04, 0.25, 45.0, 564), 1e-12);
+}
+
+TEST(LevelOfDetail, ChoosesTheSmallestLevelUnderTheThreshold) {
+  const double radius = 0.04, distance = 0.228, fov = 45.0;
+  const int height = 564;
+  const int level = chooseLevel(radius, distance, fov, height, 0.25);
+  EXPECT_LE(projectedSagittaPixels(level, radius, distance, fov, height), 0.25);
+  ASSERT_GT(level, 0);
+  EXPECT_GT(projectedSagittaPixels(level - 1, radius, distance, fov, height), 0.25);
+}
+
+TEST(LevelOfDetail, FartherOrSmallerNeedsFewerLevels) {
+  const int near = chooseLevel(0.04, 0.2, 45.0, 564);
+  EXPECT_LE(chooseLevel(0.04, 2.0, 45.0, 564), near);
+  EXPECT_LE(chooseLevel(0.04, 0.2, 45.0, 120), near);
+  EXPECT_GE(chooseLevel(0.04, 0.2, 45.0, 2160), near);
+  EXPECT_EQ(chooseLevel(0.04, 1000.0, 45.0, 564), 0);  // a dot on screen
+}
+
+TEST(LevelOfDetail, DegenerateViewsGetTheFinestLevel) {
+  EXPECT_EQ(chooseLevel(0.04, 0.03, 45.0, 564), kMaxLevel);  // eye inside the slime
+  EXPECT_EQ(chooseLevel(0.04, 0.2, 45.0, 0), kMaxLevel);
+  EXPECT_EQ(chooseLevel(0.04, 0.2, 0.0, 564), kMaxLevel);
+  EXPECT_EQ(chooseLevel(0.04, 0.2, 45.0, 564, 0.0), kMaxLevel);  // nothing is exact
+}
+
+}  // namespace
+}  // namespace slime

@@ -1,0 +1,63 @@
+// Micro-benchmarks of the renderer: one 32×8 tile's worth of the default frame (a 32×8 image looking
+// at the slime's centre) and one whole frame at a small size (160×120), level 4, one thread, and the
+// refit of the slime's BVH after its vertices move.
+#include "core/camera.h"
+#include "core/icosphere.h"
+#include "core/settings_io.h"
+#include "render/renderer.h"
+
+#include <benchmark/benchmark.h>
+
+namespace slime {
+namespace {
+
+Settings smallFrame(int width, int height) {
+  Settings settings = defaultSettings();
+  settings.camera.width = width;
+  settings.camera.height = height;
+  settings.render.threads = 1;
+  return settings;
+}
+
+TriangleMesh restingMesh(const Settings& settings) {
+  return makeIcosphere(settings.slime.level, settings.slime.radius, {0.0, 0.0, settings.slime.radius});
+}
+
+void renderImage(benchmark::State& state, int width, int height, double fov) {
+  Settings settings = smallFrame(width, height);
+  settings.camera.fov = fov;
+  lookAt(settings.camera, settings.camera.position, {0.0, 0.0, settings.slime.radius});
+  const TriangleMesh mesh = restingMesh(settings);
+  Renderer renderer(settings);
+  renderer.updateSlime(mesh.positions, mesh.triangles);
+  Image image;
+  image.resize(width, height);
+  std::uint64_t rays = 0;
+  for (auto _ : state) rays += renderer.render(settings, image).rays.total();
+  state.counters["rays/s"] = benchmark::Counter(static_cast<double>(rays), benchmark::Counter::kIsRate);
+}
+
+// A tile through the slime: the narrow field of view puts every pixel of the 32×8 image on it.
+void renderTile(benchmark::State& state) { renderImage(state, 32, 8, 3.0); }
+BENCHMARK(renderTile)->Unit(benchmark::kMicrosecond);
+
+void renderSmallFrame(benchmark::State& state) { renderImage(state, 160, 120, 45.0); }
+BENCHMARK(renderSmallFrame)->Unit(benchmark::kMillisecond);
+
+void refitSlime(benchmark::State& state) {
+  Settings settings = smallFrame(16, 16);
+  settings.slime.level = static_cast<int>(state.range(0));
+  TriangleMesh mesh = restingMesh(settings);
+  Renderer renderer(settings);
+  renderer.updateSlime(mesh.positions, mesh.triangles);
+  double wobble = 0.0;
+  for (auto _ : state) {
+    wobble = wobble > 0.0 ? -1e-4 : 1e-4;  // a small move so that the refit has work
+    for (glm::dvec3& p : mesh.positions) p.z += wobble;
+    renderer.updateSlime(mesh.positions, mesh.triangles);
+  }
+}
+BENCHMARK(refitSlime)->Arg(4)->Arg(6)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+}  // namespace slime
