@@ -35,7 +35,8 @@ struct FrameInput {
   bool control = false;
   std::array<bool, kCameraKeyCount> cameraKeys{};  // held now, or tapped since the last frame
   bool screenshotRequested = false;         // F12 pressed
-  bool quitRequested = false;               // Esc pressed or the window closed
+  bool escapePressed = false;               // Esc: quits unless a panel's text field has the keyboard
+  bool closeRequested = false;              // the window's close button
   bool mouseCapturedByUi = false;           // ImGui wants the mouse: hide it from the app
   bool keyboardCapturedByUi = false;        // ImGui wants the keyboard: hide it from the app
 

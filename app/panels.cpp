@@ -84,8 +84,10 @@ bool colorPicker(const char* label, glm::dvec3& color) {
 }
 
 void showError(const PanelView& view, Panel panel) {
-  if (view.errorPanel == panel && !view.editError.empty())
-    ImGui::TextColored(kErrorColor, "Not applied: %s", view.editError.c_str());
+  if (view.errorPanel != panel || view.editError.empty()) return;
+  ImGui::PushStyleColor(ImGuiCol_Text, kErrorColor);
+  ImGui::TextWrapped("Not applied: %s", view.editError.c_str());
+  ImGui::PopStyleColor();
 }
 
 bool slimeSection(SlimeSettings& slime, const PanelView& view, PanelRequests& requests) {
@@ -148,6 +150,7 @@ void statsWindow(const PanelView& view) {
   ImGui::SetNextWindowPos(ImVec2(display.x - kStatsWidth - kMargin, kMargin), ImGuiCond_Always);
   ImGui::SetNextWindowSize(ImVec2(kStatsWidth, 0.0f), ImGuiCond_Always);
   ImGui::SetNextWindowBgAlpha(0.75f);
+  ImGui::SetNextWindowCollapsed(display.y < kRoomForOpenSections, ImGuiCond_Once);
   if (ImGui::Begin("Stats")) {
     ImGui::Text("%.1f fps   %.1f ms/frame", stats.fps, stats.frameMs);
     ImGui::Text("physics %6.1f ms  %d steps", stats.stages.physics, stats.physicsSteps);

@@ -11,9 +11,15 @@
 namespace slime {
 
 // Draws the viewer at settings.camera.width × height and writes it to `path`. `settle`, if given,
-// advances the viewer's fresh simulation first (e.g. until the slime rests). Throws std::runtime_error
-// when there is no EGL/GL or the file cannot be written.
+// advances the viewer's fresh simulation first. Throws std::runtime_error when there is no EGL/GL or
+// the file cannot be written.
 void writeUiSnapshot(const Settings& settings, const std::string& path,
                      const std::function<void(Simulation&)>& settle = nullptr);
+
+// Settles a simulation by the rule of `slime snapshot` (snapshot.h): `settleSeconds` of simulated time,
+// or, when negative, until the slime rests (at most kMaxSettleSeconds after the scenario's last event),
+// replaying `scenarioFile` if one is given.
+void settleForSnapshot(Simulation& simulation, const Settings& settings, double settleSeconds,
+                       const std::string& scenarioFile);
 
 }  // namespace slime

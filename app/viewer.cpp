@@ -97,8 +97,8 @@ FrameInput Viewer::readInput() {
 }
 
 void Viewer::handleInput(const FrameInput& input) {
-  if (input.quitRequested) quit_ = true;
-  if (input.screenshotRequested && !input.keyboardCapturedByUi)
+  if (input.closeRequested || (input.escapePressed && !input.keyboardCapturedByUi)) quit_ = true;
+  if (input.screenshotRequested)
     requestScreenshot(options_.screenshotPrefix + "-" + std::to_string(++screenshotCount_) + ".png");
   if (!input.keyboardCapturedByUi && cameraController_.applyKeys(input, settings_.camera)) {
     sceneChanged_ = true;
@@ -109,10 +109,11 @@ void Viewer::handleInput(const FrameInput& input) {
   const Camera camera = makeCamera(settings_.camera, input.windowSize.x, input.windowSize.y);
   double wheel = input.mouseCapturedByUi && !grab_.active() ? 0.0 : input.wheel;
   if (grab_.active()) {
+    const glm::dvec3 before = grab_.target(camera, input.windowSize);
     grab_.moveCursor(input.cursor, input.shift, camera, input.windowSize);
     grab_.pressBy(wheel);  // the wheel presses while grabbing instead of zooming
     wheel = 0.0;
-    lastInteraction_ = wallClock_;
+    if (grab_.target(camera, input.windowSize) != before) lastInteraction_ = wallClock_;
   }
   if (cameraController_.applyMouse(input.cursor, input.windowSize, wheel, slimeCentre(), settings_.camera)) {
     sceneChanged_ = true;
@@ -256,7 +257,7 @@ void Viewer::drawPanelsAndOverlay() {
     const Camera camera = makeCamera(settings_.camera, size.x, size.y);
     ImDrawList* overlay = ImGui::GetForegroundDrawList();
     const auto target = projectToWindow(camera, grab_.target(camera, size), size);
-    const auto held = projectToWindow(camera, simulation_.grabTarget(), size);
+    const auto held = projectToWindow(camera, grabbedCentre(), size);
     if (target && held)
       overlay->AddLine(ImVec2(float(held->x), float(held->y)), ImVec2(float(target->x), float(target->y)),
                        IM_COL32(255, 255, 255, 160), 1.5f);
@@ -303,7 +304,7 @@ void Viewer::present() {
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     for (const std::string& path : screenshotPaths_) {
       writeFramebufferPng(framebuffer, path);
-      std::printf("slime view: wrote %s\n", path.c_str());
+      std::printf("slime: wrote %s\n", path.c_str());
       screenshotsWritten_.push_back(path);
     }
     screenshotPaths_.clear();
@@ -319,6 +320,15 @@ Settings Viewer::frameSettings(glm::ivec2 imageSize) const {
   frame.camera.width = imageSize.x;
   frame.camera.height = imageSize.y;
   return frame;
+}
+
+glm::dvec3 Viewer::grabbedCentre() const {
+  const std::vector<glm::dvec3>& positions = simulation_.positions();
+  const std::vector<std::uint32_t>& grabbed = simulation_.grabbedIndices();
+  if (grabbed.empty()) return simulation_.grabTarget();
+  glm::dvec3 sum(0.0);
+  for (std::uint32_t index : grabbed) sum += positions[index];
+  return sum / static_cast<double>(grabbed.size());
 }
 
 glm::dvec3 Viewer::slimeCentre() const {

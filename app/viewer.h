@@ -78,6 +78,7 @@ class Viewer {
   void reloadSlime();
   Settings frameSettings(glm::ivec2 imageSize) const;
   glm::dvec3 slimeCentre() const;
+  glm::dvec3 grabbedCentre() const;  // where the grabbed points are now
   bool interacting() const { return wallClock_ - lastInteraction_ < kRefineAfterSeconds; }
   void writeReport() const;
 

@@ -68,7 +68,7 @@ void Window::onKey(GLFWwindow* window, int key, int, int action, int) {
   if (action != GLFW_PRESS) return;
   FrameInput& pending = owner(window).pending_;
   if (key == GLFW_KEY_F12) pending.screenshotRequested = true;
-  if (key == GLFW_KEY_ESCAPE) pending.quitRequested = true;
+  if (key == GLFW_KEY_ESCAPE) pending.escapePressed = true;
   // A tap shorter than a frame still moves the camera for one frame.
   for (int index = 0; index < kCameraKeyCount; ++index)
     if (key == kCameraKeyCodes[index]) pending.cameraKeys[index] = true;
@@ -89,7 +89,7 @@ FrameInput Window::pollInput() {
                   glfwGetKey(window_, GLFW_KEY_RIGHT_CONTROL) == GLFW_PRESS;
   for (int index = 0; index < kCameraKeyCount; ++index)
     input.cameraKeys[index] = input.cameraKeys[index] || glfwGetKey(window_, kCameraKeyCodes[index]) == GLFW_PRESS;
-  input.quitRequested = input.quitRequested || glfwWindowShouldClose(window_);
+  input.closeRequested = glfwWindowShouldClose(window_);
   return input;
 }
 

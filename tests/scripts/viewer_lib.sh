@@ -1,0 +1,52 @@
+# Helpers for the viewer's window tests: run under `xvfb-run -a`, driven by xdotool. Source this file.
+# Every test gets SLIME (the binary) and OUT (a fresh directory for its files) from its arguments.
+set -u
+SLIME="$1"
+OUT="$2"
+rm -rf "$OUT" && mkdir -p "$OUT"
+VIEWER_PID=""
+WINDOW=""
+
+fail() {
+  echo "FAIL: $*" >&2
+  [ -n "$VIEWER_PID" ] && kill "$VIEWER_PID" 2>/dev/null
+  exit 1
+}
+
+# start_viewer ARGS...: opens the viewer (480x360 unless --size is given) and waits for its window.
+start_viewer() {
+  "$SLIME" view --report "$OUT/report.json" --screenshot-prefix "$OUT/shot" "$@" > "$OUT/stdout.txt" 2>&1 &
+  VIEWER_PID=$!
+  WINDOW=$(timeout 30 xdotool search --sync --name '^Slime$' | head -1)
+  [ -n "$WINDOW" ] || fail "no viewer window appeared"
+}
+
+# screenshot N: presses F12 and waits until shot-N.png is written (the viewer numbers them 1, 2, ...).
+screenshot() {
+  xdotool key --window "$WINDOW" F12
+  for _ in $(seq 1 100); do
+    [ -s "$OUT/shot-$1.png" ] && return 0
+    sleep 0.1
+  done
+  fail "F12 did not write $OUT/shot-$1.png"
+}
+
+# differing_pixels A B: how many pixels differ by more than 3 % between two PNGs.
+differing_pixels() {
+  compare -metric AE -fuzz 3% "$1" "$2" null: 2>&1 | cut -d' ' -f1
+}
+
+# quit_viewer: Esc, then the exit code must be 0.
+quit_viewer() {
+  xdotool key --window "$WINDOW" Escape
+  local code=0
+  wait "$VIEWER_PID" || code=$?
+  VIEWER_PID=""
+  [ "$code" -eq 0 ] || fail "the viewer exited with code $code after Esc; output: $(cat "$OUT/stdout.txt")"
+  [ -s "$OUT/report.json" ] || fail "no report written at exit"
+}
+
+# report EXPRESSION: a value from the viewer's exit report.
+report() {
+  jq -r "$1" "$OUT/report.json"
+}
