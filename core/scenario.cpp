@@ -52,8 +52,9 @@ struct EventReader {
   }
   void allowOnly(const json& object, const char* action, std::initializer_list<const char*> keys) const {
     if (!object.is_object()) fail(std::string(action) + " must be an object, got " + object.dump());
-    for (const auto& [key, value] : object.items())
-      if (std::none_of(keys.begin(), keys.end(), [&](const char* k) { return key == k; }))
+    for (const auto& entry : object.items())
+      if (const std::string& key = entry.key();
+          std::none_of(keys.begin(), keys.end(), [&](const char* k) { return key == k; }))
         fail("unknown field \"" + key + "\" in " + action);
   }
 };
@@ -64,7 +65,8 @@ ScenarioEvent readEvent(const json& item, const EventReader& reader) {
   event.time = reader.number(item, "event", "t", 0.0, true, 0.0);
   const char* actions[] = {"grab", "drag", "release", "press", "set"};
   int found = 0;
-  for (const auto& [key, value] : item.items()) {
+  for (const auto& entry : item.items()) {
+    const std::string& key = entry.key();  // not a structured binding: clang 14 cannot capture those
     if (key == "t") continue;
     if (std::none_of(std::begin(actions), std::end(actions), [&](const char* a) { return key == a; }))
       reader.fail("unknown action \"" + key + "\" (grab, drag, release, press, set)");

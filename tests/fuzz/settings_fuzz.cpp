@@ -1,7 +1,10 @@
-// libFuzzer target for everything a user can type or feed as settings: scene files (JSON) and
-// `--set key=value` overrides. The first byte picks the reader; the rest is the input. Any exception
-// other than SettingsError (or a crash, hang or leak) is a bug.
+// libFuzzer target for everything a user can type or feed as settings: scene files (JSON),
+// `--set key=value` overrides and scenario files (parsed, then replayed for a few steps on a small
+// slime). The first byte picks the reader; the rest is the input. Any exception other than
+// SettingsError (or a crash, hang, leak or sanitizer report) is a bug.
+#include "core/scenario.h"
 #include "core/settings_io.h"
+#include "core/simulation.h"
 
 #include <nlohmann/json.hpp>
 
@@ -14,7 +17,19 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string text(reinterpret_cast<const char*>(data) + 1, size - 1);
   slime::Settings settings = slime::defaultSettings();
   try {
-    if (data[0] % 2 == 0) {
+    if (data[0] % 3 == 2) {
+      const nlohmann::json document = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+      if (document.is_discarded()) return 0;
+      slime::ScenarioPlayer player(slime::parseScenario(document, "fuzz"));
+      settings.slime.level = 1;
+      slime::Simulation simulation(settings);
+      for (int step = 0; step < 50; ++step) {  // events are due at their time; t is clamped by the steps
+        player.advanceTo(simulation.time(), simulation, settings);
+        simulation.step();
+      }
+      return 0;
+    }
+    if (data[0] % 3 == 0) {
       const nlohmann::json scene = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
       if (scene.is_discarded()) return 0;
       slime::applySceneJson(settings, scene, "fuzz");
