@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -37,6 +38,19 @@ void checkSeconds(double seconds) {
                         std::to_string(static_cast<int>(kMaxSeconds)) + " (s)");
 }
 
+glm::dvec3 centroid(const std::vector<glm::dvec3>& positions) {
+  glm::dvec3 sum(0.0);
+  for (const glm::dvec3& p : positions) sum += p;
+  return sum / static_cast<double>(positions.size());
+}
+
+// CPU time of this thread: ms per step stays meaningful on a machine shared with other jobs.
+double threadSeconds() {
+  timespec now{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
+}
+
 json metricsSample(double t, const SlimeMetrics& metrics) {
   return {{"t", t}, {"volume_ratio", metrics.volumeRatio}, {"height", metrics.height},
           {"kinetic_energy", metrics.kineticEnergy}};
@@ -59,12 +73,13 @@ int runSim(const SimOptions& options) {
   json series = json::array();
   series.push_back(metricsSample(0.0, metrics));
   std::int64_t stepsRun = 0;
-  double stepSeconds = 0.0;
+  double stepSeconds = 0.0;  // thread CPU time inside step()
+  const auto wallStart = std::chrono::steady_clock::now();
   while (simulation.stepCount() < totalSteps && simulation.divergences().size() <= kMaxRollbacks) {
     if (player) player->advanceTo(simulation.time(), simulation, settings);
-    const auto start = std::chrono::steady_clock::now();
+    const double start = threadSeconds();
     simulation.step();
-    stepSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    stepSeconds += threadSeconds() - start;
     ++stepsRun;
     metrics = simulation.metrics();
     volumeMin = std::min(volumeMin, metrics.volumeRatio);
@@ -74,6 +89,7 @@ int runSim(const SimOptions& options) {
     if (simulation.stepCount() % sampleEvery == 0)
       series.push_back(metricsSample(static_cast<double>(simulation.stepCount()) * dt, metrics));
   }
+  const double wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
   metrics = simulation.metrics();
   const bool nan = !std::isfinite(metrics.volumeRatio) || !std::isfinite(metrics.kineticEnergy) ||
                    std::any_of(simulation.divergences().begin(), simulation.divergences().end(),
@@ -89,6 +105,7 @@ int runSim(const SimOptions& options) {
               nan ? ", NaN" : "");
 
   if (!options.reportFile.empty()) {
+    const glm::dvec3 finalCentroid = centroid(simulation.positions());
     json divergences = json::array();
     for (const DivergenceEvent& e : simulation.divergences())
       divergences.push_back({{"step", e.step}, {"time", e.time}, {"integrator", e.integrator}, {"what", e.what}});
@@ -103,13 +120,15 @@ int runSim(const SimOptions& options) {
         {"vertices", simulation.positions().size()},
         {"springs", simulation.body().springs.size()},
         {"ms_per_step", msPerStep},
-        {"wall_seconds", stepSeconds},
+        {"cpu_seconds", stepSeconds},
+        {"wall_seconds", wallSeconds},
         {"nan", nan},
         {"rollbacks", rollbacks},
         {"divergences", divergences},
         {"final", {{"volume_ratio", metrics.volumeRatio}, {"height", metrics.height}, {"width", metrics.width},
                    {"aspect", metrics.aspect}, {"min_z", metrics.minZ}, {"kinetic_energy", metrics.kineticEnergy},
-                   {"max_speed", metrics.maxSpeed}}},
+                   {"max_speed", metrics.maxSpeed},
+                   {"centroid", {finalCentroid.x, finalCentroid.y, finalCentroid.z}}}},
         {"range", {{"volume_ratio_min", volumeMin}, {"volume_ratio_max", volumeMax}, {"min_z", minZ},
                    {"max_speed", maxSpeed}}},
         {"series", series},

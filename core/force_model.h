@@ -16,7 +16,7 @@ namespace slime {
 
 struct ForceModel {
   const SpringSet* springs = nullptr;
-  double damping = 0.0;                                  // k_d of the strain-rate damper, N·s
+  double damping = 0.0;                                  // k_d of the damper, N·s/m
   const std::vector<glm::u32vec3>* triangles = nullptr;  // null: no volume term
   double restVolume = 0.0;                               // V0, m^3
   double restPressure = 0.0;                             // p at V = V0, Pa (balances the skin's prestress)

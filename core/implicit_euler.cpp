@@ -77,7 +77,7 @@ int implicitEulerStep(ParticleState& state, double dt, const ForceModel& model,
     const double k = springs.stiffnesses[s];
     const double transverse = k * std::max(0.0, 1.0 - springs.restLengths[s] / length);
     const double axial = k - transverse;  // K' = transverse I + (k - transverse) n nᵀ
-    const double viscous = model.damping / length;
+    const double viscous = model.damping;
     const double along = dt * dt * axial + dt * viscous;
     const double across = dt * dt * transverse;
     std::array<double, 6>& b = scratch.springBlocks[s];
@@ -114,14 +114,19 @@ int implicitEulerStep(ParticleState& state, double dt, const ForceModel& model,
   std::vector<glm::dvec3>& p = scratch.direction;
   std::vector<glm::dvec3>& q = scratch.product;
   std::vector<glm::dvec3>& z = scratch.preconditioned;
-  deltaV.assign(count, glm::dvec3(0.0));
-  r = scratch.rhs;
+  // Warm start from the previous step's Δv (the motion changes little from step to step).
+  if (deltaV.size() != count) deltaV.assign(count, glm::dvec3(0.0));
+  for (std::size_t i = 0; i < count; ++i)
+    if (state.inverseMasses[i] == 0.0) deltaV[i] = glm::dvec3(0.0);
   z.resize(count);
   q.resize(count);
+  multiplySystem(state, model, dt, volumeCoupling, scratch, deltaV, q);
+  r.resize(count);
+  for (std::size_t i = 0; i < count; ++i) r[i] = scratch.rhs[i] - q[i];
   for (std::size_t i = 0; i < count; ++i) z[i] = r[i] / scratch.diagonal[i];
   p = z;
   double rz = dotAll(r, z);
-  const double threshold = options.tolerance * options.tolerance * dotAll(r, r);
+  const double threshold = options.tolerance * options.tolerance * dotAll(scratch.rhs, scratch.rhs);
   int iteration = 0;
   while (iteration < options.maxIterations && dotAll(r, r) > threshold && rz > 0.0) {
     multiplySystem(state, model, dt, volumeCoupling, scratch, p, q);

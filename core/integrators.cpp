@@ -48,6 +48,16 @@ void symplecticEulerStep(ParticleState& state, double dt, const AccelerationFiel
   }
 }
 
+void symplecticEulerKick(ParticleState& state, double dt, const AccelerationField& field,
+                         IntegratorScratch& scratch) {
+  field(state.positions, state.velocities, scratch.accelerations);
+  for (std::size_t i = 0; i < state.size(); ++i) state.velocities[i] += scratch.accelerations[i] * dt;
+}
+
+void symplecticEulerDrift(ParticleState& state, double dt) {
+  for (std::size_t i = 0; i < state.size(); ++i) state.positions[i] += state.velocities[i] * dt;
+}
+
 void rk4Step(ParticleState& state, double dt, const AccelerationField& field, IntegratorScratch& scratch) {
   const std::size_t count = state.size();
   const std::vector<glm::dvec3>& x0 = state.positions;

@@ -33,6 +33,11 @@ void explicitEulerStep(ParticleState& state, double dt, const AccelerationField&
                        IntegratorScratch& scratch);
 void symplecticEulerStep(ParticleState& state, double dt, const AccelerationField& field,
                          IntegratorScratch& scratch);
+// symplecticEulerStep = kick (v += a dt) then drift (x += v dt); split so a caller can treat some
+// forces implicitly between the two (the Simulation damps springs there).
+void symplecticEulerKick(ParticleState& state, double dt, const AccelerationField& field,
+                         IntegratorScratch& scratch);
+void symplecticEulerDrift(ParticleState& state, double dt);
 void rk4Step(ParticleState& state, double dt, const AccelerationField& field, IntegratorScratch& scratch);
 
 }  // namespace slime

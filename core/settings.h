@@ -41,10 +41,10 @@ struct SlimeSettings {
   int level = 4;                         // icosphere subdivision level 0..7: 20*4^level faces
   bool autoLevel = false;                // slime.level=auto: smallest level whose image error is invisible
   double mass = 0.268;                   // total mass, kg (≈ 1000 kg/m^3 at radius 4 cm)
-  double stiffness = 40.0;               // elementary spring stiffness k_e, N/m (series rule k = k_e d_e / d)
-  double damping = 0.02;                 // damper coefficient k_d along each spring, N·s/m
-  double pressure = 1.0;                 // volume preservation strength, relative (0 = none)
-  double bending = 1.0;                  // shape (bending) term strength, relative (0 = none)
+  double stiffness = 100.0;              // elementary spring stiffness k_e, N/m (series rule k = k_e d_e / d)
+  double damping = 0.1;                  // damper coefficient k_d along each spring, N·s/m
+  double pressure = 3.0;                 // volume preservation strength, relative (0 = none)
+  double bending = 0.0;                  // shape (bending) term strength, relative (0 = none)
   double friction = 0.6;                 // Coulomb friction coefficient against the floor
   glm::dvec3 position{0.0, 0.0, 0.10};   // start position of the centre, m
   glm::dvec3 color{0.25, 0.85, 0.35};    // slime colour: surface tint and per-channel transmittance

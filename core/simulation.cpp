@@ -71,13 +71,43 @@ void Simulation::rebuildModels() {
   xpbdModel_.triangles = hasVolume ? &body_.triangles : nullptr;
   xpbdModel_.restVolume = body_.restVolume;
   xpbdModel_.gravity = gravity;
-  accelerationField_ = [this](const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v,
-                              std::vector<glm::dvec3>& a) {
-    computeAccelerations(forceModel_, body_.state.inverseMasses, x, v, forceScratch_, a);
+  elasticModel_ = forceModel_;
+  elasticModel_.damping = 0.0;
+  const ForceModel* model = integrator_ == Integrator::SymplecticEuler ? &elasticModel_ : &forceModel_;
+  accelerationField_ = [this, model](const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v,
+                                     std::vector<glm::dvec3>& a) {
+    computeAccelerations(*model, body_.state.inverseMasses, x, v, forceScratch_, a);
   };
+  dampingDecayStep_ = -1.0;
+  // ω_max² of the springs plus that of the fill's breathing mode, (K/V0) Σ w_i |∇_i V|².
+  const double springFrequency = slime::highestFrequency(body_.springs, body_.restPositions, body_.freeInverseMasses);
+  double breathing = 0.0;
+  if (hasVolume) {
+    std::vector<glm::dvec3> gradient;
+    volumeGradient(body_.restPositions, body_.triangles, gradient);
+    for (std::size_t i = 0; i < gradient.size(); ++i)
+      breathing += body_.freeInverseMasses[i] * glm::dot(gradient[i], gradient[i]);
+    breathing *= body_.bulkModulus / body_.restVolume;
+  }
+  highestFrequency_ = std::sqrt(springFrequency * springFrequency + breathing);
+  highestDampingRate_ =
+      highestDampingRate(body_.springs, body_.restPositions, body_.freeInverseMasses, settings_.slime.damping);
 }
 
-int Simulation::substepsPerStep() const { return std::max(1, settings_.sim.substeps) * refinement_; }
+void Simulation::setAutomaticSubsteps(bool automatic) { automaticSubsteps_ = automatic; }
+
+double Simulation::largestStableStep() const {
+  return slime::largestStableStep(integrator_, highestFrequency_, highestDampingRate_);
+}
+
+int Simulation::substepsPerStep() const {
+  int substeps = std::max(1, settings_.sim.substeps);
+  if (automaticSubsteps_) {
+    const double needed = std::ceil(settings_.sim.dt / (kStabilitySafety * largestStableStep()));
+    if (needed > substeps) substeps = static_cast<int>(std::min(needed, 1.0e4));
+  }
+  return substeps * refinement_;
+}
 
 void Simulation::step() {
   const int substeps = substepsPerStep();
@@ -98,7 +128,15 @@ void Simulation::substep(double h) {
   ParticleState& state = body_.state;
   switch (integrator_) {
     case Integrator::ExplicitEuler: explicitEulerStep(state, h, accelerationField_, integratorScratch_); break;
-    case Integrator::SymplecticEuler: symplecticEulerStep(state, h, accelerationField_, integratorScratch_); break;
+    case Integrator::SymplecticEuler:
+      symplecticEulerKick(state, h, accelerationField_, integratorScratch_);
+      if (dampingDecayStep_ != h) {
+        springDampingDecays(body_.springs, state.inverseMasses, settings_.slime.damping, h, dampingDecays_);
+        dampingDecayStep_ = h;
+      }
+      dampSpringsImplicitly(body_.springs, state.positions, state.inverseMasses, dampingDecays_, state.velocities);
+      symplecticEulerDrift(state, h);
+      break;
     case Integrator::Rk4: rk4Step(state, h, accelerationField_, integratorScratch_); break;
     case Integrator::ImplicitEuler:
       lastSolverIterations_ = implicitEulerStep(state, h, forceModel_, ImplicitEulerOptions{}, implicitScratch_);
@@ -181,6 +219,7 @@ bool Simulation::grab(const glm::dvec3& point, double radius) {
   grabTarget_ = surface;
   grabAnchor_ = surface;
   grabOffsets_.clear();
+  dampingDecayStep_ = -1.0;
   for (std::uint32_t i : grabbed_) {
     grabOffsets_.push_back(body_.state.positions[i] - surface);
     body_.state.inverseMasses[i] = 0.0;
@@ -194,6 +233,7 @@ void Simulation::dragTo(const glm::dvec3& target) {
 
 void Simulation::release() {
   for (std::uint32_t i : grabbed_) body_.state.inverseMasses[i] = body_.freeInverseMasses[i];
+  if (!grabbed_.empty()) dampingDecayStep_ = -1.0;
   grabbing_ = false;
   grabbed_.clear();
   grabOffsets_.clear();

@@ -13,6 +13,7 @@
 #include "core/integrators.h"
 #include "core/settings.h"
 #include "core/slime_body.h"
+#include "core/stability.h"
 #include "core/xpbd.h"
 
 #include <glm/vec3.hpp>
@@ -73,6 +74,11 @@ class Simulation {
   double volume() const;
   int substepsPerStep() const;  // sim.substeps times the guard's refinement after rollbacks
   int lastSolverIterations() const { return lastSolverIterations_; }  // CG iterations (implicit_euler)
+  // Substeps are at least what the integrator needs to stay stable at this level and material
+  // (stability.h); off: exactly sim.substeps, so tests and benchmarks can watch a method blow up.
+  void setAutomaticSubsteps(bool automatic);
+  double highestFrequency() const { return highestFrequency_; }  // ω_max, rad/s
+  double largestStableStep() const;                              // for the current integrator, s
 
  private:
   void rebuildModels();
@@ -84,7 +90,13 @@ class Simulation {
   Settings settings_;
   SlimeBody body_;
   Integrator integrator_ = Integrator::SymplecticEuler;
-  ForceModel forceModel_;
+  ForceModel forceModel_;    // every force, the damper explicit
+  ForceModel elasticModel_;  // without the damper (symplectic_euler damps implicitly)
+  bool automaticSubsteps_ = true;
+  double highestFrequency_ = 0.0;
+  double highestDampingRate_ = 0.0;
+  std::vector<double> dampingDecays_;  // per spring, for the substep length dampingDecayStep_
+  double dampingDecayStep_ = -1.0;      // -1: recompute (after a grab, release or material change)
   XpbdModel xpbdModel_;
   AccelerationField accelerationField_;
   ForceScratch forceScratch_;

@@ -9,7 +9,7 @@
 //    the level;
 //  - the skin is pre-stretched (rest lengths = edges / (1 + prestrain)); its tension √3 k_e·prestrain/(1+prestrain)
 //    (N/m, level independent) is balanced by the filling's rest pressure, like a water balloon;
-//  - the damper acts on the strain rate (N·s), a membrane viscosity independent of the level.
+//  - the damper coefficient k_d (N·s/m) per spring gives a skin viscosity independent of the level.
 // What does scale is the highest frequency, ω_max ≈ 2.48 √(k/m) with m ∝ 4^-level: explicit
 // steps must halve per level.
 #pragma once
@@ -24,8 +24,8 @@
 namespace slime {
 
 // Skin prestrain per unit of slime.pressure, and the filling's bulk modulus per unit of it, Pa.
-constexpr double kPrestrainPerPressure = 0.25;
-constexpr double kBulkModulusPerPressure = 2.0e4;
+constexpr double kPrestrainPerPressure = 1.0;
+constexpr double kBulkModulusPerPressure = 3.0e4;
 
 struct SlimeBody {
   ParticleState state;                 // at rest at slime.position

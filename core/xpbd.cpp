@@ -24,7 +24,7 @@ void projectSprings(ParticleState& state, double h, const XpbdModel& model,
     const glm::dvec3 n = d / length;
     const double constraint = length - springs.restLengths[s];
     const double compliance = 1.0 / (springs.stiffnesses[s] * h * h);         // α̃
-    const double gamma = (model.damping / length) / (springs.stiffnesses[s] * h);  // α β / h
+    const double gamma = model.damping / (springs.stiffnesses[s] * h);  // α β / h
     const double rate = glm::dot(n, (x[j] - previous[j]) - (x[i] - previous[i]));  // ∇C·(x - x_prev)
     const double deltaLambda = (-constraint - gamma * rate) / ((1.0 + gamma) * weight + compliance);
     x[j] += (w[j] * deltaLambda) * n;
