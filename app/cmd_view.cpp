@@ -1,14 +1,13 @@
 // `slime view` (and `slime` alone): the interactive window. Besides the scene options it takes the
 // camera options of `snapshot`, and a few for tests and scripts: --frames, --screenshot-on-exit, --report.
 #include "app/commands.h"
+#include "app/snapshot.h"
 #include "app/viewer.h"
 #include "app/window.h"
 #include "core/camera.h"
 #include "core/scenario.h"
 #include "core/settings_io.h"
 
-#include <cstdio>
-#include <regex>
 
 namespace slime {
 namespace {
@@ -24,18 +23,14 @@ struct ViewCommandOptions {
 
 // --size, --vp, --vi and --fov on top of the scene; validated again afterwards.
 void applyCameraOptions(const ViewCommandOptions& options, Settings& settings) {
-  if (!options.size.empty()) {
-    std::smatch match;
-    if (!std::regex_match(options.size, match, std::regex(R"((\d{1,5})x(\d{1,5}))")))
-      throw SettingsError("--size: expected WIDTHxHEIGHT such as 734x564, got '" + options.size + "'");
-    settings.camera.width = std::stoi(match[1]);
-    settings.camera.height = std::stoi(match[2]);
-  }
+  if (!options.size.empty()) applyImageSize(settings, options.size);  // the window size, as snapshot --size
   if (!options.viewPoint.empty())
     settings.camera.position = {options.viewPoint[0], options.viewPoint[1], options.viewPoint[2]};
-  if (!options.viewInterest.empty())
-    lookAt(settings.camera, settings.camera.position,
-           {options.viewInterest[0], options.viewInterest[1], options.viewInterest[2]});
+  if (!options.viewInterest.empty()) {
+    const glm::dvec3 target{options.viewInterest[0], options.viewInterest[1], options.viewInterest[2]};
+    if (target == settings.camera.position) throw SettingsError("--vi must differ from the eye position");
+    lookAt(settings.camera, settings.camera.position, target);
+  }
   if (options.fov != 0.0) settings.camera.fov = options.fov;
   validateSettings(settings);
 }

@@ -146,6 +146,7 @@ void Viewer::handleButton(const MouseButtonEvent& event, const FrameInput& input
   grab_.begin(*hit, makeCamera(settings_.camera, size.x, size.y), event.position);
   grabTargetDrawn_ = *hit;
   ++grabCount_;
+  heightAtGrab_ = metrics_.height;
   lastInteraction_ = wallClock_;
 }
 
@@ -351,6 +352,7 @@ void Viewer::writeReport() const {
       {"dropped_seconds", clock_.droppedSeconds()},
       {"grabs", grabCount_},
       {"grabbing", grab_.active()},
+      {"height_at_grab", heightAtGrab_},
       {"peak_height_while_grabbing", peakHeightWhileGrabbing_},
       {"metrics",
        {{"volume_ratio", metrics_.volumeRatio}, {"height", metrics_.height}, {"width", metrics_.width},

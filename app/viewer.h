@@ -109,6 +109,7 @@ class Viewer {
   double wallClock_ = 0.0;
   double lastInteraction_ = -1e9;
   int grabCount_ = 0;
+  double heightAtGrab_ = 0.0;       // the slime's height when the last grab began
   double peakHeightWhileGrabbing_ = 0.0;
   int screenshotCount_ = 0;
   std::vector<std::string> screenshotPaths_;

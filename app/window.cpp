@@ -108,6 +108,10 @@ glm::ivec2 Window::windowSize() const {
 void Window::initImGuiPlatform() { ImGui_ImplGlfw_InitForOpenGL(window_, true); }
 void Window::newImGuiPlatformFrame() { ImGui_ImplGlfw_NewFrame(); }
 void Window::shutdownImGuiPlatform() { ImGui_ImplGlfw_Shutdown(); }
-void Window::present() { glfwSwapBuffers(window_); }
+void Window::present() {
+  // Minimised: nothing was drawn; wait for events a little instead of spinning at full speed.
+  if (framebufferSize() == glm::ivec2(0, 0)) glfwWaitEventsTimeout(0.05);
+  else glfwSwapBuffers(window_);
+}
 
 }  // namespace slime
