@@ -129,7 +129,7 @@ json runRenderBench(const Settings& baseSettings, const RenderBenchOptions& opti
   json configurations = json::array();
   CsvTable table{{"level", "faces", "threads", "ms_per_frame", "ms_min", "ms_max", "mrays_per_s", "rays_total",
                   "limit_ms_per_frame", "limit_mqueries_per_s", "full_over_limit", "brute_ms_per_frame",
-                  "speedup_over_brute"}, {}};
+                  "speedup_over_brute", "speedup_over_1_thread", "limit_speedup_over_1_thread"}, {}};
 
   for (int level : options.levels) {
     const std::string label = "level " + std::to_string(level);
@@ -203,11 +203,21 @@ json runRenderBench(const Settings& baseSettings, const RenderBenchOptions& opti
         c["brute"] = brute;
         c["speedup_over_brute"] = ms > 0.0 ? brute["ms_per_frame"].get<double>() / ms : 0.0;
       }
-      table.add({level, faceCount(level), count, ms, full.ms.min, full.ms.max, c["mrays_per_s"], full.stats.rays.total(),
-                 limit.median, c["limit_mqueries_per_s"], c["full_over_limit"],
-                 brute.is_null() ? json() : brute["ms_per_frame"], brute.is_null() ? json() : c["speedup_over_brute"]});
       configurations.push_back(std::move(c));
     }
+  }
+  // Parallel speed-up over one thread of the same level, for the full frame and for the limit.
+  for (json& c : configurations) {
+    for (const json& single : configurations) {
+      if (single["level"] != c["level"] || single["threads"].get<int>() != 1) continue;
+      c["speedup_over_1_thread"] = single["ms_per_frame"].get<double>() / c["ms_per_frame"].get<double>();
+      c["limit_speedup_over_1_thread"] = single["limit_ms_per_frame"].get<double>() / c["limit_ms_per_frame"].get<double>();
+    }
+    const auto optional = [&c](const char* key) { return c.contains(key) ? c[key] : json(); };
+    table.add({c["level"], c["faces"], c["threads"], c["ms_per_frame"], c["ms"]["min"], c["ms"]["max"], c["mrays_per_s"],
+               c["rays"]["total"], c["limit_ms_per_frame"], c["limit_mqueries_per_s"], c["full_over_limit"],
+               optional("brute_ms_per_frame"), optional("speedup_over_brute"), optional("speedup_over_1_thread"),
+               optional("limit_speedup_over_1_thread")});
   }
   report["configurations"] = configurations;
 

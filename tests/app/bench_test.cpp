@@ -1,0 +1,139 @@
+// The benchmarks run end to end at a tiny size so their code cannot rot: every JSON field the charts
+// and the README read is there and sane. Nothing about timing is asserted beyond "positive".
+#include "app/bench_accuracy.h"
+#include "app/bench_physics.h"
+#include "app/bench_render.h"
+#include "core/settings_io.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <string>
+
+namespace slime {
+namespace {
+
+using nlohmann::json;
+
+std::string outputPath(const std::string& name) { return std::string(SLIME_TEST_OUTPUT_DIR) + "/" + name; }
+
+json readJson(const std::string& path) {
+  std::ifstream file(path);
+  return json::parse(file);
+}
+
+TEST(BenchRender, OneTinyLevelHasEveryField) {
+  RenderBenchOptions options;
+  options.levels = {1};
+  options.threads = {1};
+  options.frames = 1;
+  options.warmup = 0;
+  options.width = 64;
+  options.height = 48;
+  options.bruteMaxLevel = 1;
+  options.bvhLevels = {1};
+  options.jsonFile = outputPath("bench_render.json");
+  options.csvFile = outputPath("bench_render.csv");
+  runRenderBench(defaultSettings(), options);
+
+  const json report = readJson(options.jsonFile);
+  ASSERT_EQ(report["configurations"].size(), 1u);
+  const json& c = report["configurations"][0];
+  EXPECT_EQ(c["level"], 1);
+  EXPECT_EQ(c["faces"], 80);
+  EXPECT_EQ(c["width"], 64);
+  EXPECT_EQ(c["height"], 48);
+  EXPECT_EQ(c["depth"], 3);
+  EXPECT_EQ(c["threads"], 1);
+  EXPECT_GT(c["ms_per_frame"].get<double>(), 0.0);
+  EXPECT_GT(c["mrays_per_s"].get<double>(), 0.0);
+  EXPECT_EQ(c["rays"]["primary"], 64 * 48);
+  for (const char* kind : {"shadow", "reflection", "refraction", "total", "slime_queries"}) EXPECT_TRUE(c["rays"].contains(kind)) << kind;
+  EXPECT_GT(c["limit_ms_per_frame"].get<double>(), 0.0);
+  EXPECT_GT(c["brute_ms_per_frame"].get<double>(), 0.0);
+  // The replayed queries are the frame's own: the limit sees as many as the renderer made.
+  const json& queries = c["limit"]["queries"];
+  EXPECT_EQ(queries["primary"].get<std::uint64_t>() + queries["secondary"].get<std::uint64_t>() +
+                queries["shadow"].get<std::uint64_t>(),
+            c["rays"]["slime_queries"].get<std::uint64_t>());
+  ASSERT_EQ(report["bvh"].size(), 4u);
+  for (const json& b : report["bvh"]) {
+    EXPECT_GT(b["update_ms"].get<double>(), 0.0);
+    EXPECT_GT(b["trace_deformed_ms"].get<double>(), 0.0);
+  }
+  EXPECT_GT(report["seed"].size(), 0u);
+  EXPECT_TRUE(std::ifstream(outputPath("bench_render_bvh.csv")).good());
+  EXPECT_TRUE(std::ifstream(outputPath("bench_render_seed.csv")).good());
+}
+
+TEST(BenchPhysics, OneTinyLevelHasEveryField) {
+  PhysicsBenchOptions options;
+  options.levels = {1};
+  options.integrators = {"symplectic_euler"};
+  options.secondsPerMeasurement = 0.01;
+  options.stabilityLevel = 1;
+  options.stiffnesses = {40.0};
+  options.accuracyLevel = 1;
+  options.steps = {1e-3};
+  options.settleSeconds = 0.05;
+  options.jsonFile = outputPath("bench_physics.json");
+  options.csvFile = outputPath("bench_physics.csv");
+  runPhysicsBench(defaultSettings(), options);
+
+  const json report = readJson(options.jsonFile);
+  ASSERT_EQ(report["cost"].size(), 1u);
+  EXPECT_GT(report["cost"][0]["ms_per_step"].get<double>(), 0.0);
+  ASSERT_EQ(report["stability"]["map"].size(), 1u);
+  const json& point = report["stability"]["map"][0];
+  EXPECT_GT(point["largest_stable_dt"].get<double>(), 0.0);
+  EXPECT_GT(point["omega_max"].get<double>(), 0.0);
+  ASSERT_EQ(report["accuracy"]["runs"].size(), 1u);
+  const json& run = report["accuracy"]["runs"][0];
+  ASSERT_TRUE(run["stable"].get<bool>());
+  EXPECT_TRUE(std::isfinite(run["rms_error_mm"].get<double>()));
+  EXPECT_GE(run["rms_error_mm"].get<double>(), 0.0);
+  EXPECT_LE(run["rms_error_mm"].get<double>(), run["max_error_mm"].get<double>());
+  EXPECT_GT(report["rest"]["aspect"].get<double>(), 0.0);
+}
+
+TEST(BenchAccuracy, OneTinyLevelHasEveryField) {
+  AccuracyBenchOptions options;
+  options.levels = {1};
+  options.depths = {1, 2};
+  options.frames = 1;
+  options.width = 64;
+  options.height = 48;
+  options.jsonFile = outputPath("bench_accuracy.json");
+  runAccuracyBench(defaultSettings(), options);
+
+  const json report = readJson(options.jsonFile);
+  ASSERT_EQ(report["runs"].size(), 4u);  // 1 level × {flat, smooth} × 2 depths
+  for (const json& run : report["runs"]) {
+    EXPECT_GT(run["ms_per_frame"].get<double>(), 0.0);
+    EXPECT_GE(run["rmse"].get<double>(), 0.0);
+    EXPECT_GT(run["psnr"].get<double>(), 0.0);
+    EXPECT_GE(run["visible_fraction"].get<double>(), 0.0);
+    EXPECT_LE(run["visible_fraction"].get<double>(), 1.0);
+    EXPECT_GT(run["sagitta_px"].get<double>(), 0.0);
+  }
+}
+
+TEST(BenchAccuracy, IdenticalImagesHaveNoError) {
+  Image image;
+  image.resize(4, 3);
+  for (auto& pixel : image.pixels) pixel = glm::vec3(0.3f, 0.5f, 0.7f);
+  const ImageError error = compareImages(image, image);
+  EXPECT_EQ(error.rmse, 0.0);
+  EXPECT_EQ(error.maxError, 0.0);
+  EXPECT_EQ(error.visibleFraction, 0.0);
+  Image other = image;
+  other.at(0, 0) = glm::vec3(1.0f);
+  const ImageError one = compareImages(other, image);
+  EXPECT_GT(one.maxError, 2.0);
+  EXPECT_NEAR(one.visibleFraction, 1.0 / 12.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace slime
