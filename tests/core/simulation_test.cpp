@@ -1,0 +1,181 @@
+// The whole slime: the "defaults that must hold" at every level, volume, floor, grab and release,
+// determinism, and the divergence guard's rollback.
+#include "core/settings_io.h"
+#include "core/simulation.h"
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace slime {
+namespace {
+
+Settings levelSettings(int level) {
+  Settings settings = defaultSettings();
+  settings.slime.level = level;
+  return settings;
+}
+
+struct RunSummary {
+  SlimeMetrics final;
+  double lowestZ = 1e9, volumeMin = 1e9, volumeMax = 0.0;
+};
+
+RunSummary run(Simulation& simulation, double seconds) {
+  RunSummary summary;
+  const auto steps = static_cast<std::int64_t>(std::lround(seconds / simulation.settings().sim.dt));
+  const std::int64_t last = simulation.stepCount() + steps;
+  while (simulation.stepCount() < last) {
+    simulation.step();
+    const SlimeMetrics m = simulation.metrics();
+    summary.lowestZ = std::min(summary.lowestZ, m.minZ);
+    summary.volumeMin = std::min(summary.volumeMin, m.volumeRatio);
+    summary.volumeMax = std::max(summary.volumeMax, m.volumeRatio);
+  }
+  summary.final = simulation.metrics();
+  return summary;
+}
+
+class DefaultsHold : public ::testing::TestWithParam<int> {};
+
+TEST_P(DefaultsHold, BallFallsSettlesSoftAndRound) {
+  const int level = GetParam();
+  Simulation simulation(levelSettings(level));
+  const RunSummary s = run(simulation, 3.0);
+  std::printf("level %d: aspect %.3f volume %.4f [%.4f, %.4f] min z %.2e KE %.2e substeps %d\n", level,
+              s.final.aspect, s.final.volumeRatio, s.volumeMin, s.volumeMax, s.lowestZ, s.final.kineticEnergy,
+              simulation.substepsPerStep());
+  EXPECT_GE(s.final.aspect, 0.80);
+  EXPECT_LE(s.final.aspect, 0.98);
+  EXPECT_NEAR(s.final.volumeRatio, 1.0, 0.01);  // at rest
+  // While it lands the fill is squeezed a little (most at level 0, where 12 points carry it).
+  EXPECT_NEAR(s.volumeMin, 1.0, level >= 2 ? 0.01 : 0.05);
+  EXPECT_NEAR(s.volumeMax, 1.0, level >= 2 ? 0.01 : 0.05);
+  EXPECT_GE(s.lowestZ, 0.0);
+  EXPECT_LT(s.final.kineticEnergy, 1e-5);  // J; it landed with 0.16 J
+  EXPECT_LT(s.final.height, 0.08);         // it did fall and squash
+  EXPECT_TRUE(simulation.divergences().empty());
+}
+
+INSTANTIATE_TEST_SUITE_P(Levels0To5, DefaultsHold, ::testing::Values(0, 1, 2, 3, 4, 5));
+
+// Level 6 costs about 8x level 5 per simulated second, so it is sampled through the landing only.
+TEST(DefaultsHoldLevel6, LandsWithoutRollbackKeepingVolumeAndFloor) {
+  Simulation simulation(levelSettings(6));
+  const RunSummary s = run(simulation, 0.25);
+  std::printf("level 6 at 0.25 s: aspect %.3f volume [%.4f, %.4f] min z %.2e substeps %d\n", s.final.aspect,
+              s.volumeMin, s.volumeMax, s.lowestZ, simulation.substepsPerStep());
+  EXPECT_NEAR(s.volumeMin, 1.0, 0.01);
+  EXPECT_NEAR(s.volumeMax, 1.0, 0.01);
+  EXPECT_GE(s.lowestZ, 0.0);
+  EXPECT_EQ(s.lowestZ, 0.0);  // it has landed (a point on the floor sits at exactly z = 0)
+  EXPECT_GT(s.final.aspect, 0.7);
+  EXPECT_TRUE(simulation.divergences().empty());
+}
+
+class EveryIntegrator : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(EveryIntegrator, StableOnTheDefaultSceneAtLevel3) {
+  Settings settings = levelSettings(3);
+  settings.sim.integrator = GetParam();
+  Simulation simulation(settings);
+  const RunSummary s = run(simulation, 1.5);
+  std::printf("%s: aspect %.3f volume [%.4f, %.4f] KE %.2e substeps %d\n", GetParam(), s.final.aspect, s.volumeMin,
+              s.volumeMax, s.final.kineticEnergy, simulation.substepsPerStep());
+  EXPECT_TRUE(simulation.divergences().empty());
+  EXPECT_GE(s.lowestZ, 0.0);
+  EXPECT_NEAR(s.volumeMin, 1.0, 0.02);
+  EXPECT_NEAR(s.volumeMax, 1.0, 0.02);
+  EXPECT_GT(s.final.aspect, 0.5);
+}
+
+INSTANTIATE_TEST_SUITE_P(Names, EveryIntegrator,
+                         ::testing::Values("explicit_euler", "symplectic_euler", "rk4", "implicit_euler", "xpbd"));
+
+double meanZ(const Simulation& simulation) {
+  double sum = 0.0;
+  for (std::uint32_t i : simulation.grabbedIndices()) sum += simulation.positions()[i].z;
+  return sum / static_cast<double>(simulation.grabbedIndices().size());
+}
+
+TEST(Grab, DragMovesTheRegionAndReleaseRecovers) {
+  Simulation simulation(levelSettings(3));
+  run(simulation, 1.0);
+  const SlimeMetrics rest = simulation.metrics();
+  ASSERT_TRUE(simulation.grab({0.0, 0.0, 0.2}, 0.012));  // the top of the ball
+  ASSERT_FALSE(simulation.grabbedIndices().empty());
+  const double before = meanZ(simulation);
+  simulation.dragTo(simulation.grabTarget() + glm::dvec3(0.0, 0.0, 0.03));
+  const RunSummary pulled = run(simulation, 0.5);
+  EXPECT_NEAR(meanZ(simulation) - before, 0.03, 1e-3);
+  // The top follows; the light ball hangs from the grabbed patch (it may leave the floor).
+  EXPECT_GT(pulled.final.minZ + pulled.final.height, rest.minZ + rest.height + 0.025);
+  EXPECT_NEAR(pulled.volumeMin, 1.0, 0.02);
+  EXPECT_GE(pulled.lowestZ, 0.0);
+  simulation.release();
+  EXPECT_FALSE(simulation.grabbing());
+  const RunSummary recovered = run(simulation, 2.0);
+  EXPECT_NEAR(recovered.final.height, rest.height, 0.02 * rest.height);
+  EXPECT_NEAR(recovered.final.aspect, rest.aspect, 0.02);
+  EXPECT_TRUE(simulation.divergences().empty());
+}
+
+TEST(Grab, NothingToGrabFarFromTheSurfaceWithATinyRadius) {
+  Simulation simulation(levelSettings(2));
+  EXPECT_FALSE(simulation.grab({0.0, 0.0, 1.0}, 1e-6));  // the nearest surface point is between vertices
+  EXPECT_FALSE(simulation.grabbing());
+}
+
+TEST(Determinism, SameInputsGiveBitwiseTheSameState) {
+  auto simulate = [] {
+    Simulation simulation(levelSettings(3));
+    run(simulation, 0.4);
+    simulation.grab({0.02, 0.0, 0.05}, 0.015);
+    simulation.dragTo({0.05, 0.0, 0.06});
+    run(simulation, 0.3);
+    simulation.release();
+    run(simulation, 0.3);
+    return simulation.positions();
+  };
+  const std::vector<glm::dvec3> a = simulate(), b = simulate();
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) ASSERT_EQ(a[i], b[i]) << "vertex " << i;
+}
+
+TEST(DivergenceGuard, RollsBackReportsAndRecovers) {
+  Settings settings = levelSettings(2);
+  settings.sim.dt = 0.01;  // about 3x symplectic Euler's limit at level 2 with the default material
+  Simulation simulation(settings);
+  simulation.setAutomaticSubsteps(false);
+  ASSERT_GT(settings.sim.dt, simulation.largestStableStep());
+  run(simulation, 1.0);
+  ASSERT_FALSE(simulation.divergences().empty());
+  const DivergenceEvent& event = simulation.divergences().front();
+  EXPECT_EQ(event.integrator, "symplectic_euler");
+  EXPECT_FALSE(event.what.empty());
+  EXPECT_GT(simulation.substepsPerStep(), 1);  // it refined the step after rolling back
+  for (const glm::dvec3& p : simulation.positions()) ASSERT_TRUE(std::isfinite(p.x + p.y + p.z));
+  EXPECT_GE(simulation.metrics().minZ, 0.0);
+  EXPECT_NEAR(simulation.metrics().volumeRatio, 1.0, 0.02);
+}
+
+TEST(SimulationSettings, LiveChangesAndReload) {
+  Simulation simulation(levelSettings(2));
+  run(simulation, 0.1);
+  Settings changed = simulation.settings();
+  changed.slime.mass = 0.5;
+  simulation.applySettings(changed);
+  double mass = 0.0;
+  for (double w : simulation.state().inverseMasses) mass += 1.0 / w;
+  EXPECT_NEAR(mass, 0.5, 1e-12);
+  changed.slime.level = 3;  // a structural change rebuilds
+  simulation.applySettings(changed);
+  EXPECT_EQ(simulation.positions().size(), 642u);
+  EXPECT_EQ(simulation.time(), 0.0);
+}
+
+}  // namespace
+}  // namespace slime
