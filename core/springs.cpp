@@ -4,7 +4,9 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace slime {
 
@@ -49,26 +51,44 @@ namespace {
 
 // Solves one spring's two-body damper exactly: the relative speed u along x̂ becomes u·decay
 // (decay = exp(-k_d (w_i + w_j) h)); the impulse is split by inverse mass, so momentum is kept.
-void dampOneSpring(const SpringSet& springs, std::size_t s, const std::vector<glm::dvec3>& positions,
-                   const std::vector<double>& inverseMasses, double decay, std::vector<glm::dvec3>& velocities) {
+// `factor` = (decay - 1) / (w_i + w_j), precomputed.
+inline void dampOneSpring(const SpringSet& springs, std::size_t s, const std::vector<glm::dvec3>& positions,
+                          const std::vector<double>& inverseMasses, double factor,
+                          std::vector<glm::dvec3>& velocities) {
   const std::uint32_t i = springs.ends[s].x, j = springs.ends[s].y;
-  const double weight = inverseMasses[i] + inverseMasses[j];
-  if (weight == 0.0) return;
   const glm::dvec3 x = positions[j] - positions[i];
   const double relative = glm::dot(velocities[j] - velocities[i], x) / glm::dot(x, x);  // u / |x|
-  const double impulse = relative * (decay - 1.0) / weight;                            // per |x|
+  const double impulse = relative * factor;                                            // per |x|
   velocities[j] += (impulse * inverseMasses[j]) * x;
   velocities[i] -= (impulse * inverseMasses[i]) * x;
 }
 
 }  // namespace
 
+std::vector<glm::u32vec2> orderedForIndependence(const std::vector<glm::u32vec2>& edges, std::size_t vertexCount) {
+  // Greedy edge colouring: each edge takes the smallest colour not yet used at either end.
+  std::vector<std::uint64_t> usedColours(vertexCount, 0);  // bit c set: colour c taken at the vertex
+  std::vector<std::pair<int, std::size_t>> keyed(edges.size());
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    const std::uint64_t taken = usedColours[edges[e].x] | usedColours[edges[e].y];
+    int colour = 0;
+    while (colour < 63 && (taken >> colour & 1u)) ++colour;
+    usedColours[edges[e].x] |= std::uint64_t{1} << colour;
+    usedColours[edges[e].y] |= std::uint64_t{1} << colour;
+    keyed[e] = {colour, e};
+  }
+  std::sort(keyed.begin(), keyed.end());  // by colour, then by the original (sorted) order
+  std::vector<glm::u32vec2> ordered(edges.size());
+  for (std::size_t e = 0; e < edges.size(); ++e) ordered[e] = edges[keyed[e].second];
+  return ordered;
+}
+
 void springDampingDecays(const SpringSet& springs, const std::vector<double>& inverseMasses, double damping,
                          double h, std::vector<double>& decays) {
   decays.resize(springs.size());
   for (std::size_t s = 0; s < springs.size(); ++s) {
     const double weight = inverseMasses[springs.ends[s].x] + inverseMasses[springs.ends[s].y];
-    decays[s] = std::exp(-damping * weight * 0.5 * h);
+    decays[s] = weight == 0.0 ? 0.0 : (std::exp(-damping * weight * 0.5 * h) - 1.0) / weight;
   }
 }
 
@@ -95,7 +115,7 @@ SpringSet makeEdgeSprings(const std::vector<glm::dvec3>& positions,
                           const std::vector<glm::u32vec3>& triangles, double elementaryStiffness,
                           double prestrain) {
   SpringSet springs;
-  springs.ends = uniqueEdges(triangles);
+  springs.ends = orderedForIndependence(uniqueEdges(triangles), positions.size());
   springs.restLengths.resize(springs.ends.size());
   springs.stiffnesses.resize(springs.ends.size());
   double meanLength = 0.0;

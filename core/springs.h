@@ -48,15 +48,20 @@ void dampSpringsImplicitly(const SpringSet& springs, const std::vector<glm::dvec
                            const std::vector<double>& inverseMasses, double damping, double h,
                            std::vector<glm::dvec3>& velocities);
 
-// The same with each spring's decay over one half sweep, exp(-k_d (w_i + w_j) h/2), precomputed
-// (springDampingDecays) because it only changes with h, k_d and the masses.
+// The same with each spring's factor (exp(-k_d (w_i + w_j) h/2) - 1) / (w_i + w_j) for one half
+// sweep precomputed (springDampingDecays), because it only changes with h, k_d and the masses.
 void springDampingDecays(const SpringSet& springs, const std::vector<double>& inverseMasses, double damping,
                          double h, std::vector<double>& decays);
 void dampSpringsImplicitly(const SpringSet& springs, const std::vector<glm::dvec3>& positions,
                            const std::vector<double>& inverseMasses, const std::vector<double>& decays,
                            std::vector<glm::dvec3>& velocities);
 
-// Springs on the unique edges of `triangles`, rest lengths = current edge length / (1 + prestrain),
+// The edges reordered so that consecutive ones rarely share a vertex (greedy edge colouring, edges
+// sorted by colour): sweeps that write both ends then carry no dependency from one spring to the
+// next, which keeps the CPU's pipeline full. Deterministic.
+std::vector<glm::u32vec2> orderedForIndependence(const std::vector<glm::u32vec2>& edges, std::size_t vertexCount);
+
+// Springs on the unique edges of `triangles` (ordered for independence), rest lengths = current edge length / (1 + prestrain),
 // stiffness by the series rule with d_e = the mean edge length.
 SpringSet makeEdgeSprings(const std::vector<glm::dvec3>& positions,
                           const std::vector<glm::u32vec3>& triangles, double elementaryStiffness,
