@@ -10,14 +10,14 @@
 
 namespace {
 
-struct Run {
+struct CommandResult {
   int exitCode = -1;
   std::string output;  // stdout and stderr together
 };
 
-Run runSlime(const std::string& arguments) {
+CommandResult runSlime(const std::string& arguments) {
   const std::string command = std::string(SLIME_BINARY) + " " + arguments + " 2>&1";
-  Run run;
+  CommandResult run;
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return run;
   std::array<char, 4096> buffer;
@@ -38,7 +38,7 @@ class RejectsBadInput : public testing::TestWithParam<BadInput> {};
 
 TEST_P(RejectsBadInput, WithExitCodeTwoAndAMessageNamingTheProblem) {
   const BadInput& bad = GetParam();
-  const Run run = runSlime(bad.arguments);
+  const CommandResult run = runSlime(bad.arguments);
   EXPECT_EQ(run.exitCode, 2) << bad.arguments << "\n" << run.output;
   EXPECT_NE(run.output.find(bad.mentions), std::string::npos) << bad.arguments << "\n" << run.output;
 }
@@ -71,20 +71,20 @@ TEST(Cli, RejectedSnapshotLeavesNoFileBehind) {
   const std::string path = outputPath("bad.png");
   std::filesystem::remove(path);
   for (const char* arguments : {"--size 0x0", "--set slime.level=12", "--set floor.pattern=image --set floor.image=/nonexistent.png"}) {
-    const Run run = runSlime("snapshot -o " + path + " " + arguments);
+    const CommandResult run = runSlime("snapshot -o " + path + " " + arguments);
     EXPECT_EQ(run.exitCode, 2) << arguments << "\n" << run.output;
     EXPECT_FALSE(std::filesystem::exists(path)) << arguments;
   }
 }
 
 TEST(Cli, HelpNamesEverySubcommandAndExitsZero) {
-  const Run run = runSlime("--help");
+  const CommandResult run = runSlime("--help");
   EXPECT_EQ(run.exitCode, 0);
   for (const char* name : {"view", "snapshot", "sim", "bench"}) EXPECT_NE(run.output.find(name), std::string::npos) << name;
 }
 
 TEST(Cli, SimHelpNamesEveryIntegrator) {
-  const Run run = runSlime("sim --help");
+  const CommandResult run = runSlime("sim --help");
   EXPECT_EQ(run.exitCode, 0);
   for (const char* name : {"explicit_euler", "symplectic_euler", "rk4", "implicit_euler", "xpbd"})
     EXPECT_NE(run.output.find(name), std::string::npos) << name << "\n" << run.output;
