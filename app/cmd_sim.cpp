@@ -33,9 +33,12 @@ struct SimOptions {
 };
 
 void checkSeconds(double seconds) {
-  if (!std::isfinite(seconds) || seconds <= 0.0 || seconds > kMaxSeconds)
-    throw SettingsError("--seconds: " + std::to_string(seconds) + " is not allowed; expected a number greater than 0 and at most " +
-                        std::to_string(static_cast<int>(kMaxSeconds)) + " (s)");
+  if (!std::isfinite(seconds) || seconds <= 0.0 || seconds > kMaxSeconds) {
+    char text[160];
+    std::snprintf(text, sizeof text, "--seconds: %g is not allowed; expected a number greater than 0 and at most %g (s)",
+                  seconds, kMaxSeconds);
+    throw SettingsError(text);
+  }
 }
 
 glm::dvec3 centroid(const std::vector<glm::dvec3>& positions) {
