@@ -33,9 +33,9 @@ void applyImageSize(Settings& settings, const std::string& size) {
   settings.camera.height = parse(heightText);
 }
 
-SnapshotResult takeSnapshot(const Settings& initialSettings, double settleSeconds, const std::string& scenarioFile) {
+Settings settleForSnapshot(Simulation& simulation, const Settings& initialSettings, double settleSeconds,
+                           const std::string& scenarioFile) {
   Settings settings = initialSettings;  // scenario "set" events change it as they fire
-  Renderer renderer(settings);           // first: a bad floor image fails before any simulating
   std::optional<ScenarioPlayer> player;
   double lastEvent = 0.0;
   if (!scenarioFile.empty()) {
@@ -43,8 +43,6 @@ SnapshotResult takeSnapshot(const Settings& initialSettings, double settleSecond
     for (const ScenarioEvent& event : scenario.events) lastEvent = std::max(lastEvent, event.time + event.duration);
     player.emplace(std::move(scenario));
   }
-
-  Simulation simulation(settings);
   const double dt = settings.sim.dt;
   const bool untilRest = settleSeconds < 0.0;
   const double limit = untilRest ? lastEvent + kMaxSettleSeconds : settleSeconds;
@@ -58,6 +56,13 @@ SnapshotResult takeSnapshot(const Settings& initialSettings, double settleSecond
         simulation.stepCount() % checkEvery == 0 && simulation.metrics().maxSpeed < kRestSpeed)
       break;
   }
+  return settings;
+}
+
+SnapshotResult takeSnapshot(const Settings& initialSettings, double settleSeconds, const std::string& scenarioFile) {
+  Renderer renderer(initialSettings);  // first: a bad floor image fails before any simulating
+  Simulation simulation(initialSettings);
+  const Settings settings = settleForSnapshot(simulation, initialSettings, settleSeconds, scenarioFile);
 
   SnapshotResult result;
   result.simulatedSeconds = simulation.time();

@@ -23,6 +23,11 @@ struct SnapshotResult {
 // with the settings' camera and image size. Deterministic: the same inputs give the same pixels.
 SnapshotResult takeSnapshot(const Settings& settings, double settleSeconds, const std::string& scenarioFile = "");
 
+// Advances `simulation` by the rule above: `settleSeconds` of simulated time or, when negative, until
+// the slime rests. Returns the settings as the scenario's "set" events left them.
+Settings settleForSnapshot(Simulation& simulation, const Settings& settings, double settleSeconds,
+                           const std::string& scenarioFile);
+
 constexpr double kMaxSettleSeconds = 3.0;
 // "At rest": no vertex faster than this (m/s), checked after at least kMinSettleSeconds.
 constexpr double kRestSpeed = 0.005;

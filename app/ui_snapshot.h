@@ -16,10 +16,4 @@ namespace slime {
 void writeUiSnapshot(const Settings& settings, const std::string& path,
                      const std::function<void(Simulation&)>& settle = nullptr);
 
-// Settles a simulation by the rule of `slime snapshot` (snapshot.h): `settleSeconds` of simulated time,
-// or, when negative, until the slime rests (at most kMaxSettleSeconds after the scenario's last event),
-// replaying `scenarioFile` if one is given.
-void settleForSnapshot(Simulation& simulation, const Settings& settings, double settleSeconds,
-                       const std::string& scenarioFile);
-
 }  // namespace slime
