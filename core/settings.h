@@ -44,7 +44,6 @@ struct SlimeSettings {
   double stiffness = 100.0;              // elementary spring stiffness k_e, N/m (series rule k = k_e d_e / d)
   double damping = 0.1;                  // damper coefficient k_d along each spring, N·s/m
   double pressure = 3.0;                 // volume preservation strength, relative (0 = none)
-  double bending = 0.0;                  // shape (bending) term strength, relative (0 = none)
   double friction = 0.6;                 // Coulomb friction coefficient against the floor
   glm::dvec3 position{0.0, 0.0, 0.10};   // start position of the centre, m
   glm::dvec3 color{0.25, 0.85, 0.35};    // slime colour: surface tint and per-channel transmittance

@@ -57,7 +57,6 @@ void forEachField(S& s, Visitor&& visit) {
   visit("slime.stiffness", s.slime.stiffness, Limits{0.01, 100000.0, "N/m"});
   visit("slime.damping", s.slime.damping, Limits{0.0, 100.0, "N·s/m"});
   visit("slime.pressure", s.slime.pressure, Limits{0.0, 100.0, "relative"});
-  visit("slime.bending", s.slime.bending, Limits{0.0, 100.0, "relative"});
   visit("slime.friction", s.slime.friction, Limits{0.0, 10.0, "Coulomb coefficient"});
   visit("slime.position", s.slime.position, Limits{-100.0, 100.0, "m"});
   // Slime: optics
