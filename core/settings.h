@@ -32,7 +32,7 @@ struct FloorSettings {
   glm::dvec3 colorB{0.34, 0.18, 0.07};     // second pattern colour (linear RGB)
   std::string image;                       // PNG path when pattern == "image"
   double diffuse = 0.8;                    // k_d of the floor
-  double specular = 0.04;                  // k_s of the floor (reflection of the slime in it)
+  double specular = 0.0;                   // k_s of the floor: its highlight and mirror image (0: matte, no rays)
 };
 
 struct SlimeSettings {

@@ -31,15 +31,23 @@ inline float grainSine(float x) {
   return y * (0.775f + 0.225f * std::abs(y));
 }
 
-// A well-mixed integer hash (lowbias32) → [0, 1).
-float hash01(std::int32_t i, std::int32_t j) {
+// A well-mixed integer hash (lowbias32) of a pair: 32 independent-looking bits.
+std::uint32_t hashBits(std::int32_t i, std::int32_t j) {
   std::uint32_t x = static_cast<std::uint32_t>(i) * 0x9E3779B9u ^ (static_cast<std::uint32_t>(j) + 0x7F4A7C15u);
   x ^= x >> 16;
   x *= 0x7feb352du;
   x ^= x >> 15;
   x *= 0x846ca68bu;
   x ^= x >> 16;
-  return static_cast<float>(x >> 8) * (1.0f / 16777216.0f);
+  return x;
+}
+
+// The hash → [0, 1).
+float hash01(std::int32_t i, std::int32_t j) { return static_cast<float>(hashBits(i, j) >> 8) * (1.0f / 16777216.0f); }
+
+// Byte k of a hash → [0, 1) (the centre of one of 256 steps): four draws from one hash.
+float hashByte(std::uint32_t bits, int k) {
+  return (static_cast<float>((bits >> (8 * k)) & 0xFFu) + 0.5f) * (1.0f / 256.0f);
 }
 
 // The integral from 0 to x of a pulse train that is 1 on [k, k + width) for every integer k:
@@ -71,7 +79,7 @@ glm::vec3 toVec3(const glm::dvec3& v) { return glm::vec3(v); }
 }  // namespace
 
 FloorTexture::FloorTexture(const FloorSettings& settings)
-    : scale_(static_cast<float>(settings.scale)), colorA_(toVec3(settings.colorA)), colorB_(toVec3(settings.colorB)) {
+    : scale_(static_cast<float>(settings.scale)), inverseScale_(1.0f / scale_), colorA_(toVec3(settings.colorA)), colorB_(toVec3(settings.colorB)) {
   if (!(scale_ > 0.0f)) throw SettingsError("floor.scale must be > 0 m, got " + std::to_string(settings.scale));
   if (settings.pattern == "planks") pattern_ = Pattern::Planks;
   else if (settings.pattern == "tiles") pattern_ = Pattern::Tiles;
@@ -102,34 +110,41 @@ glm::vec3 FloorTexture::albedo(glm::vec2 point, glm::vec2 footprint) const {
 
 // Boards `scale` wide running along x, six widths long, each row's joints staggered; each board has
 // its own shade between colorA and colorB, wavy grain along its length and dark seams between boards.
+// One hash per board draws its shade, brightness, grain phase and grain density (a byte each).
 glm::vec3 FloorTexture::planks(glm::vec2 p, glm::vec2 footprint) const {
   constexpr float kLength = 6.0f;      // board length in board widths
   constexpr float kSeam = 0.03f;       // seam width as a fraction of the board width
   constexpr float kGrainPerBoard = 11.0f;
-  const glm::vec2 q = p / scale_;               // in board widths
-  const glm::vec2 h = footprint / scale_;
+  constexpr float kDarkestGrainDensity = 0.7f, kGrainDensityRange = 0.6f;
+  const glm::vec2 q = p * inverseScale_;        // in board widths
+  const glm::vec2 h = footprint * inverseScale_;
   const float row = floorOf(q.y);
-  const float stagger = hash01(static_cast<std::int32_t>(row), 17) * kLength;
-  const float along = (q.x + stagger) / kLength;  // in board lengths
+  const auto rowIndex = static_cast<std::int32_t>(row);
+  const float stagger = hash01(rowIndex, 17) * kLength;
+  const float along = (q.x + stagger) * (1.0f / kLength);  // in board lengths
   const float board = floorOf(along);
+  const std::uint32_t draws = hashBits(static_cast<std::int32_t>(board), rowIndex);
 
   // Per-board shade and brightness, faded to their mean once a board is smaller than the footprint.
   const float boardVisibility = detailVisibility(std::max(h.x, h.y), 1.0f);
-  const float shade = glm::mix(0.5f, hash01(static_cast<std::int32_t>(board), static_cast<std::int32_t>(row)), boardVisibility);
-  const float brightness = 1.0f + 0.18f * boardVisibility * (hash01(static_cast<std::int32_t>(row), static_cast<std::int32_t>(board) + 911) - 0.5f);
+  const float shade = glm::mix(0.5f, hashByte(draws, 0), boardVisibility);
+  const float brightness = 1.0f + 0.18f * boardVisibility * (hashByte(draws, 1) - 0.5f);
   glm::vec3 color = glm::mix(colorA_, colorB_, shade) * brightness;
 
-  // Grain: stripes across y that wander slowly along x, fading as the footprint reaches their period.
-  const float phase = hash01(static_cast<std::int32_t>(board), static_cast<std::int32_t>(row) + 3) * 2.0f * kPi;
-  const float grainPeriod = 1.0f / kGrainPerBoard;
-  const float density = 0.7f + 0.6f * hash01(static_cast<std::int32_t>(row), static_cast<std::int32_t>(board) + 57);
-  const float wander = (1.0f + 1.5f * density) * grainSine(q.x * (0.9f + density) + phase);
-  const float grain = grainSine(2.0f * kPi * kGrainPerBoard * density * q.y + wander + phase);
-  color *= 1.0f + 0.05f * grain * detailVisibility(h.y, grainPeriod / density);
+  // Grain: stripes across y that wander slowly along x, fading as the footprint reaches their period
+  // (skipped once it has faded for every density).
+  constexpr float kGrainPeriod = 1.0f / kGrainPerBoard;
+  if (h.y < 0.5f * kGrainPeriod / kDarkestGrainDensity) {
+    const float phase = hashByte(draws, 2) * 2.0f * kPi;
+    const float density = kDarkestGrainDensity + kGrainDensityRange * hashByte(draws, 3);
+    const float wander = (1.0f + 1.5f * density) * grainSine(q.x * (0.9f + density) + phase);
+    const float grain = grainSine(2.0f * kPi * kGrainPerBoard * density * q.y + wander + phase);
+    color *= 1.0f + 0.05f * grain * detailVisibility(h.y, kGrainPeriod / density);
+  }
 
   // Seams: the long ones between rows (exactly filtered), the joints between boards of one row.
   const float longSeam = filteredPulse(q.y + 0.5f * kSeam, h.y, kSeam);
-  const float joint = filteredPulse(along + 0.5f * kSeam / kLength, h.x / kLength, kSeam / kLength);
+  const float joint = filteredPulse(along + 0.5f * kSeam / kLength, h.x * (1.0f / kLength), kSeam / kLength);
   const float seam = 1.0f - (1.0f - longSeam) * (1.0f - joint);
   return glm::mix(color, colorB_ * 0.35f, seam);
 }

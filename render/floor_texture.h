@@ -40,6 +40,7 @@ class FloorTexture {
 
   Pattern pattern_ = Pattern::Planks;
   float scale_ = 0.1f;
+  float inverseScale_ = 10.0f;
   glm::vec3 colorA_{0.6f}, colorB_{0.4f}, mean_{0.5f};
   std::vector<MipLevel> mips_;  // level 0 = the image, each next one half the size
 };

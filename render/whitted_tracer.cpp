@@ -159,16 +159,19 @@ glm::vec3 WhittedTracer::shadeFloor(const Ray& ray, float t, const Path& path, T
 glm::vec3 WhittedTracer::floorLocal(const glm::vec3& point, const glm::vec3& direction, float distance, bool shadowed,
                                     TraceCounters& counters) const {
   const ShadingParameters& p = parameters_;
-  // The pixel's cone (width = distance × spread) cuts the floor in an ellipse stretched by 1/cos θ
-  // along the ray's horizontal direction; the texture averages over that ellipse's bounding box.
-  const float width = distance * p.pixelSpread;
+  // The pixel's cone (width w = distance × spread) cuts the floor in an ellipse with half axes
+  // w/(2 cos θ) along the ray's horizontal direction (d_x, d_y)/sin θ and w/2 across it; the texture
+  // averages over that ellipse's bounding box, whose half extents are
+  //   (w/2) √((d_x²/cos²θ + d_y²)/sin²θ) and (w/2) √((d_y²/cos²θ + d_x²)/sin²θ).
+  const float halfWidth = 0.5f * distance * p.pixelSpread;
   const float cosTheta = std::max(std::abs(direction.z), 1e-3f);
-  const float horizontal = std::sqrt(direction.x * direction.x + direction.y * direction.y);
-  const float hx = horizontal > 1e-6f ? direction.x / horizontal : 1.0f;
-  const float hy = horizontal > 1e-6f ? direction.y / horizontal : 0.0f;
-  const float along = 0.5f * width / cosTheta, across = 0.5f * width;
-  const glm::vec2 footprint{std::sqrt(along * along * hx * hx + across * across * hy * hy),
-                            std::sqrt(along * along * hy * hy + across * across * hx * hx)};
+  const float inverseCos2 = 1.0f / (cosTheta * cosTheta);
+  const float dx2 = direction.x * direction.x, dy2 = direction.y * direction.y, sin2 = dx2 + dy2;
+  glm::vec2 footprint{halfWidth / cosTheta, halfWidth};  // looking straight down: a circle, any axes
+  if (sin2 > 1e-12f) {
+    const float scale = halfWidth * halfWidth / sin2;
+    footprint = {std::sqrt(scale * (dx2 * inverseCos2 + dy2)), std::sqrt(scale * (dy2 * inverseCos2 + dx2))};
+  }
   const glm::vec3 albedo = floor_.albedo({point.x, point.y}, footprint);
 
   glm::vec3 color = albedo * p.ambientLight;
@@ -178,9 +181,11 @@ glm::vec3 WhittedTracer::floorLocal(const glm::vec3& point, const glm::vec3& dir
   const glm::vec3 visible = shadowed && p.shadows
       ? lightTransmittance(point + glm::vec3(0.0f, 0.0f, kRayOffset), counters) : glm::vec3(1.0f);
   if (largest(visible) <= 0.0f) return color;
+  const glm::vec3 lit = p.floorDiffuse * lightDirection.z * albedo;
+  if (p.floorSpecular <= 0.0f) return color + visible * p.lightColor * lit;  // matte: no highlight to compute
   const glm::vec3 up{0.0f, 0.0f, 1.0f};
   const float highlight = p.floorSpecular * phongLobe(up, lightDirection, -direction, p.floorShininess);
-  return color + visible * p.lightColor * (p.floorDiffuse * lightDirection.z * albedo + highlight);
+  return color + visible * p.lightColor * (lit + highlight);
 }
 
 glm::vec3 WhittedTracer::lightTransmittance(const glm::vec3& point, TraceCounters& counters, bool leavesSlime) const {
