@@ -47,6 +47,19 @@ class FlushDenormals {
   unsigned saved_;
 };
 
+// Everything a primary ray's FloorShading depends on: the view, the image size and the floor's
+// lighting (the floor texture itself is checked by Impl::sync).
+std::vector<double> floorCacheKey(const Camera& camera, const ShadingParameters& p, int width, int height) {
+  std::vector<double> key{camera.position.x, camera.position.y, camera.position.z, camera.forward.x, camera.forward.y,
+                          camera.forward.z, camera.right.x, camera.right.y, camera.right.z, camera.up.x, camera.up.y,
+                          camera.up.z, camera.tanHalfFov, camera.aspect, static_cast<double>(width),
+                          static_cast<double>(height), p.floorDiffuse, p.floorSpecular, p.floorShininess,
+                          p.hazeDistance, p.pixelSpread};
+  for (const glm::vec3& v : {p.lightPosition, p.lightColor, p.ambientLight, p.skyHorizon})
+    key.insert(key.end(), {v.x, v.y, v.z});
+  return key;
+}
+
 }  // namespace
 
 struct Renderer::Impl {
@@ -59,6 +72,11 @@ struct Renderer::Impl {
   std::unique_ptr<tbb::task_arena> arena;
   tbb::enumerable_thread_specific<TraceCounters> counters;
   double refitMs = 0.0;
+  // Per pixel, the FloorShading its primary ray saw (one sample per pixel only). The floor does not
+  // move: while the camera, the image size and the floor's lighting stay, only the shadow ray and the
+  // slime are traced again there; the entries are recomputed whenever floorCacheKey changes.
+  std::vector<FloorShading> floorCache;
+  std::vector<double> floorCacheView;
 
   explicit Impl(const Settings& settings)
       : embree(settings.render.threads), floorSettings(settings.floor), floor(settings.floor) {
@@ -75,6 +93,7 @@ struct Renderer::Impl {
     if (!sameFloor(settings.floor, floorSettings)) {
       floor = FloorTexture(settings.floor);
       floorSettings = settings.floor;
+      floorCacheView.clear();
     }
     if (settings.render.threads != threads) makeArena(settings.render.threads);
     const bool sphere = settings.slime.shape == "sphere";
@@ -89,7 +108,7 @@ struct Renderer::Impl {
   // those that can reach the slime's bounding sphere), then shading ray by ray.
   void traceTile(const WhittedTracer& tracer, const SlimeIntersector& intersector, const Camera& camera,
                  int samplesPerAxis, int rowBegin, int rowEnd, int columnBegin, int columnEnd, Image& image,
-                 TraceCounters& counts) const {
+                 FloorShading* floorShadings, TraceCounters& counts) const {
     FlushDenormals flush;
     const float inverseSamples = 1.0f / static_cast<float>(samplesPerAxis * samplesPerAxis);
     const glm::vec3 eye(camera.position), forward(camera.forward);
@@ -117,7 +136,10 @@ struct Renderer::Impl {
               counts.slimeQueries += static_cast<std::uint64_t>(activeCount);
               intersector.intersect8(rays, active, hits);
             }
-            for (int i = 0; i < kPacket && x0 + i < columnEnd; ++i) sums[i] += tracer.tracePrimary(rays[i], hits[i], counts);
+            for (int i = 0; i < kPacket && x0 + i < columnEnd; ++i) {
+              FloorShading* cached = floorShadings ? floorShadings + static_cast<std::size_t>(y) * image.width + x0 + i : nullptr;
+              sums[i] += tracer.tracePrimary(rays[i], hits[i], counts, cached);
+            }
           }
         }
         for (int i = 0; i < kPacket && x0 + i < columnEnd; ++i) {
@@ -158,18 +180,28 @@ RenderStats Renderer::render(const Settings& settings, Image& image) {
   const SlimeIntersector& intersector = brute ? static_cast<const SlimeIntersector&>(impl.brute) : impl.embree;
   const WhittedTracer tracer(impl.geometry, intersector, impl.floor, parameters);
 
+  FloorShading* floorShadings = nullptr;
+  if (samplesPerAxis == 1) {
+    std::vector<double> view = floorCacheKey(camera, parameters, image.width, image.height);
+    if (view != impl.floorCacheView) {
+      impl.floorCache.assign(image.pixels.size(), FloorShading{});
+      impl.floorCacheView = std::move(view);
+    }
+    floorShadings = impl.floorCache.data();
+  }
+
   for (TraceCounters& counts : impl.counters) counts = TraceCounters{};
   if (brute) {
     // The seed's algorithm is the oracle: one thread, no packets that matter, every triangle.
     impl.traceTile(tracer, intersector, camera, samplesPerAxis, 0, image.height, 0, image.width, image,
-                   impl.counters.local());
+                   floorShadings, impl.counters.local());
   } else {
     impl.arena->execute([&] {
       tbb::parallel_for(tbb::blocked_range2d<int>(0, image.height, kTileRows, 0, image.width, kTileColumns),
                         [&](const tbb::blocked_range2d<int>& tile) {
                           impl.traceTile(tracer, intersector, camera, samplesPerAxis, tile.rows().begin(),
                                          tile.rows().end(), tile.cols().begin(), tile.cols().end(), image,
-                                         impl.counters.local());
+                                         floorShadings, impl.counters.local());
                         });
     });
   }

@@ -41,9 +41,10 @@ SlimeHit WhittedTracer::findSlime(const Ray& ray, TraceCounters& counters) const
   return intersector_.intersect(ray);
 }
 
-glm::vec3 WhittedTracer::tracePrimary(const Ray& ray, const SlimeHit& hit, TraceCounters& counters) const {
+glm::vec3 WhittedTracer::tracePrimary(const Ray& ray, const SlimeHit& hit, TraceCounters& counters,
+                                      FloorShading* floorCache) const {
   ++counters.rays.primary;
-  return trace(ray, &hit, Path{}, Kind::Primary, counters);
+  return trace(ray, &hit, Path{}, Kind::Primary, counters, floorCache);
 }
 
 glm::vec3 WhittedTracer::tracePrimary(const Ray& ray, TraceCounters& counters) const {
@@ -52,7 +53,7 @@ glm::vec3 WhittedTracer::tracePrimary(const Ray& ray, TraceCounters& counters) c
 }
 
 glm::vec3 WhittedTracer::trace(const Ray& ray, const SlimeHit* knownHit, const Path& path, Kind kind,
-                               TraceCounters& counters) const {
+                               TraceCounters& counters, FloorShading* floorCache) const {
   if (kind == Kind::Reflection) ++counters.rays.reflection;
   if (kind == Kind::Refraction) ++counters.rays.refraction;
   const bool cannotMeetSlime = path.leavesSlime && geometry_.isConvex();
@@ -60,7 +61,7 @@ glm::vec3 WhittedTracer::trace(const Ray& ray, const SlimeHit* knownHit, const P
   const float tFloor = floorDistance(ray);
   if (hit.valid() && hit.t <= tFloor) return shadeSlime(ray, hit, path, counters);
   if (tFloor == kInfinity) return sky(ray.direction);
-  const glm::vec3 floorColor = shadeFloor(ray, tFloor, path, counters);
+  const glm::vec3 floorColor = shadeFloor(ray, tFloor, path, counters, floorCache);
   // Under the jelly (the contact patch) the floor is seen through Beer–Lambert absorption.
   return path.inside ? floorColor * beerLambert(parameters_.slimeAbsorption, tFloor) : floorColor;
 }
@@ -139,12 +140,19 @@ glm::vec3 WhittedTracer::shadeSlime(const Ray& ray, const SlimeHit& hit, const P
   return color * absorbed;
 }
 
-glm::vec3 WhittedTracer::shadeFloor(const Ray& ray, float t, const Path& path, TraceCounters& counters) const {
+glm::vec3 WhittedTracer::shadeFloor(const Ray& ray, float t, const Path& path, TraceCounters& counters,
+                                    FloorShading* floorCache) const {
   const ShadingParameters& p = parameters_;
   glm::vec3 point = ray.origin + t * ray.direction;
   point.z = 0.0f;
   const float distance = path.travelled + t;
-  glm::vec3 color = floorLocal(point, ray.direction, distance, true, counters);
+  FloorShading fresh;
+  if (!floorCache || !floorCache->filled) {
+    fresh = floorShading(point, ray.direction, distance);
+    if (floorCache) *floorCache = fresh;
+  }
+  const FloorShading& shading = floorCache ? *floorCache : fresh;
+  glm::vec3 color = floorLocal(shading, point, true, counters);
   if (path.segment < p.depth && p.floorSpecular > 0.0f && largest(path.weight * p.floorSpecular) >= kMinRayWeight) {
     // The varnish mirrors what is above: the reflected ray (d_x, d_y, −d_z).
     const glm::vec3 direction{ray.direction.x, ray.direction.y, -ray.direction.z};
@@ -153,11 +161,10 @@ glm::vec3 WhittedTracer::shadeFloor(const Ray& ray, float t, const Path& path, T
     color += p.floorSpecular * trace(reflectedRay, nullptr, next, Kind::Reflection, counters);
   }
   // Far floor fades into the horizon haze so that the horizon is a soft line.
-  return glm::mix(color, p.skyHorizon, 1.0f - std::exp(-distance / p.hazeDistance));
+  return glm::mix(color, p.skyHorizon, shading.haze);
 }
 
-glm::vec3 WhittedTracer::floorLocal(const glm::vec3& point, const glm::vec3& direction, float distance, bool shadowed,
-                                    TraceCounters& counters) const {
+FloorShading WhittedTracer::floorShading(const glm::vec3& point, const glm::vec3& direction, float distance) const {
   const ShadingParameters& p = parameters_;
   // The pixel's cone (width w = distance × spread) cuts the floor in an ellipse with half axes
   // w/(2 cos θ) along the ray's horizontal direction (d_x, d_y)/sin θ and w/2 across it; the texture
@@ -174,18 +181,30 @@ glm::vec3 WhittedTracer::floorLocal(const glm::vec3& point, const glm::vec3& dir
   }
   const glm::vec3 albedo = floor_.albedo({point.x, point.y}, footprint);
 
-  glm::vec3 color = albedo * p.ambientLight;
+  FloorShading shading;
+  shading.filled = true;
+  shading.ambient = albedo * p.ambientLight;
+  shading.haze = 1.0f - std::exp(-distance / p.hazeDistance);
   const glm::vec3 toLight = p.lightPosition - point;
-  if (toLight.z <= 0.0f) return color;
+  if (toLight.z <= 0.0f) return shading;
   const glm::vec3 lightDirection = glm::normalize(toLight);
+  glm::vec3 reflected = p.floorDiffuse * lightDirection.z * albedo;
+  if (p.floorSpecular > 0.0f) {  // a matte floor has no highlight to compute
+    const glm::vec3 up{0.0f, 0.0f, 1.0f};
+    reflected += p.floorSpecular * phongLobe(up, lightDirection, -direction, p.floorShininess);
+  }
+  shading.lit = p.lightColor * reflected;
+  return shading;
+}
+
+glm::vec3 WhittedTracer::floorLocal(const FloorShading& shading, const glm::vec3& point, bool shadowed,
+                                    TraceCounters& counters) const {
+  const ShadingParameters& p = parameters_;
+  if (shading.lit == glm::vec3(0.0f)) return shading.ambient;  // the light is below the floor, or black
   const glm::vec3 visible = shadowed && p.shadows
       ? lightTransmittance(point + glm::vec3(0.0f, 0.0f, kRayOffset), counters) : glm::vec3(1.0f);
-  if (largest(visible) <= 0.0f) return color;
-  const glm::vec3 lit = p.floorDiffuse * lightDirection.z * albedo;
-  if (p.floorSpecular <= 0.0f) return color + visible * p.lightColor * lit;  // matte: no highlight to compute
-  const glm::vec3 up{0.0f, 0.0f, 1.0f};
-  const float highlight = p.floorSpecular * phongLobe(up, lightDirection, -direction, p.floorShininess);
-  return color + visible * p.lightColor * (lit + highlight);
+  if (largest(visible) <= 0.0f) return shading.ambient;
+  return shading.ambient + visible * shading.lit;
 }
 
 glm::vec3 WhittedTracer::lightTransmittance(const glm::vec3& point, TraceCounters& counters, bool leavesSlime) const {
@@ -228,9 +247,8 @@ glm::vec3 WhittedTracer::environment(const Ray& ray, float travelled) const {
   TraceCounters unused;
   glm::vec3 point = ray.origin + t * ray.direction;
   point.z = 0.0f;
-  const float distance = travelled + t;
-  const glm::vec3 color = floorLocal(point, ray.direction, distance, false, unused);
-  return glm::mix(color, parameters_.skyHorizon, 1.0f - std::exp(-distance / parameters_.hazeDistance));
+  const FloorShading shading = floorShading(point, ray.direction, travelled + t);
+  return glm::mix(floorLocal(shading, point, false, unused), parameters_.skyHorizon, shading.haze);
 }
 
 glm::vec3 WhittedTracer::sky(const glm::vec3& direction) const {

@@ -24,6 +24,17 @@ struct TraceCounters {
   std::uint64_t nonFinitePixels = 0;
 };
 
+// The floor seen along one ray, everything that does not depend on the slime: colour =
+//   mix(ambient + T_light · lit (+ k_s I_mirror), horizon, haze)
+// with T_light the light's transmittance past the slime (a shadow ray) traced per frame. For a still
+// camera the primary rays' FloorShading is the same every frame and the renderer keeps it per pixel.
+struct FloorShading {
+  glm::vec3 ambient{0.0f};  // albedo × ambient light
+  glm::vec3 lit{0.0f};      // light colour × (k_d (N·L) albedo + k_s (R·V)^n); zero when the light is below
+  float haze = 0.0f;        // the horizon haze's share, 1 − exp(−distance / hazeDistance)
+  bool filled = false;      // computed (a cache entry not yet computed is not)
+};
+
 class WhittedTracer {
  public:
   WhittedTracer(const SlimeGeometry& geometry, const SlimeIntersector& intersector, const FloorTexture& floor,
@@ -31,7 +42,9 @@ class WhittedTracer {
       : geometry_(geometry), intersector_(intersector), floor_(floor), parameters_(parameters) {}
 
   // Radiance along a primary ray whose slime hit has already been found (or found not to exist).
-  glm::vec3 tracePrimary(const Ray& ray, const SlimeHit& hit, TraceCounters& counters) const;
+  // `floorCache`, if given, holds this pixel's FloorShading: used when filled, else filled.
+  glm::vec3 tracePrimary(const Ray& ray, const SlimeHit& hit, TraceCounters& counters,
+                         FloorShading* floorCache = nullptr) const;
 
   // Radiance along a primary ray (finds the slime hit itself).
   glm::vec3 tracePrimary(const Ray& ray, TraceCounters& counters) const;
@@ -54,11 +67,13 @@ class WhittedTracer {
     bool leavesSlime = false;   // the ray starts on the slime's surface heading outwards
   };
 
-  glm::vec3 trace(const Ray& ray, const SlimeHit* knownHit, const Path& path, Kind kind, TraceCounters& counters) const;
+  glm::vec3 trace(const Ray& ray, const SlimeHit* knownHit, const Path& path, Kind kind, TraceCounters& counters,
+                  FloorShading* floorCache = nullptr) const;
   glm::vec3 shadeSlime(const Ray& ray, const SlimeHit& hit, const Path& path, TraceCounters& counters) const;
-  glm::vec3 shadeFloor(const Ray& ray, float t, const Path& path, TraceCounters& counters) const;
-  glm::vec3 floorLocal(const glm::vec3& point, const glm::vec3& direction, float distance, bool shadowed,
-                       TraceCounters& counters) const;
+  glm::vec3 shadeFloor(const Ray& ray, float t, const Path& path, TraceCounters& counters,
+                       FloorShading* floorCache) const;
+  FloorShading floorShading(const glm::vec3& point, const glm::vec3& direction, float distance) const;
+  glm::vec3 floorLocal(const FloorShading& shading, const glm::vec3& point, bool shadowed, TraceCounters& counters) const;
   glm::vec3 environment(const Ray& ray, float travelled) const;  // floor (unshadowed) or sky, no slime
   glm::vec3 sky(const glm::vec3& direction) const;
 

@@ -56,6 +56,38 @@ TEST(Invariant, CentreRayIsAttenuatedByBeerLambertOverTheDiameter) {
   expectCentreAttenuation("mesh", 5, 5e-3f);  // the inscribed mesh's chord is a little shorter
 }
 
+// The renderer keeps the floor its primary rays saw while the view stays still; a frame drawn from
+// that cache must be exactly the frame a fresh renderer draws, after the slime moved (uncovering floor
+// the first frame never shaded) and after the camera or the light changed (the cache is dropped).
+TEST(Invariant, FramesFromTheFloorCacheEqualFreshFrames) {
+  Settings settings = smallScene(160, 120);
+  settings.slime.level = 3;
+  const TriangleMesh resting = restingMesh(settings);
+  TriangleMesh moved = resting;
+  for (auto& p : moved.positions) p += glm::dvec3(0.03, 0.02, 0.0);
+  Renderer renderer(settings);
+  Image image;
+  image.resize(settings.camera.width, settings.camera.height);
+  renderer.updateSlime(resting.positions, resting.triangles);
+  renderer.render(settings, image);
+  auto expectFresh = [&](const Settings& s, const TriangleMesh& mesh, const char* what) {
+    renderer.updateSlime(mesh.positions, mesh.triangles);
+    renderer.render(s, image);
+    const Image fresh = renderMesh(s, mesh);
+    ASSERT_EQ(image.pixels.size(), fresh.pixels.size());
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) differing += image.pixels[i] != fresh.pixels[i];
+    EXPECT_EQ(differing, 0u) << what;
+  };
+  expectFresh(settings, moved, "slime moved");
+  settings.camera.yaw += 4.0;
+  expectFresh(settings, moved, "camera turned");
+  settings.light.position.x -= 0.1;
+  expectFresh(settings, resting, "light moved");
+  settings.floor.specular = 0.1;
+  expectFresh(settings, resting, "floor varnished");
+}
+
 // The seed's algorithm (bounding sphere, then every triangle) and Embree must agree.
 TEST(Oracle, EmbreeMatchesBruteForce) {
   for (const char* optics : {"fresnel", "seed"}) {

@@ -1,6 +1,6 @@
 // Not a timed test: run by hand to measure frame time and ray throughput (README figures).
-//   SLIME_BENCH_THREADS=2 build/render/tests/render_tests --gtest_also_run_disabled_tests
-//     --gtest_filter='RenderBench.*'
+//   SLIME_BENCH_THREADS=2 build/perf/tests/render_tests --gtest_also_run_disabled_tests
+//     --gtest_filter='RenderBench.*'   (SLIME_BENCH_LEVEL=4: that level only; SLIME_BENCH_FRAMES=n)
 #include "render_fixture.h"
 
 #include <gtest/gtest.h>
@@ -17,8 +17,10 @@ namespace {
 TEST(RenderBench, DISABLED_LevelsZeroToSixAt734x564) {
   const char* threadsText = std::getenv("SLIME_BENCH_THREADS");
   const char* framesText = std::getenv("SLIME_BENCH_FRAMES");
+  const char* levelText = std::getenv("SLIME_BENCH_LEVEL");  // one level only (e.g. under callgrind)
   const int frames = framesText ? std::max(1, std::atoi(framesText)) : 15;
-  for (int level = 0; level <= 6; ++level) {
+  const int firstLevel = levelText ? std::atoi(levelText) : 0, lastLevel = levelText ? firstLevel : 6;
+  for (int level = firstLevel; level <= lastLevel; ++level) {
     Settings settings = smallScene(734, 564);
     settings.render.threads = threadsText ? std::atoi(threadsText) : 2;
     settings.slime.level = level;
