@@ -157,7 +157,7 @@ json runAccuracyBench(const Settings& baseSettings, const AccuracyBenchOptions& 
   json report = {{"bench", "accuracy"}, {"width", options.width}, {"height", options.height},
                  {"reference", {{"shape", "sphere"}, {"depth", largestDepth}}}, {"distance", distance},
                  {"threshold", {{"step", kVisibleStep}, {"fraction", kVisibleFraction},
-                                {"rule", "invisible when at most 0.1% of the pixels differ by more than 2 steps of 8-bit sRGB"}}},
+                                {"rule", "invisible when at most 1% of the pixels differ by more than 2 steps of 8-bit sRGB"}}},
                  {"runs", runs}, {"cheapest_invisible", cheapest}, {"smallest_invisible_smooth", smallestInvisible},
                  {"auto_level", {{"threshold_px", kInvisibleSagittaPixels},
                                  {"chosen_here", chooseLevel(settings.slime.radius, distance, settings.camera.fov, options.height)}}}};
