@@ -17,6 +17,7 @@
 #include <xmmintrin.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 
@@ -49,15 +50,17 @@ class FlushDenormals {
 
 // Everything a primary ray's FloorShading depends on: the view, the image size and the floor's
 // lighting (the floor texture itself is checked by Impl::sync).
-std::vector<double> floorCacheKey(const Camera& camera, const ShadingParameters& p, int width, int height) {
-  std::vector<double> key{camera.position.x, camera.position.y, camera.position.z, camera.forward.x, camera.forward.y,
-                          camera.forward.z, camera.right.x, camera.right.y, camera.right.z, camera.up.x, camera.up.y,
-                          camera.up.z, camera.tanHalfFov, camera.aspect, static_cast<double>(width),
-                          static_cast<double>(height), p.floorDiffuse, p.floorSpecular, p.floorShininess,
-                          p.hazeDistance, p.pixelSpread};
-  for (const glm::vec3& v : {p.lightPosition, p.lightColor, p.ambientLight, p.skyHorizon})
-    key.insert(key.end(), {v.x, v.y, v.z});
-  return key;
+using FloorCacheKey = std::array<double, 33>;
+
+FloorCacheKey floorCacheKey(const Camera& camera, const ShadingParameters& p, int width, int height) {
+  const glm::vec3 light = p.lightPosition, color = p.lightColor, ambient = p.ambientLight, horizon = p.skyHorizon;
+  return {camera.position.x, camera.position.y, camera.position.z, camera.forward.x, camera.forward.y,
+          camera.forward.z,  camera.right.x,    camera.right.y,    camera.right.z,    camera.up.x,
+          camera.up.y,       camera.up.z,       camera.tanHalfFov, camera.aspect,     static_cast<double>(width),
+          static_cast<double>(height), p.floorDiffuse, p.floorSpecular, p.floorShininess, p.hazeDistance,
+          p.pixelSpread,     light.x,           light.y,           light.z,           color.x,
+          color.y,           color.z,           ambient.x,         ambient.y,         ambient.z,
+          horizon.x,         horizon.y,         horizon.z};
 }
 
 }  // namespace
@@ -76,7 +79,8 @@ struct Renderer::Impl {
   // move: while the camera, the image size and the floor's lighting stay, only the shadow ray and the
   // slime are traced again there; the entries are recomputed whenever floorCacheKey changes.
   std::vector<FloorShading> floorCache;
-  std::vector<double> floorCacheView;
+  FloorCacheKey floorCacheView{};
+  bool floorCacheValid = false;
 
   explicit Impl(const Settings& settings)
       : embree(settings.render.threads), floorSettings(settings.floor), floor(settings.floor) {
@@ -93,7 +97,7 @@ struct Renderer::Impl {
     if (!sameFloor(settings.floor, floorSettings)) {
       floor = FloorTexture(settings.floor);
       floorSettings = settings.floor;
-      floorCacheView.clear();
+      floorCacheValid = false;
     }
     if (settings.render.threads != threads) makeArena(settings.render.threads);
     const bool sphere = settings.slime.shape == "sphere";
@@ -110,6 +114,7 @@ struct Renderer::Impl {
                  int samplesPerAxis, int rowBegin, int rowEnd, int columnBegin, int columnEnd, Image& image,
                  FloorShading* floorShadings, TraceCounters& counts) const {
     FlushDenormals flush;
+    const auto start = std::chrono::steady_clock::now();
     const float inverseSamples = 1.0f / static_cast<float>(samplesPerAxis * samplesPerAxis);
     const glm::vec3 eye(camera.position), forward(camera.forward);
     // Camera::rayDirection in float: forward + x right + y up, x and y scaled by the fov.
@@ -151,6 +156,7 @@ struct Renderer::Impl {
         }
       }
     }
+    counts.busyMs += millisecondsSince(start);
   }
 };
 
@@ -167,12 +173,12 @@ void Renderer::updateSlime(const std::vector<glm::dvec3>& positions, const std::
 
 RenderStats Renderer::render(const Settings& settings, Image& image) {
   Impl& impl = *impl_;
+  const auto start = std::chrono::steady_clock::now();
   impl.sync(settings);
   RenderStats stats;
   stats.refitMs = impl.refitMs;
   if (image.width <= 0 || image.height <= 0) return stats;
 
-  const auto start = std::chrono::steady_clock::now();
   const ShadingParameters parameters = makeShadingParameters(settings, image.height);
   const Camera camera = makeCamera(settings.camera, image.width, image.height);
   const int samplesPerAxis = std::max(1, static_cast<int>(std::lround(std::sqrt(std::max(1, settings.render.spp)))));
@@ -182,15 +188,18 @@ RenderStats Renderer::render(const Settings& settings, Image& image) {
 
   FloorShading* floorShadings = nullptr;
   if (samplesPerAxis == 1) {
-    std::vector<double> view = floorCacheKey(camera, parameters, image.width, image.height);
-    if (view != impl.floorCacheView) {
+    const FloorCacheKey view = floorCacheKey(camera, parameters, image.width, image.height);
+    if (!impl.floorCacheValid || view != impl.floorCacheView) {
       impl.floorCache.assign(image.pixels.size(), FloorShading{});
-      impl.floorCacheView = std::move(view);
+      impl.floorCacheView = view;
+      impl.floorCacheValid = true;
     }
     floorShadings = impl.floorCache.data();
   }
 
   for (TraceCounters& counts : impl.counters) counts = TraceCounters{};
+  stats.setupMs = millisecondsSince(start);
+  stats.threads = brute ? 1 : impl.arena->max_concurrency();
   if (brute) {
     // The seed's algorithm is the oracle: one thread, no packets that matter, every triangle.
     impl.traceTile(tracer, intersector, camera, samplesPerAxis, 0, image.height, 0, image.width, image,
@@ -212,6 +221,8 @@ RenderStats Renderer::render(const Settings& settings, Image& image) {
     stats.rays.refraction += counts.rays.refraction;
     stats.slimeQueries += counts.slimeQueries;
     stats.nonFinitePixels += counts.nonFinitePixels;
+    stats.cachedFloorPixels += counts.cachedFloorPixels;
+    stats.busyMs += counts.busyMs;
   }
   stats.traceMs = millisecondsSince(start);
   return stats;

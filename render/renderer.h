@@ -30,7 +30,11 @@ struct RayCounts {
 
 struct RenderStats {
   double refitMs = 0.0;  // BVH refit/rebuild in the last updateSlime
-  double traceMs = 0.0;  // tracing and shading the image
+  double setupMs = 0.0;  // before tracing: settings sync (a new floor texture), shading constants, floor cache
+  double traceMs = 0.0;  // tracing and shading the image (wall time, setupMs included)
+  double busyMs = 0.0;   // time the threads spent in tiles, summed: busyMs / (traceMs · threads) = parallel use
+  int threads = 0;       // threads tracing (the arena's concurrency)
+  std::uint64_t cachedFloorPixels = 0;  // primary floor hits served from the still-view floor cache
   RayCounts rays;        // every ray by kind, whether it met Embree or only the analytic floor/sky
   std::uint64_t slimeQueries = 0;  // rays that could reach the slime's bounds and were tested against it
   std::uint64_t nonFinitePixels = 0;  // pixels whose colour came out NaN/inf (written black); must stay 0

@@ -106,16 +106,6 @@ void SlimeGeometry::setAnalyticSphere(bool enabled, float radius) {
   boundRadius = analyticSphere ? sphereRadius : meshBoundRadius;
 }
 
-bool SlimeGeometry::mayHit(const Ray& ray) const {
-  if (boundRadius <= 0.0f && !analyticSphere) return false;
-  // Closest approach of the ray to the centre, clamped to the segment; slack covers float rounding.
-  const float radius = boundRadius * 1.0001f + 1e-6f;
-  const glm::vec3 toCenter = boundCenter - ray.origin;
-  const float tClosest = std::clamp(glm::dot(toCenter, ray.direction), ray.tNear, ray.tFar);
-  const glm::vec3 offset = ray.origin + tClosest * ray.direction - boundCenter;
-  return glm::dot(offset, offset) <= radius * radius;
-}
-
 glm::vec3 SlimeGeometry::geometricNormal(const SlimeHit& hit, const glm::vec3& point) const {
   if (analyticSphere) return glm::normalize(point - sphereCenter);
   const Triangle& t = triangles[hit.primitive];

@@ -9,6 +9,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include <algorithm>
 #include <vector>
 
 namespace slime {
@@ -47,7 +48,17 @@ struct SlimeGeometry {
   void setAnalyticSphere(bool enabled, float radius);
 
   // Whether the segment [tNear, tFar] of the ray can touch the bounding sphere (slack included).
-  bool mayHit(const Ray& ray) const;
+  // Inline: every primary and every shadow ray asks it.
+  bool mayHit(const Ray& ray) const {
+    if (boundRadius <= 0.0f && !analyticSphere) return false;
+    // Closest approach of the ray to the centre, clamped to the segment; slack covers float rounding.
+    const float radius = boundRadius * 1.0001f + 1e-6f;
+    const glm::vec3 toCenter = boundCenter - ray.origin;
+    const float along = toCenter.x * ray.direction.x + toCenter.y * ray.direction.y + toCenter.z * ray.direction.z;
+    const float tClosest = std::clamp(along, ray.tNear, ray.tFar);
+    const glm::vec3 offset = ray.origin + tClosest * ray.direction - boundCenter;
+    return offset.x * offset.x + offset.y * offset.y + offset.z * offset.z <= radius * radius;
+  }
 
   // Unit geometric normal (outward) at a hit point.
   glm::vec3 geometricNormal(const SlimeHit& hit, const glm::vec3& point) const;

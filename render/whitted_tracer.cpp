@@ -150,6 +150,8 @@ glm::vec3 WhittedTracer::shadeFloor(const Ray& ray, float t, const Path& path, T
   if (!floorCache || !floorCache->filled) {
     fresh = floorShading(point, ray.direction, distance);
     if (floorCache) *floorCache = fresh;
+  } else {
+    ++counters.cachedFloorPixels;
   }
   const FloorShading& shading = floorCache ? *floorCache : fresh;
   glm::vec3 color = floorLocal(shading, point, true, counters);

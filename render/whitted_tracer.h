@@ -22,6 +22,8 @@ struct TraceCounters {
   RayCounts rays;
   std::uint64_t slimeQueries = 0;  // rays that reached Embree / the triangle loop
   std::uint64_t nonFinitePixels = 0;
+  std::uint64_t cachedFloorPixels = 0;  // primary floor hits whose FloorShading came from the cache
+  double busyMs = 0.0;                  // wall time spent in tiles by this thread
 };
 
 // The floor seen along one ray, everything that does not depend on the slime: colour =
