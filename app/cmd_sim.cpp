@@ -103,7 +103,7 @@ int runSim(const SimOptions& options) {
   std::printf("sim: %.3f s, %lld steps of %g s, %s, level %d (%zu vertices), %.4f ms/step, volume %.4f, "
               "aspect %.3f, min z %.2e m, KE %.2e J, rollbacks %zu%s\n",
               simulation.time(), static_cast<long long>(simulation.stepCount()), dt,
-              settings.sim.integrator.c_str(), settings.slime.level, simulation.positions().size(), msPerStep,
+              settings.sim.integrator.c_str(), simulation.settings().slime.level, simulation.positions().size(), msPerStep,
               metrics.volumeRatio, metrics.aspect, metrics.minZ, metrics.kineticEnergy, rollbacks,
               nan ? ", NaN" : "");
 
@@ -119,7 +119,7 @@ int runSim(const SimOptions& options) {
         {"dt", dt},
         {"substeps", simulation.substepsPerStep()},
         {"integrator", settings.sim.integrator},
-        {"level", settings.slime.level},
+        {"level", simulation.settings().slime.level},
         {"vertices", simulation.positions().size()},
         {"springs", simulation.body().springs.size()},
         {"ms_per_step", msPerStep},

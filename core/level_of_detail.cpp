@@ -2,6 +2,8 @@
 
 #include "core/icosphere.h"
 
+#include <glm/geometric.hpp>
+
 #include <array>
 #include <cmath>
 
@@ -33,6 +35,14 @@ int chooseLevel(double radius, double distance, double fovDegrees, int imageHeig
   for (int level = 0; level < kMaxLevel; ++level)
     if (projectedSagittaPixels(level, radius, distance, fovDegrees, imageHeight) <= maxErrorPixels) return level;
   return kMaxLevel;
+}
+
+int effectiveLevel(const Settings& settings) {
+  const SlimeSettings& slime = settings.slime;
+  if (!slime.autoLevel) return slime.level;
+  const glm::dvec3 restingCentre{slime.position.x, slime.position.y, slime.radius};
+  const double distance = glm::length(settings.camera.position - restingCentre);
+  return chooseLevel(slime.radius, distance, settings.camera.fov, settings.camera.height);
 }
 
 }  // namespace slime

@@ -12,6 +12,8 @@
 // the analytic sphere's.
 #pragma once
 
+#include "core/settings.h"
+
 namespace slime {
 
 // Sagitta in pixels below which the mesh looks like the sphere. Measured by `slime bench accuracy`
@@ -30,5 +32,9 @@ double projectedSagittaPixels(int level, double radius, double distance, double 
 // A degenerate view (distance ≤ radius, no pixels) also gets kMaxLevel.
 int chooseLevel(double radius, double distance, double fovDegrees, int imageHeight,
                 double maxErrorPixels = kInvisibleSagittaPixels);
+
+// The level the slime is built at: slime.level, or with slime.level=auto (autoLevel) chooseLevel for
+// the resting ball (its centre one radius above the floor below slime.position) seen by the camera.
+int effectiveLevel(const Settings& settings);
 
 }  // namespace slime

@@ -3,6 +3,7 @@
 #include "core/divergence.h"
 #include "core/floor_contact.h"
 #include "core/grab.h"
+#include "core/level_of_detail.h"
 #include "core/volume.h"
 
 #include <glm/geometric.hpp>
@@ -24,7 +25,8 @@ Simulation::Simulation(const Settings& settings) { reload(settings); }
 
 void Simulation::reload(const Settings& settings) {
   settings_ = settings;
-  body_ = buildSlimeBody(settings.slime);
+  settings_.slime.level = effectiveLevel(settings);  // slime.level=auto resolved once, here
+  body_ = buildSlimeBody(settings_.slime);
   time_ = 0.0;
   stepCount_ = 0;
   refinement_ = 1;
@@ -37,7 +39,7 @@ void Simulation::reload(const Settings& settings) {
 }
 
 void Simulation::applySettings(const Settings& settings) {
-  const bool rebuild = settings.slime.level != settings_.slime.level ||
+  const bool rebuild = effectiveLevel(settings) != settings_.slime.level ||
                        settings.slime.radius != settings_.slime.radius ||
                        settings.slime.shape != settings_.slime.shape;
   if (rebuild) {
@@ -47,7 +49,9 @@ void Simulation::applySettings(const Settings& settings) {
   const bool material = settings.slime.mass != settings_.slime.mass ||
                         settings.slime.stiffness != settings_.slime.stiffness ||
                         settings.slime.pressure != settings_.slime.pressure;
+  const int level = settings_.slime.level;
   settings_ = settings;
+  settings_.slime.level = level;
   if (material) applySlimeMaterial(body_, settings.slime);
   refinement_ = 1;
   rebuildModels();

@@ -1,6 +1,8 @@
 // slime.level=auto: the sagitta table against the real icosphere, the projection, and the choice.
 #include "core/icosphere.h"
 #include "core/level_of_detail.h"
+#include "core/settings_io.h"
+#include "core/simulation.h"
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
@@ -60,6 +62,27 @@ TEST(LevelOfDetail, DegenerateViewsGetTheFinestLevel) {
   EXPECT_EQ(chooseLevel(0.04, 0.2, 45.0, 0), kMaxLevel);
   EXPECT_EQ(chooseLevel(0.04, 0.2, 0.0, 564), kMaxLevel);
   EXPECT_EQ(chooseLevel(0.04, 0.2, 45.0, 564, 0.0), kMaxLevel);  // nothing is exact
+}
+
+TEST(EffectiveLevel, AutoPicksLevelFourAtTheDefaultViewAndFollowsTheDistance) {
+  Settings settings = defaultSettings();
+  EXPECT_EQ(effectiveLevel(settings), settings.slime.level);  // not auto: the level as set
+  settings.slime.autoLevel = true;
+  EXPECT_EQ(effectiveLevel(settings), 4);  // what `slime bench accuracy` found invisible here
+  settings.camera.position *= 4.0;         // four times as far: a quarter of the pixels across
+  EXPECT_LT(effectiveLevel(settings), 4);
+  settings.camera.position = glm::dvec3(0.0, -0.06, 0.04);  // close up
+  EXPECT_GT(effectiveLevel(settings), 4);
+}
+
+TEST(EffectiveLevel, SimulationBuildsTheAutoLevel) {
+  Settings settings = defaultSettings();
+  applyOverride(settings, "slime.level=auto");
+  settings.camera.position *= 4.0;
+  const Simulation simulation(settings);
+  EXPECT_EQ(simulation.settings().slime.level, effectiveLevel(settings));
+  const std::size_t fourToL = std::size_t{1} << (2 * effectiveLevel(settings));
+  EXPECT_EQ(simulation.triangles().size(), 20 * fourToL);
 }
 
 }  // namespace
