@@ -141,10 +141,12 @@ struct Renderer::Impl {
               counts.slimeQueries += static_cast<std::uint64_t>(activeCount);
               intersector.intersect8(rays, active, hits);
             }
-            for (int i = 0; i < kPacket && x0 + i < columnEnd; ++i) {
-              FloorShading* cached = floorShadings ? floorShadings + static_cast<std::size_t>(y) * image.width + x0 + i : nullptr;
-              sums[i] += tracer.tracePrimary(rays[i], hits[i], counts, cached);
-            }
+            const int count = std::min(kPacket, columnEnd - x0);
+            glm::vec3 colors[kPacket];
+            tracer.tracePrimary8(rays, hits, count, counts,
+                                 floorShadings ? floorShadings + static_cast<std::size_t>(y) * image.width + x0 : nullptr,
+                                 colors);
+            for (int i = 0; i < count; ++i) sums[i] += colors[i];
           }
         }
         for (int i = 0; i < kPacket && x0 + i < columnEnd; ++i) {

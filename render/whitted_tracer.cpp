@@ -223,24 +223,98 @@ glm::vec3 WhittedTracer::lightTransmittance(const glm::vec3& point, TraceCounter
   for (int crossing = 0; crossing < kMaxShadowCrossings; ++crossing) {
     ++counters.slimeQueries;
     const SlimeHit hit = intersector_.intersect(ray);
-    if (!hit.valid()) return transmittance;
-    const glm::vec3 hitPoint = ray.origin + hit.t * ray.direction;
-    const glm::vec3 outward = geometry_.geometricNormal(hit, hitPoint);
-    const bool entering = glm::dot(ray.direction, outward) < 0.0f;
-    if (!entering) transmittance *= beerLambert(p.slimeAbsorption, hit.t);
-    if (p.optics == OpticsMode::Fresnel) {
-      const float cosine = std::abs(glm::dot(ray.direction, outward));
-      const float fresnel = entering ? fresnelDielectric(cosine, 1.0f, p.ior) : fresnelDielectric(cosine, p.ior, 1.0f);
-      transmittance *= (1.0f - fresnel) * (entering ? p.transmission : 1.0f);
-    } else {
-      transmittance *= p.transmission;
-    }
-    if (largest(transmittance) < kMinRayWeight) return glm::vec3(0.0f);
-    if (!entering && convex) return transmittance;  // out of a convex slime for good
-    ray.origin = offsetRayOrigin(hitPoint, outward, ray.direction);
-    ray.tFar = std::max(0.0f, ray.tFar - hit.t);
+    if (!hit.valid() || !crossShadowSurface(ray, hit, transmittance)) return transmittance;
   }
   return glm::vec3(0.0f);
+}
+
+bool WhittedTracer::crossShadowSurface(Ray& ray, const SlimeHit& hit, glm::vec3& transmittance) const {
+  const ShadingParameters& p = parameters_;
+  const glm::vec3 hitPoint = ray.origin + hit.t * ray.direction;
+  const glm::vec3 outward = geometry_.geometricNormal(hit, hitPoint);
+  const bool entering = glm::dot(ray.direction, outward) < 0.0f;
+  if (!entering) transmittance *= beerLambert(p.slimeAbsorption, hit.t);
+  if (p.optics == OpticsMode::Fresnel) {
+    const float cosine = std::abs(glm::dot(ray.direction, outward));
+    const float fresnel = entering ? fresnelDielectric(cosine, 1.0f, p.ior) : fresnelDielectric(cosine, p.ior, 1.0f);
+    transmittance *= (1.0f - fresnel) * (entering ? p.transmission : 1.0f);
+  } else {
+    transmittance *= p.transmission;
+  }
+  if (largest(transmittance) < kMinRayWeight) {
+    transmittance = glm::vec3(0.0f);
+    return false;
+  }
+  if (!entering && geometry_.isConvex()) return false;  // out of a convex slime for good
+  ray.origin = offsetRayOrigin(hitPoint, outward, ray.direction);
+  ray.tFar = std::max(0.0f, ray.tFar - hit.t);
+  return true;
+}
+
+void WhittedTracer::lightTransmittance8(const glm::vec3* points, const bool* active, glm::vec3* visible,
+                                        TraceCounters& counters) const {
+  Ray rays[8];
+  bool walking[8] = {};
+  for (int i = 0; i < 8; ++i) {
+    visible[i] = glm::vec3(1.0f);
+    if (!active[i]) continue;
+    ++counters.rays.shadow;
+    const glm::vec3 toLight = parameters_.lightPosition - points[i];
+    const float distance = glm::length(toLight);
+    rays[i] = Ray{points[i], toLight / distance, 0.0f, distance};
+    walking[i] = distance > 0.0f && geometry_.mayHit(rays[i]);
+  }
+  for (int crossing = 0; crossing < kMaxShadowCrossings; ++crossing) {
+    int count = 0;
+    for (int i = 0; i < 8; ++i) count += walking[i];
+    if (count == 0) return;
+    counters.slimeQueries += static_cast<std::uint64_t>(count);
+    SlimeHit hits[8];
+    intersector_.intersect8(rays, walking, hits);
+    for (int i = 0; i < 8; ++i)
+      if (walking[i]) walking[i] = hits[i].valid() && crossShadowSurface(rays[i], hits[i], visible[i]);
+  }
+  for (int i = 0; i < 8; ++i)
+    if (walking[i]) visible[i] = glm::vec3(0.0f);  // more crossings than kMaxShadowCrossings: blocked
+}
+
+void WhittedTracer::tracePrimary8(const Ray* rays, const SlimeHit* hits, int count, TraceCounters& counters,
+                                  FloorShading* floorCache, glm::vec3* colors) const {
+  const ShadingParameters& p = parameters_;
+  bool floorFirst[8] = {}, shadowed[8] = {};
+  glm::vec3 shadowOrigins[8], visible[8];
+  for (glm::vec3& origin : shadowOrigins) origin = glm::vec3(0.0f);
+  FloorShading fresh[8];
+  const FloorShading* shadings[8] = {};
+  for (int i = 0; i < count; ++i) {
+    const float tFloor = floorDistance(rays[i]);
+    floorFirst[i] = p.floorSpecular <= 0.0f && tFloor != kInfinity && !(hits[i].valid() && hits[i].t <= tFloor);
+    if (!floorFirst[i]) {  // the slime, the sky, or a varnished floor: one ray at a time
+      colors[i] = tracePrimary(rays[i], hits[i], counters, floorCache ? floorCache + i : nullptr);
+      continue;
+    }
+    // As shadeFloor for a primary ray on a matte floor, the shadow ray left for the packet below.
+    ++counters.rays.primary;
+    glm::vec3 point = rays[i].origin + tFloor * rays[i].direction;
+    point.z = 0.0f;
+    FloorShading* cached = floorCache ? floorCache + i : nullptr;
+    if (cached && cached->filled) {
+      ++counters.cachedFloorPixels;
+    } else {
+      fresh[i] = floorShading(point, rays[i].direction, tFloor);
+      if (cached) *cached = fresh[i];
+    }
+    shadings[i] = cached ? cached : &fresh[i];
+    shadowed[i] = p.shadows && shadings[i]->lit != glm::vec3(0.0f);
+    shadowOrigins[i] = point + glm::vec3(0.0f, 0.0f, kRayOffset);
+  }
+  lightTransmittance8(shadowOrigins, shadowed, visible, counters);
+  for (int i = 0; i < count; ++i) {
+    if (!floorFirst[i]) continue;
+    const FloorShading& shading = *shadings[i];
+    const glm::vec3 color = largest(visible[i]) > 0.0f ? shading.ambient + visible[i] * shading.lit : shading.ambient;
+    colors[i] = glm::mix(color, p.skyHorizon, shading.haze);
+  }
 }
 
 glm::vec3 WhittedTracer::environment(const Ray& ray, float travelled) const {

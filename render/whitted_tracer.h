@@ -48,6 +48,13 @@ class WhittedTracer {
   glm::vec3 tracePrimary(const Ray& ray, const SlimeHit& hit, TraceCounters& counters,
                          FloorShading* floorCache = nullptr) const;
 
+  // Radiance along `count` ≤ 8 neighbouring primary rays whose slime hits are known, into colors[].
+  // Where a matte floor is seen first, their shadow rays are traced together as one coherent packet
+  // per crossing (neighbouring floor points, one light); the same shading as tracePrimary.
+  // `floorCache`, if given, holds the FloorShading of these count pixels.
+  void tracePrimary8(const Ray* rays, const SlimeHit* hits, int count, TraceCounters& counters,
+                     FloorShading* floorCache, glm::vec3* colors) const;
+
   // Radiance along a primary ray (finds the slime hit itself).
   glm::vec3 tracePrimary(const Ray& ray, TraceCounters& counters) const;
 
@@ -77,6 +84,11 @@ class WhittedTracer {
   FloorShading floorShading(const glm::vec3& point, const glm::vec3& direction, float distance) const;
   glm::vec3 floorLocal(const FloorShading& shading, const glm::vec3& point, bool shadowed, TraceCounters& counters) const;
   glm::vec3 environment(const Ray& ray, float travelled) const;  // floor (unshadowed) or sky, no slime
+  // One crossing of a shadow ray with the slime's surface at `hit`: `transmittance` takes what passes
+  // it and the ray moves past it. False when the walk is over (blocked, or out of a convex slime).
+  bool crossShadowSurface(Ray& ray, const SlimeHit& hit, glm::vec3& transmittance) const;
+  // lightTransmittance of up to 8 floor points at once (active[i]), crossings traced as packets.
+  void lightTransmittance8(const glm::vec3* points, const bool* active, glm::vec3* visible, TraceCounters& counters) const;
   glm::vec3 sky(const glm::vec3& direction) const;
 
   const SlimeGeometry& geometry_;
