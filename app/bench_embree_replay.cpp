@@ -1,12 +1,11 @@
 #include "app/bench_embree_replay.h"
 
 #include "app/bench_timing.h"
+#include "render/embree_util.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
-
-#include <xmmintrin.h>
 
 #include <atomic>
 #include <stdexcept>
@@ -17,32 +16,7 @@ namespace {
 constexpr std::size_t kPacketGrain = 16;   // packets per task
 constexpr std::size_t kSingleGrain = 128;  // single rays per task
 
-void recordError(void* userPtr, RTCError code, const char* message) {
-  *static_cast<std::string*>(userPtr) =
-      "Embree error " + std::to_string(static_cast<int>(code)) + ": " + (message ? message : "(no message)");
-}
 
-void initRay(RTCRay& out, const Ray& ray) {
-  out.org_x = ray.origin.x;
-  out.org_y = ray.origin.y;
-  out.org_z = ray.origin.z;
-  out.dir_x = ray.direction.x;
-  out.dir_y = ray.direction.y;
-  out.dir_z = ray.direction.z;
-  out.tnear = ray.tNear;
-  out.tfar = ray.tFar;
-  out.time = 0.0f;
-  out.mask = 0xFFFFFFFFu;  // Debian's Embree has ray masks on (SPEC §10)
-  out.id = 0;
-  out.flags = 0;
-}
-
-// Flush-to-zero and denormals-are-zero while a task traces (SPEC §10), as the renderer does.
-struct FlushDenormals {
-  unsigned saved = _mm_getcsr();
-  FlushDenormals() { _mm_setcsr(saved | 0x8040u); }
-  ~FlushDenormals() { _mm_setcsr(saved); }
-};
 
 std::uint64_t tracePackets(RTCScene scene, const RayLog& log, std::size_t begin, std::size_t end) {
   FlushDenormals flush;
@@ -84,7 +58,7 @@ std::uint64_t traceSingles(RTCScene scene, const std::vector<Ray>& rays, std::si
   rtcInitIntersectContext(&context);
   for (std::size_t r = begin; r < end; ++r) {
     RTCRayHit rayHit;
-    initRay(rayHit.ray, rays[r]);
+    toEmbreeRay(rays[r], rayHit.ray);
     rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(scene, &context, &rayHit);
     hits += rayHit.hit.geomID != RTC_INVALID_GEOMETRY_ID;
@@ -121,7 +95,7 @@ EmbreeReplay::EmbreeReplay(int threads, BvhUpdate update) : method_(update) {
   const std::string config = threads > 0 ? "threads=" + std::to_string(threads) + ",set_affinity=0" : "set_affinity=0";
   device_ = rtcNewDevice(config.c_str());
   if (!device_) throw std::runtime_error("Embree: cannot create a device for the benchmark");
-  rtcSetDeviceErrorFunction(device_, recordError, &error_);
+  rtcSetDeviceErrorFunction(device_, recordEmbreeError, &error_);
 }
 
 EmbreeReplay::~EmbreeReplay() {

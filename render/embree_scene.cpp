@@ -1,5 +1,7 @@
 #include "render/embree_scene.h"
 
+#include "render/embree_util.h"
+
 #include <cmath>
 #include <stdexcept>
 
@@ -11,26 +13,6 @@ namespace {
 constexpr float kRebuildRadiusChange = 0.2f;
 constexpr int kRebuildAfterRefits = 600;
 
-void recordError(void* userPtr, RTCError code, const char* message) {
-  auto* error = static_cast<std::string*>(userPtr);
-  *error = "Embree error " + std::to_string(static_cast<int>(code)) + ": " + (message ? message : "(no message)");
-}
-
-void initRay(RTCRay& out, const Ray& ray) {
-  out.org_x = ray.origin.x;
-  out.org_y = ray.origin.y;
-  out.org_z = ray.origin.z;
-  out.dir_x = ray.direction.x;
-  out.dir_y = ray.direction.y;
-  out.dir_z = ray.direction.z;
-  out.tnear = ray.tNear;
-  out.tfar = ray.tFar;
-  out.time = 0.0f;
-  out.mask = 0xFFFFFFFFu;  // Debian's Embree is built with ray masks
-  out.id = 0;
-  out.flags = 0;
-}
-
 }  // namespace
 
 EmbreeScene::EmbreeScene(int threads) {
@@ -38,7 +20,7 @@ EmbreeScene::EmbreeScene(int threads) {
   const std::string config = threads > 0 ? "threads=" + std::to_string(threads) + ",set_affinity=0" : "set_affinity=0";
   device_ = rtcNewDevice(config.c_str());
   if (!device_) throw std::runtime_error("Embree: cannot create a device (" + std::to_string(rtcGetDeviceError(nullptr)) + ")");
-  rtcSetDeviceErrorFunction(device_, recordError, &error_);
+  rtcSetDeviceErrorFunction(device_, recordEmbreeError, &error_);
   scene_ = rtcNewScene(device_);
   rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_DYNAMIC);
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_LOW);
@@ -129,7 +111,7 @@ SlimeHit EmbreeScene::intersect(const Ray& ray) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rayHit;
-  initRay(rayHit.ray, ray);
+  toEmbreeRay(ray, rayHit.ray);
   rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rayHit.hit.primID = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(scene_, &context, &rayHit);

@@ -3,6 +3,7 @@
 #include "core/camera.h"
 #include "render/brute_tracer.h"
 #include "render/embree_scene.h"
+#include "render/embree_util.h"
 #include "render/floor_texture.h"
 #include "render/slime_geometry.h"
 #include "render/whitted_tracer.h"
@@ -13,8 +14,6 @@
 #include <tbb/task_arena.h>
 
 #include <glm/geometric.hpp>
-
-#include <xmmintrin.h>
 
 #include <algorithm>
 #include <array>
@@ -35,18 +34,6 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
 bool sameFloor(const FloorSettings& a, const FloorSettings& b) {
   return a.pattern == b.pattern && a.scale == b.scale && a.colorA == b.colorA && a.colorB == b.colorB && a.image == b.image;
 }
-
-// Flush-to-zero and denormals-are-zero for the tile (SPEC §10), restoring the caller's MXCSR after.
-class FlushDenormals {
- public:
-  FlushDenormals() : saved_(_mm_getcsr()) { _mm_setcsr(saved_ | 0x8040u); }  // FTZ = bit 15, DAZ = bit 6
-  ~FlushDenormals() { _mm_setcsr(saved_); }
-  FlushDenormals(const FlushDenormals&) = delete;
-  FlushDenormals& operator=(const FlushDenormals&) = delete;
-
- private:
-  unsigned saved_;
-};
 
 // Everything a primary ray's FloorShading depends on: the view, the image size and the floor's
 // lighting (the floor texture itself is checked by Impl::sync).
