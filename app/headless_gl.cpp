@@ -65,6 +65,7 @@ HeadlessGl::~HeadlessGl() {
   eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
   eglDestroyContext(display_, context_);
   eglTerminate(display_);
+  eglReleaseThread();  // the thread's EGL state, which eglTerminate leaves allocated
 }
 
 FrameInput HeadlessGl::pollInput() {
