@@ -6,6 +6,7 @@
 #include "render/embree_util.h"
 #include "render/floor_texture.h"
 #include "render/slime_geometry.h"
+#include "render/tsan_handoff.h"
 #include "render/whitted_tracer.h"
 
 #include <tbb/blocked_range2d.h>
@@ -194,14 +195,18 @@ RenderStats Renderer::render(const Settings& settings, Image& image) {
     impl.traceTile(tracer, intersector, camera, samplesPerAxis, 0, image.height, 0, image.width, image,
                    floorShadings, impl.counters.local());
   } else {
+    handOff(&impl);  // the frame's inputs, to the workers
     impl.arena->execute([&] {
       tbb::parallel_for(tbb::blocked_range2d<int>(0, image.height, kTileRows, 0, image.width, kTileColumns),
                         [&](const tbb::blocked_range2d<int>& tile) {
+                          takeOver(&impl);
                           impl.traceTile(tracer, intersector, camera, samplesPerAxis, tile.rows().begin(),
                                          tile.rows().end(), tile.cols().begin(), tile.cols().end(), image,
                                          floorShadings, impl.counters.local());
+                          handOff(&impl);  // the tile's pixels and counters, back to the caller
                         });
     });
+    takeOver(&impl);
   }
   for (const TraceCounters& counts : impl.counters) {
     stats.rays.primary += counts.rays.primary;
