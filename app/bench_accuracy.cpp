@@ -147,10 +147,12 @@ json runAccuracyBench(const Settings& baseSettings, const AccuracyBenchOptions& 
   progress.finish();
 
   // The on-screen sagitta of the smallest level whose mesh is invisible against the sphere at the same
-  // depth (smooth normals): the threshold that slime.level=auto (core/level_of_detail.h) should use.
+  // depth (smooth normals, the scene's own depth: at depth 1 no refraction shows the facets): the
+  // threshold that slime.level=auto (core/level_of_detail.h) should use.
   json smallestInvisible;
   for (const json& run : runs)
     if (run["geometric_only"]["invisible"].get<bool>() && run["normals"] == "smooth" &&
+        run["depth"].get<int>() == baseSettings.render.depth &&
         (smallestInvisible.is_null() || run["level"].get<int>() < smallestInvisible["level"].get<int>()))
       smallestInvisible = run;
 

@@ -37,7 +37,10 @@ std::string describe(const Choices& choices) {
 }
 
 // A JSON value as text for a message; bytes that are not UTF-8 are shown as U+FFFD.
-std::string shown(const json& value) { return value.dump(-1, ' ', false, json::error_handler_t::replace); }
+std::string shown(const json& value) {
+  if (value.is_number()) return formatNumber(value.get<double>());  // 12, not 12.0, as the user typed it
+  return value.dump(-1, ' ', false, json::error_handler_t::replace);
+}
 
 [[noreturn]] void fail(std::string_view key, const std::string& value, const std::string& allowed) {
   throw SettingsError(std::string(key) + ": " + value + " is not allowed; expected " + allowed);

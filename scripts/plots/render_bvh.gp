@@ -6,8 +6,9 @@ if (strstrt(GPVAL_TERMINALS, "pngcairo") > 0) {
 }
 set output dir."/render_bvh.png"
 method(s) = s eq "high" ? 0 : s eq "medium" ? 1 : s eq "low" ? 2 : 3
-set xtics ("rebuild HIGH" 0, "rebuild MEDIUM" 1, "rebuild LOW" 2, "refit" 3)
+set xtics ("rebuild\nHIGH" 0, "rebuild\nMEDIUM" 1, "rebuild\nLOW" 2, "refit" 3)
 set xrange [-0.6:3.6]
+set bmargin 4
 set style fill solid 0.85 border -1
 set multiplot layout 1,2 title "BVH refit vs rebuild on a slime stretched by the physics (all threads)"
 set title "update cost per frame (lower is better)"
