@@ -254,11 +254,10 @@ json settingsToJson(const Settings& settings) {
     json value;
     if constexpr (std::is_same_v<Field, glm::dvec3>) value = json::array({field.x, field.y, field.z});
     else value = field;
-    document[json::json_pointer("/" + [&] {
-      std::string pointer(key);
-      std::replace(pointer.begin(), pointer.end(), '.', '/');
-      return pointer;
-    }())] = value;
+    std::string pointer = "/";  // "slime.level" -> "/slime/level"
+    pointer.append(key);
+    std::replace(pointer.begin(), pointer.end(), '.', '/');
+    document[json::json_pointer(pointer)] = value;
   });
   return document;
 }
