@@ -39,6 +39,27 @@ struct Oscillator {
     constraints.damping = damping;
     constraints.gravity = {0, 0, 0};
   }
+
+  // One step of `integrator` with the scratch each one needs.
+  void step(Integrator integrator, double dt) {
+    const AccelerationField field = [this](const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v,
+                                           std::vector<glm::dvec3>& a) {
+      computeAccelerations(forces, state.inverseMasses, x, v, forceScratch, a);
+    };
+    switch (integrator) {
+      case Integrator::ExplicitEuler: explicitEulerStep(state, dt, field, scratch); break;
+      case Integrator::SymplecticEuler: symplecticEulerStep(state, dt, field, scratch); break;
+      case Integrator::Rk4: rk4Step(state, dt, field, scratch); break;
+      case Integrator::ImplicitEuler: implicitEulerStep(state, dt, forces, implicitOptions, implicitScratch); break;
+      case Integrator::Xpbd: xpbdSubstep(state, dt, constraints, xpbdScratch); break;
+    }
+  }
+
+  ImplicitEulerOptions implicitOptions;
+  IntegratorScratch scratch;
+  ImplicitEulerScratch implicitScratch;
+  XpbdScratch xpbdScratch;
+  ForceScratch forceScratch;
 };
 
 // x(t) - L0 for x(0) - L0 = A, x'(0) = 0, underdamped.
@@ -51,26 +72,11 @@ double analyticOffset(double t, double damping) {
 // Runs `integrator` to time T with step dt; returns the largest error of x over the run.
 double runError(Integrator integrator, double damping, double dt, double duration) {
   Oscillator o(damping);
-  IntegratorScratch scratch;
-  ImplicitEulerScratch implicitScratch;
-  XpbdScratch xpbdScratch;
-  ForceScratch forceScratch;
-  const AccelerationField field = [&](const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v,
-                                      std::vector<glm::dvec3>& a) {
-    computeAccelerations(o.forces, o.state.inverseMasses, x, v, forceScratch, a);
-  };
-  ImplicitEulerOptions options;
-  options.tolerance = 1e-14;
+  o.implicitOptions.tolerance = 1e-14;
   const int steps = static_cast<int>(std::lround(duration / dt));
   double worst = 0.0;
   for (int n = 1; n <= steps; ++n) {
-    switch (integrator) {
-      case Integrator::ExplicitEuler: explicitEulerStep(o.state, dt, field, scratch); break;
-      case Integrator::SymplecticEuler: symplecticEulerStep(o.state, dt, field, scratch); break;
-      case Integrator::Rk4: rk4Step(o.state, dt, field, scratch); break;
-      case Integrator::ImplicitEuler: implicitEulerStep(o.state, dt, o.forces, options, implicitScratch); break;
-      case Integrator::Xpbd: xpbdSubstep(o.state, dt, o.constraints, xpbdScratch); break;
-    }
+    o.step(integrator, dt);
     const double error = std::abs(o.state.positions[1].x - kRestLength - analyticOffset(n * dt, damping));
     worst = std::max(worst, error);
   }
@@ -110,24 +116,8 @@ INSTANTIATE_TEST_SUITE_P(
 // True when 4000 steps of dt keep the undamped oscillator bounded (|x - L0| ≤ 10 A).
 bool staysBounded(Integrator integrator, double dt, int steps = 4000) {
   Oscillator o(0.0);
-  IntegratorScratch scratch;
-  ImplicitEulerScratch implicitScratch;
-  XpbdScratch xpbdScratch;
-  ForceScratch forceScratch;
-  const AccelerationField field = [&](const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v,
-                                      std::vector<glm::dvec3>& a) {
-    computeAccelerations(o.forces, o.state.inverseMasses, x, v, forceScratch, a);
-  };
   for (int n = 0; n < steps; ++n) {
-    switch (integrator) {
-      case Integrator::ExplicitEuler: explicitEulerStep(o.state, dt, field, scratch); break;
-      case Integrator::SymplecticEuler: symplecticEulerStep(o.state, dt, field, scratch); break;
-      case Integrator::Rk4: rk4Step(o.state, dt, field, scratch); break;
-      case Integrator::ImplicitEuler:
-        implicitEulerStep(o.state, dt, o.forces, ImplicitEulerOptions{}, implicitScratch);
-        break;
-      case Integrator::Xpbd: xpbdSubstep(o.state, dt, o.constraints, xpbdScratch); break;
-    }
+    o.step(integrator, dt);
     const double offset = std::abs(o.state.positions[1].x - kRestLength);
     if (!(offset <= 10.0 * kAmplitude)) return false;
   }
