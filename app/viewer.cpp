@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <thread>
 
 namespace slime {
 namespace {
@@ -60,9 +61,20 @@ bool Viewer::frame() {
   handleInput(input);
   if (options_.maxFrames > 0 && stats_.frames + 1 >= options_.maxFrames) quit_ = true;
   if (quit_ && !options_.screenshotOnExit.empty()) requestScreenshot(options_.screenshotOnExit);
-  stepPhysics(input.elapsedSeconds);
+  // Physics runs beside the trace: this frame traces the slime as the last frame's steps left it, while
+  // this frame's steps run on a second thread. A scenario's "set" events edit the settings the trace
+  // reads, so with a scenario playing the two run one after the other.
   refitSlime();
-  traceImage();
+  const glm::dvec3 target = grabTargetFor();
+  if (scenario_ && !scenario_->finished()) {
+    stepPhysics(input.elapsedSeconds, target);
+    refitSlime();
+    traceImage();
+  } else {
+    std::thread physics([this, &input, &target] { stepPhysics(input.elapsedSeconds, target); });
+    traceImage();
+    physics.join();
+  }
   uploadImage();
   drawPanelsAndOverlay();
   present();
@@ -152,7 +164,13 @@ void Viewer::handleButton(const MouseButtonEvent& event, const FrameInput& input
 
 // --- physics ---------------------------------------------------------------------------------------
 
-void Viewer::stepPhysics(double wallSeconds) {
+glm::dvec3 Viewer::grabTargetFor() const {
+  const glm::ivec2 size = backend_.windowSize();
+  return grab_.active() && size.x > 0 && size.y > 0 ? grab_.target(makeCamera(settings_.camera, size.x, size.y), size)
+                                                    : grabTargetDrawn_;
+}
+
+void Viewer::stepPhysics(double wallSeconds, const glm::dvec3& target) {
   const Stopwatch physicsTime;
   int steps = 0;
   if (settings_.sim.paused) {
@@ -164,10 +182,6 @@ void Viewer::stepPhysics(double wallSeconds) {
   singleStepPending_ = false;
   // Pull the grab target from where it was to where the cursor is now across this frame's steps, so
   // the slime is dragged smoothly however many steps a frame holds.
-  const glm::ivec2 size = backend_.windowSize();
-  const glm::dvec3 target =
-      grab_.active() && size.x > 0 && size.y > 0 ? grab_.target(makeCamera(settings_.camera, size.x, size.y), size)
-                                                 : grabTargetDrawn_;
   int done = 0;
   for (; done < steps; ++done) {
     if (grab_.active()) {

@@ -65,7 +65,9 @@ class Viewer {
   // The frame's steps, in order.
   FrameInput readInput();
   void handleInput(const FrameInput& input);
-  void stepPhysics(double wallSeconds);
+  // The grab target for this frame's steps, read from the window on the main thread.
+  glm::dvec3 grabTargetFor() const;
+  void stepPhysics(double wallSeconds, const glm::dvec3& target);
   void refitSlime();
   void traceImage();
   void uploadImage();
