@@ -16,7 +16,10 @@ void writeUiSnapshot(const Settings& settings, const std::string& path,
   options.maxFrames = kFramesForLayout;
   options.screenshotOnExit = path;
   Viewer viewer(backend, settings, options);
-  if (settle) settle(viewer.simulation());
+  if (settle) {
+    settle(viewer.simulation());
+    viewer.simulationAdvanced();
+  }
   while (viewer.frame()) {
   }
 }

@@ -164,6 +164,11 @@ void Viewer::handleButton(const MouseButtonEvent& event, const FrameInput& input
 
 // --- physics ---------------------------------------------------------------------------------------
 
+void Viewer::simulationAdvanced() {
+  slimeMoved_ = true;
+  metrics_ = simulation_.metrics();
+}
+
 glm::dvec3 Viewer::grabTargetFor() const {
   const glm::ivec2 size = backend_.windowSize();
   return grab_.active() && size.x > 0 && size.y > 0 ? grab_.target(makeCamera(settings_.camera, size.x, size.y), size)

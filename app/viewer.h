@@ -58,6 +58,8 @@ class Viewer {
   void requestScreenshot(const std::string& path) { screenshotPaths_.push_back(path); }
 
   Simulation& simulation() { return simulation_; }
+  // Call after advancing simulation() from outside the frame loop, so the next frame draws it.
+  void simulationAdvanced();
   const Settings& settings() const { return settings_; }
   const FrameStats& stats() const { return stats_; }
 
