@@ -19,6 +19,8 @@ region_difference() {  # pixels differing by more than 3 % inside WxH+X+Y
 }
 panels=$(region_difference 240x90+6+6)      # the Controls window's three section headers
 scene=$(region_difference 200x100+140+250)  # the floor in front of the slime, below the panels
+slime=$(region_difference 150x150+250+110)  # the right half of the slime: the settled shape, not the start
 [ "$panels" -gt 10000 ] || fail "only $panels of 21600 pixels differ where the panels are"
 [ "$scene" -lt 200 ] || fail "$scene of 20000 pixels differ away from the panels: not the same picture"
-echo "PASS: $panels pixels differ under the panels, $scene elsewhere"
+[ "$slime" -lt 200 ] || fail "$slime of 22500 pixels differ on the slime: the --ui frame is not the settled slime"
+echo "PASS: $panels pixels differ under the panels, $scene on the floor, $slime on the slime"
