@@ -8,7 +8,27 @@
 
 #include "core/particle_state.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace slime {
+
+// One dynamic point's contact; true when it touched the floor. Inline so that integrators can
+// apply it in their own last pass over the points.
+inline bool resolveFloorContactAt(glm::dvec3& position, glm::dvec3& velocity, double friction) {
+  const bool below = position.z < 0.0;
+  const bool pressingDown = position.z <= 0.0 && velocity.z < 0.0;
+  if (!below && !pressingDown) return false;
+  position.z = 0.0;
+  const double normalSpeedChange = std::max(0.0, -velocity.z);
+  velocity.z = std::max(0.0, velocity.z);
+  const double tangentialSpeed = std::hypot(velocity.x, velocity.y);
+  const double frictionBudget = friction * normalSpeedChange;
+  const double keep = tangentialSpeed <= frictionBudget ? 0.0 : 1.0 - frictionBudget / tangentialSpeed;
+  velocity.x *= keep;
+  velocity.y *= keep;
+  return true;
+}
 
 // Returns how many points touched the floor.
 std::size_t resolveFloorContact(ParticleState& state, double friction);

@@ -77,6 +77,15 @@ void Simulation::rebuildModels() {
   xpbdModel_.gravity = gravity;
   elasticModel_ = forceModel_;
   elasticModel_.damping = 0.0;
+  symplecticModel_ = DampedSymplecticEulerModel{};
+  symplecticModel_.springs = &body_.springs;
+  symplecticModel_.dampingDecays = &dampingDecays_;
+  symplecticModel_.triangles = forceModel_.triangles;
+  symplecticModel_.restVolume = body_.restVolume;
+  symplecticModel_.restPressure = body_.restPressure;
+  symplecticModel_.bulkModulus = body_.bulkModulus;
+  symplecticModel_.gravity = gravity;
+  symplecticModel_.friction = settings_.slime.friction;
   const ForceModel* model = integrator_ == Integrator::SymplecticEuler ? &elasticModel_ : &forceModel_;
   accelerationField_ = [this, model](const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v,
                                      std::vector<glm::dvec3>& a) {
@@ -130,30 +139,39 @@ void Simulation::step() {
 void Simulation::substep(double h) {
   if (grabbing_) driveGrabbedPoints(h);
   ParticleState& state = body_.state;
+  if (integrator_ == Integrator::SymplecticEuler) {
+    // The default, fused (damped_symplectic_euler.h): kick, implicit damper, drift and floor contact
+    // in one call. The floor leaves kinematic points alone, so placing the grabbed ones after it
+    // gives what the other integrators' order gives.
+    if (dampingDecayStep_ != h) {
+      springDampingDecays(body_.springs, state.inverseMasses, settings_.slime.damping, h, dampingDecays_);
+      dampingDecayStep_ = h;
+    }
+    dampedSymplecticEulerSubstep(state, h, symplecticModel_, symplecticScratch_);
+    placeGrabbedPoints();
+    return;
+  }
   switch (integrator_) {
     case Integrator::ExplicitEuler: explicitEulerStep(state, h, accelerationField_, integratorScratch_); break;
-    case Integrator::SymplecticEuler:
-      symplecticEulerKick(state, h, accelerationField_, integratorScratch_);
-      if (dampingDecayStep_ != h) {
-        springDampingDecays(body_.springs, state.inverseMasses, settings_.slime.damping, h, dampingDecays_);
-        dampingDecayStep_ = h;
-      }
-      dampSpringsImplicitly(body_.springs, state.positions, state.inverseMasses, dampingDecays_, state.velocities);
-      symplecticEulerDrift(state, h);
-      break;
+    case Integrator::SymplecticEuler: break;  // above
     case Integrator::Rk4: rk4Step(state, h, accelerationField_, integratorScratch_); break;
     case Integrator::ImplicitEuler:
       lastSolverIterations_ = implicitEulerStep(state, h, forceModel_, ImplicitEulerOptions{}, implicitScratch_);
       break;
     case Integrator::Xpbd: xpbdSubstep(state, h, xpbdModel_, xpbdScratch_); break;
   }
-  // Grabbed points land exactly where they are driven (the integrators moved them by v h).
+  placeGrabbedPoints();
+  resolveFloorContact(state, settings_.slime.friction);
+}
+
+// Grabbed points land exactly where they are driven (the integrators moved them by v h).
+void Simulation::placeGrabbedPoints() {
+  ParticleState& state = body_.state;
   for (std::size_t k = 0; k < grabbed_.size(); ++k) {
     glm::dvec3 target = grabAnchor_ + grabOffsets_[k];
     target.z = std::max(target.z, 0.0);
     state.positions[grabbed_[k]] = target;
   }
-  resolveFloorContact(state, settings_.slime.friction);
 }
 
 void Simulation::driveGrabbedPoints(double h) {

@@ -7,6 +7,7 @@
 //   metrics, divergences, grab, dragTo, release, grabbing, grabTarget, grabbedIndices.
 #pragma once
 
+#include "core/damped_symplectic_euler.h"
 #include "core/force_model.h"
 #include "core/icosphere.h"
 #include "core/implicit_euler.h"
@@ -84,6 +85,7 @@ class Simulation {
   void rebuildModels();
   void substep(double h);
   void driveGrabbedPoints(double h);
+  void placeGrabbedPoints();
   void saveGoodState();
   void rollBack(const std::string& what);
 
@@ -97,6 +99,8 @@ class Simulation {
   double highestDampingRate_ = 0.0;
   std::vector<double> dampingDecays_;  // per spring, for the substep length dampingDecayStep_
   double dampingDecayStep_ = -1.0;      // -1: recompute (after a grab, release or material change)
+  DampedSymplecticEulerModel symplecticModel_;  // what symplectic_euler's fused substep reads
+  DampedSymplecticEulerScratch symplecticScratch_;
   XpbdModel xpbdModel_;
   AccelerationField accelerationField_;
   ForceScratch forceScratch_;

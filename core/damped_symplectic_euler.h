@@ -1,0 +1,55 @@
+// The default integrator's whole substep in few passes over memory: symplectic Euler on the elastic
+// forces (springs without their damper, fill pressure, gravity), the springs' damper solved
+// implicitly between kick and drift, then the floor contact. The same mathematics as
+//   computeAccelerations (damping 0) → symplecticEulerKick → dampSpringsImplicitly →
+//   symplecticEulerDrift → resolveFloorContact
+// and the same results up to floating-point rounding (tests/core/damped_symplectic_euler_test.cpp
+// checks it), but fused: the split version makes about ten passes over vertices, springs and
+// triangles per substep; this one makes five, and loads nothing it does not use (the elastic
+// springs' velocities, the damper's positions and divisions).
+//   1. triangles: 6V and 6∇_i V = Σ (b × c), accumulated unscaled;
+//   2. springs:   Hooke forces, and for the damper each spring's x_ij and factor/|x_ij|²;
+//   3. vertices:  kick v += h (w (F + p ∇V) + g), clearing the accumulators for the next substep;
+//   4. springs:   the damper's symmetric Gauss–Seidel sweep, forward then backward;
+//   5. vertices:  drift x += v h and the floor contact.
+#pragma once
+
+#include "core/particle_state.h"
+#include "core/springs.h"
+
+#include <glm/vec3.hpp>
+
+#include <vector>
+
+namespace slime {
+
+struct DampedSymplecticEulerModel {
+  const SpringSet* springs = nullptr;
+  const std::vector<double>* dampingDecays = nullptr;    // per spring, springDampingDecays for this h
+  const std::vector<glm::u32vec3>* triangles = nullptr;  // null: no volume term
+  double restVolume = 0.0;                               // V0, m^3
+  double restPressure = 0.0;                             // p at V = V0, Pa
+  double bulkModulus = 0.0;                              // K in p = p0 + K (1 - V/V0), Pa
+  glm::dvec3 gravity{0.0, 0.0, -9.81};                   // m/s^2
+  double friction = 0.0;                                 // Coulomb μ of the floor
+};
+
+// One spring's damper over the substep, at the positions of the kick: x_ij and
+// (decay - 1) / ((w_i + w_j) |x_ij|²), so the sweeps need neither the positions nor a division.
+struct SpringDamperGeometry {
+  glm::dvec3 x;
+  double factorPerLengthSquared;
+};
+
+struct DampedSymplecticEulerScratch {
+  std::vector<glm::dvec3> springForces;        // Σ Hooke forces per vertex (kept zero between substeps)
+  std::vector<glm::dvec3> sixVolumeGradient;   // 6 ∇_i V (kept zero between substeps)
+  std::vector<SpringDamperGeometry> dampers;   // per spring
+};
+
+// Advances every dynamic point (w > 0) by h; kinematic points (w = 0) drift with their own
+// velocity and are left to the caller (as are the other integrators').
+void dampedSymplecticEulerSubstep(ParticleState& state, double h, const DampedSymplecticEulerModel& model,
+                                  DampedSymplecticEulerScratch& scratch);
+
+}  // namespace slime
