@@ -13,19 +13,17 @@
 namespace slime {
 namespace {
 
-constexpr std::size_t kPacketGrain = 16;   // packets per task
-constexpr std::size_t kSingleGrain = 128;  // single rays per task
+constexpr std::size_t kPacketGrain = 16;  // packets per task
 
 
-
-std::uint64_t tracePackets(RTCScene scene, const RayLog& log, std::size_t begin, std::size_t end) {
+std::uint64_t tracePackets(RTCScene scene, const std::vector<RayPacket>& packets, std::size_t begin, std::size_t end) {
   FlushDenormals flush;
   std::uint64_t hits = 0;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   for (std::size_t p = begin; p < end; ++p) {
-    const RayPacket& packet = log.primaryPackets[p];
+    const RayPacket& packet = packets[p];
     alignas(32) int valid[8];
     alignas(32) RTCRayHit8 rays;
     for (int i = 0; i < 8; ++i) {
@@ -47,21 +45,6 @@ std::uint64_t tracePackets(RTCScene scene, const RayLog& log, std::size_t begin,
     }
     rtcIntersect8(valid, scene, &context, &rays);
     for (int i = 0; i < 8; ++i) hits += packet.active[i] && rays.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
-  }
-  return hits;
-}
-
-std::uint64_t traceSingles(RTCScene scene, const std::vector<Ray>& rays, std::size_t begin, std::size_t end) {
-  FlushDenormals flush;
-  std::uint64_t hits = 0;
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  for (std::size_t r = begin; r < end; ++r) {
-    RTCRayHit rayHit;
-    toEmbreeRay(rays[r], rayHit.ray);
-    rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(scene, &context, &rayHit);
-    hits += rayHit.hit.geomID != RTC_INVALID_GEOMETRY_ID;
   }
   return hits;
 }
@@ -168,12 +151,13 @@ ReplayTimes EmbreeReplay::replay(const RayLog& log, int threads) const {
   std::atomic<std::uint64_t> hits{0};
   ReplayTimes times;
   RTCScene scene = scene_;
-  times.primaryMs = timeParallel(arena, log.primaryPackets.size(), kPacketGrain, hits,
-                                 [&](std::size_t b, std::size_t e) { return tracePackets(scene, log, b, e); });
-  times.secondaryMs = timeParallel(arena, log.secondary.size(), kSingleGrain, hits,
-                                   [&](std::size_t b, std::size_t e) { return traceSingles(scene, log.secondary, b, e); });
-  times.shadowMs = timeParallel(arena, log.shadow.size(), kSingleGrain, hits,
-                                [&](std::size_t b, std::size_t e) { return traceSingles(scene, log.shadow, b, e); });
+  const auto replayPackets = [&](const std::vector<RayPacket>& packets) {
+    return timeParallel(arena, packets.size(), kPacketGrain, hits,
+                        [&](std::size_t b, std::size_t e) { return tracePackets(scene, packets, b, e); });
+  };
+  times.primaryMs = replayPackets(log.primary);
+  times.secondaryMs = replayPackets(log.secondary);
+  times.shadowMs = replayPackets(log.shadow);
   times.hits = hits;
   return times;
 }

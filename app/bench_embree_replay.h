@@ -20,9 +20,9 @@ enum class BvhUpdate { Refit, RebuildLow, RebuildMedium, RebuildHigh };
 std::string bvhUpdateName(BvhUpdate update);  // "refit", "low", "medium", "high"
 
 struct ReplayTimes {
-  double primaryMs = 0.0;    // coherent 8-wide packets (rtcIntersect8)
-  double secondaryMs = 0.0;  // reflection and refraction (rtcIntersect1)
-  double shadowMs = 0.0;     // shadow crossings (rtcIntersect1)
+  double primaryMs = 0.0;    // every query as the tracer's 8-wide packets (rtcIntersect8):
+  double secondaryMs = 0.0;  // reflection and refraction
+  double shadowMs = 0.0;     // shadow crossings
   std::uint64_t hits = 0;    // queries that found the slime
   double totalMs() const { return primaryMs + secondaryMs + shadowMs; }
 };

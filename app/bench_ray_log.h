@@ -1,5 +1,5 @@
 // The slime queries of one frame, recorded so that they can be replayed through Embree alone: the
-// "limit" pass (the same rays, no shading, no ray generation, no analytic floor or sky) and the
+// "limit" pass (the same rays in the same packets, no shading, no ray generation, no analytic floor or sky) and the
 // trace time after a refit or a rebuild of the BVH. Recorded by running the renderer's own
 // WhittedTracer once over every pixel (one sample per pixel) with an intersector that logs each query.
 #pragma once
@@ -21,14 +21,15 @@ struct RayPacket {
   std::array<bool, 8> active{};
 };
 
+// Every query as the tracer made it: packets of up to 8 rays (the tracer asks nothing one ray at a time).
 struct RayLog {
-  std::vector<RayPacket> primaryPackets;  // coherent primaries, 8 pixels of a row at a time
-  std::vector<Ray> secondary;             // reflection and refraction queries (tFar = ∞)
-  std::vector<Ray> shadow;                // shadow-ray crossings towards the light (finite tFar)
-  std::uint64_t hits = 0;                 // queries that found the slime while recording
+  std::vector<RayPacket> primary;    // coherent primaries, 8 pixels of a row at a time
+  std::vector<RayPacket> secondary;  // reflection and refraction queries (tFar = ∞), a generation of 8 pixels' rays
+  std::vector<RayPacket> shadow;     // shadow-ray crossings towards the light (finite tFar)
+  std::uint64_t hits = 0;            // queries that found the slime while recording
 
-  std::uint64_t primaryQueries() const;
-  std::uint64_t queries() const { return primaryQueries() + secondary.size() + shadow.size(); }
+  static std::uint64_t activeRays(const std::vector<RayPacket>& packets);
+  std::uint64_t queries() const { return activeRays(primary) + activeRays(secondary) + activeRays(shadow); }
 };
 
 // Traces the frame that `settings.camera` sees at width × height with the slime mesh given, and

@@ -190,12 +190,12 @@ json runRenderBench(const Settings& baseSettings, const RenderBenchOptions& opti
                            {"primary_ms", summarize(primaryMs).median},
                            {"secondary_ms", summarize(secondaryMs).median},
                            {"shadow_ms", summarize(shadowMs).median},
-                           {"queries", {{"primary", log.primaryQueries()}, {"secondary", log.secondary.size()},
-                                        {"shadow", log.shadow.size()}}},
+                           {"queries", {{"primary", RayLog::activeRays(log.primary)}, {"secondary", RayLog::activeRays(log.secondary)},
+                                        {"shadow", RayLog::activeRays(log.shadow)}}},
                            {"mqueries_per_s_by_kind",
-                            {{"primary", mrate(static_cast<double>(log.primaryQueries()), summarize(primaryMs).median)},
-                             {"secondary", mrate(static_cast<double>(log.secondary.size()), summarize(secondaryMs).median)},
-                             {"shadow", mrate(static_cast<double>(log.shadow.size()), summarize(shadowMs).median)}}}}},
+                            {{"primary", mrate(static_cast<double>(RayLog::activeRays(log.primary)), summarize(primaryMs).median)},
+                             {"secondary", mrate(static_cast<double>(RayLog::activeRays(log.secondary)), summarize(secondaryMs).median)},
+                             {"shadow", mrate(static_cast<double>(RayLog::activeRays(log.shadow)), summarize(shadowMs).median)}}}}},
                 {"limit_mqueries_per_s", mrate(static_cast<double>(log.queries()), limit.median)},
                 {"full_over_limit", limit.median > 0.0 ? ms / limit.median : 0.0}};
       if (!brute.is_null()) {

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace slime {
 namespace {
@@ -35,39 +36,113 @@ float phongLobe(const glm::vec3& normal, const glm::vec3& toLight, const glm::ve
 
 }  // namespace
 
-SlimeHit WhittedTracer::findSlime(const Ray& ray, TraceCounters& counters) const {
-  if (!geometry_.mayHit(ray)) return {};
-  ++counters.slimeQueries;
-  return intersector_.intersect(ray);
+struct WhittedTracer::Wavefront {
+  std::vector<PendingRay> current, next;  // this generation's rays and their children
+  std::vector<PendingShadow> shadows;     // the packet's shadow rays, traced last
+};
+
+namespace {
+
+// One wavefront per tracing thread, kept from packet to packet and frame to frame: once its lists
+// have grown to the largest tree seen, tracing allocates nothing.
+WhittedTracer::Wavefront& threadWavefront() {
+  thread_local WhittedTracer::Wavefront wavefront;
+  return wavefront;
 }
+
+}  // namespace
 
 glm::vec3 WhittedTracer::tracePrimary(const Ray& ray, const SlimeHit& hit, TraceCounters& counters,
                                       FloorShading* floorCache) const {
-  ++counters.rays.primary;
-  return trace(ray, &hit, Path{}, Kind::Primary, counters, floorCache);
+  glm::vec3 color;
+  tracePrimary8(&ray, &hit, 1, counters, floorCache, &color);
+  return color;
 }
 
-glm::vec3 WhittedTracer::tracePrimary(const Ray& ray, TraceCounters& counters) const {
-  const SlimeHit hit = findSlime(ray, counters);
-  return tracePrimary(ray, hit, counters);
+void WhittedTracer::tracePrimary8(const Ray* rays, const SlimeHit* hits, int count, TraceCounters& counters,
+                                  FloorShading* floorCache, glm::vec3* colors) const {
+  Wavefront& wavefront = threadWavefront();
+  wavefront.current.clear();
+  wavefront.next.clear();
+  wavefront.shadows.clear();
+  for (int i = 0; i < count; ++i) {
+    ++counters.rays.primary;
+    colors[i] = glm::vec3(0.0f);
+    if (!hits[i].valid()) {
+      // Most pixels see only the floor or the sky: shaded at once, only their shadow rays may wait.
+      const float tFloor = floorDistance(rays[i]);
+      if (tFloor == kInfinity) colors[i] = sky(rays[i].direction);
+      else shadeFloor(rays[i], tFloor, Path{}, glm::vec3(1.0f), i, wavefront, counters, floorCache ? floorCache + i : nullptr, colors);
+      continue;
+    }
+    PendingRay primary;
+    primary.ray = rays[i];
+    primary.hit = hits[i];
+    primary.hitKnown = true;
+    primary.pixel = i;
+    wavefront.current.push_back(primary);
+  }
+  wavefront.current.insert(wavefront.current.end(), wavefront.next.begin(), wavefront.next.end());
+  // Generation by generation: the queries of all the packet's rays of one depth, then their shading,
+  // which adds what is known now to the pixels and queues the next generation and the shadow rays.
+  while (!wavefront.current.empty()) {
+    findHits(wavefront.current, counters);
+    wavefront.next.clear();
+    for (const PendingRay& ray : wavefront.current) shade(ray, wavefront, counters, floorCache, colors);
+    std::swap(wavefront.current, wavefront.next);
+  }
+  traceShadows(wavefront.shadows, counters, colors);
 }
 
-glm::vec3 WhittedTracer::trace(const Ray& ray, const SlimeHit* knownHit, const Path& path, Kind kind,
-                               TraceCounters& counters, FloorShading* floorCache) const {
-  if (kind == Kind::Reflection) ++counters.rays.reflection;
-  if (kind == Kind::Refraction) ++counters.rays.refraction;
-  const bool cannotMeetSlime = path.leavesSlime && geometry_.isConvex();
-  const SlimeHit hit = knownHit ? *knownHit : cannotMeetSlime ? SlimeHit{} : findSlime(ray, counters);
-  const float tFloor = floorDistance(ray);
-  if (hit.valid() && hit.t <= tFloor) return shadeSlime(ray, hit, path, counters);
-  if (tFloor == kInfinity) return sky(ray.direction);
-  const glm::vec3 floorColor = shadeFloor(ray, tFloor, path, counters, floorCache);
-  // Under the jelly (the contact patch) the floor is seen through Beer–Lambert absorption.
-  return path.inside ? floorColor * beerLambert(parameters_.slimeAbsorption, tFloor) : floorColor;
+void WhittedTracer::findHits(std::vector<PendingRay>& rays, TraceCounters& counters) const {
+  Ray packet[8];
+  bool active[8] = {};
+  std::size_t members[8] = {};
+  int size = 0;
+  const auto flush = [&] {
+    SlimeHit found[8];
+    intersector_.intersect8(packet, active, found);
+    counters.slimeQueries += static_cast<std::uint64_t>(size);
+    for (int k = 0; k < size; ++k) rays[members[k]].hit = found[k];
+    for (bool& a : active) a = false;
+    size = 0;
+  };
+  const bool convex = geometry_.isConvex();
+  for (std::size_t r = 0; r < rays.size(); ++r) {
+    PendingRay& ray = rays[r];
+    if (ray.hitKnown) continue;
+    ray.hitKnown = true;
+    ray.hit = SlimeHit{};
+    // A ray leaving a convex slime's outside cannot meet it again; others only if they reach its bounds.
+    if ((ray.path.leavesSlime && convex) || !geometry_.mayHit(ray.ray)) continue;
+    packet[size] = ray.ray;
+    active[size] = true;
+    members[size] = r;
+    if (++size == 8) flush();
+  }
+  if (size > 0) flush();
 }
 
-glm::vec3 WhittedTracer::shadeSlime(const Ray& ray, const SlimeHit& hit, const Path& path, TraceCounters& counters) const {
+void WhittedTracer::shade(const PendingRay& ray, Wavefront& wavefront, TraceCounters& counters,
+                          FloorShading* floorCache, glm::vec3* colors) const {
+  const float tFloor = floorDistance(ray.ray);
+  if (ray.hit.valid() && ray.hit.t <= tFloor) {
+    shadeSlime(ray, wavefront, counters, colors);
+  } else if (tFloor == kInfinity) {
+    colors[ray.pixel] += ray.factor * sky(ray.ray.direction);
+  } else {
+    shadeFloor(ray.ray, tFloor, ray.path, ray.factor, ray.pixel, wavefront, counters,
+               ray.kind == Kind::Primary && floorCache ? floorCache + ray.pixel : nullptr, colors);
+  }
+}
+
+void WhittedTracer::shadeSlime(const PendingRay& pending, Wavefront& wavefront, TraceCounters& counters,
+                               glm::vec3* colors) const {
   const ShadingParameters& p = parameters_;
+  const Ray& ray = pending.ray;
+  const SlimeHit& hit = pending.hit;
+  const Path& path = pending.path;
+  glm::vec3& pixel = colors[pending.pixel];
   const glm::vec3 point = ray.origin + hit.t * ray.direction;
   const glm::vec3 outward = geometry_.geometricNormal(hit, point);
   const bool entering = glm::dot(ray.direction, outward) < 0.0f;
@@ -81,18 +156,16 @@ glm::vec3 WhittedTracer::shadeSlime(const Ray& ray, const SlimeHit& hit, const P
 
   // A ray that reaches the surface from inside has crossed the jelly: Beer–Lambert over its length.
   const glm::vec3 absorbed = entering ? glm::vec3(1.0f) : beerLambert(p.slimeAbsorption, hit.t);
-  glm::vec3 color(0.0f);
   if (entering) {
     // Local Phong: I = k_a I_a C + T_light I_l (k_d (N·L) C + k_s (R·V)^n).
-    color += p.ambient * p.ambientLight * p.slimeColor;
+    pixel += pending.factor * (p.ambient * p.ambientLight * p.slimeColor);
     const glm::vec3 toLight = glm::normalize(p.lightPosition - point);
     const float cosLight = glm::dot(normal, toLight);
     if (cosLight > 0.0f && glm::dot(facing, toLight) > 0.0f) {
-      const glm::vec3 visible = p.shadows ? lightTransmittance(offsetRayOrigin(point, facing, toLight), counters, true)
-                                          : glm::vec3(1.0f);
-      if (largest(visible) > 0.0f)
-        color += visible * p.lightColor *
-                 (p.diffuse * cosLight * p.slimeColor + p.specular * phongLobe(normal, toLight, -ray.direction, p.shininess));
+      const glm::vec3 lit = pending.factor * p.lightColor *
+          (p.diffuse * cosLight * p.slimeColor + p.specular * phongLobe(normal, toLight, -ray.direction, p.shininess));
+      if (p.shadows) addLight(offsetRayOrigin(point, facing, toLight), lit, pending.pixel, geometry_.isConvex(), wavefront, counters, colors);
+      else pixel += lit;
     }
   }
 
@@ -111,37 +184,44 @@ glm::vec3 WhittedTracer::shadeSlime(const Ray& ray, const SlimeHit& hit, const P
   }
 
   const glm::vec3 weight = path.weight * absorbed;
-  Path next;
-  next.segment = path.segment + 1;
-  next.travelled = path.travelled + hit.t;
+  PendingRay child;
+  child.pixel = pending.pixel;
+  child.path.segment = path.segment + 1;
+  child.path.travelled = path.travelled + hit.t;
   if (path.segment < p.depth) {
     if (reflectWeight > 0.0f && largest(weight * reflectWeight) >= kMinRayWeight) {
       glm::vec3 direction = reflect(ray.direction, normal);
       if (glm::dot(direction, facing) <= 0.0f) direction = reflect(ray.direction, facing);
-      next.weight = weight * reflectWeight;
-      next.inside = !entering;
-      next.leavesSlime = entering;
-      const Ray reflectedRay{offsetRayOrigin(point, facing, direction), direction, 0.0f, kInfinity};
-      color += reflectWeight * trace(reflectedRay, nullptr, next, Kind::Reflection, counters);
+      ++counters.rays.reflection;
+      child.kind = Kind::Reflection;
+      child.path.weight = weight * reflectWeight;
+      child.path.inside = !entering;
+      child.path.leavesSlime = entering;
+      child.factor = pending.factor * absorbed * reflectWeight;
+      child.ray = Ray{offsetRayOrigin(point, facing, direction), direction, 0.0f, kInfinity};
+      wavefront.next.push_back(child);
     }
     if (refracted && refractWeight > 0.0f && largest(weight * refractWeight) >= kMinRayWeight) {
-      next.weight = weight * refractWeight;
-      next.inside = entering;
-      next.leavesSlime = !entering;
-      const Ray refractedRay{offsetRayOrigin(point, facing, *refracted), *refracted, 0.0f, kInfinity};
-      color += refractWeight * trace(refractedRay, nullptr, next, Kind::Refraction, counters);
+      ++counters.rays.refraction;
+      child.kind = Kind::Refraction;
+      child.path.weight = weight * refractWeight;
+      child.path.inside = entering;
+      child.path.leavesSlime = !entering;
+      child.factor = pending.factor * absorbed * refractWeight;
+      child.ray = Ray{offsetRayOrigin(point, facing, *refracted), *refracted, 0.0f, kInfinity};
+      wavefront.next.push_back(child);
     }
   } else if (!entering && refracted && refractWeight > 0.0f) {
     // Out of segments on the way out of the jelly: what lies beyond is the analytic floor or sky.
     ++counters.rays.refraction;
     const Ray leaving{offsetRayOrigin(point, facing, *refracted), *refracted, 0.0f, kInfinity};
-    color += refractWeight * environment(leaving, next.travelled);
+    pixel += pending.factor * absorbed * refractWeight * environment(leaving, child.path.travelled);
   }
-  return color * absorbed;
 }
 
-glm::vec3 WhittedTracer::shadeFloor(const Ray& ray, float t, const Path& path, TraceCounters& counters,
-                                    FloorShading* floorCache) const {
+void WhittedTracer::shadeFloor(const Ray& ray, float t, const Path& path, const glm::vec3& rayFactor, int pixel,
+                               Wavefront& wavefront, TraceCounters& counters, FloorShading* floorCache,
+                               glm::vec3* colors) const {
   const ShadingParameters& p = parameters_;
   glm::vec3 point = ray.origin + t * ray.direction;
   point.z = 0.0f;
@@ -154,16 +234,69 @@ glm::vec3 WhittedTracer::shadeFloor(const Ray& ray, float t, const Path& path, T
     ++counters.cachedFloorPixels;
   }
   const FloorShading& shading = floorCache ? *floorCache : fresh;
-  glm::vec3 color = floorLocal(shading, point, true, counters);
+  // colour = mix(ambient + T_light lit + k_s I_mirror, horizon, haze), seen under the jelly (the
+  // contact patch) through Beer–Lambert absorption; each term goes to the pixel with its factor.
+  const glm::vec3 factor = path.inside ? rayFactor * beerLambert(p.slimeAbsorption, t) : rayFactor;
+  const glm::vec3 nearFactor = factor * (1.0f - shading.haze);  // what the haze leaves of the floor
+  colors[pixel] += nearFactor * shading.ambient + factor * (shading.haze * p.skyHorizon);
+  if (shading.lit != glm::vec3(0.0f)) {  // else the light is below the floor, or black
+    if (p.shadows) {
+      addLight(point + glm::vec3(0.0f, 0.0f, kRayOffset), nearFactor * shading.lit, pixel, false, wavefront, counters,
+               colors);
+    } else {
+      colors[pixel] += nearFactor * shading.lit;
+    }
+  }
   if (path.segment < p.depth && p.floorSpecular > 0.0f && largest(path.weight * p.floorSpecular) >= kMinRayWeight) {
     // The varnish mirrors what is above: the reflected ray (d_x, d_y, −d_z).
-    const glm::vec3 direction{ray.direction.x, ray.direction.y, -ray.direction.z};
-    Path next{path.segment + 1, path.weight * p.floorSpecular, distance, path.inside, false};
-    const Ray reflectedRay{point + glm::vec3(0.0f, 0.0f, kRayOffset), direction, 0.0f, kInfinity};
-    color += p.floorSpecular * trace(reflectedRay, nullptr, next, Kind::Reflection, counters);
+    ++counters.rays.reflection;
+    PendingRay child;
+    child.pixel = pixel;
+    child.kind = Kind::Reflection;
+    child.path = Path{path.segment + 1, path.weight * p.floorSpecular, distance, path.inside, false};
+    child.factor = nearFactor * p.floorSpecular;
+    child.ray = Ray{point + glm::vec3(0.0f, 0.0f, kRayOffset), {ray.direction.x, ray.direction.y, -ray.direction.z}, 0.0f,
+                    kInfinity};
+    wavefront.next.push_back(child);
   }
-  // Far floor fades into the horizon haze so that the horizon is a soft line.
-  return glm::mix(color, p.skyHorizon, shading.haze);
+}
+
+void WhittedTracer::addLight(const glm::vec3& origin, const glm::vec3& multiplier, int pixel, bool leavesConvexSlime,
+                             Wavefront& wavefront, TraceCounters& counters, glm::vec3* colors) const {
+  ++counters.rays.shadow;
+  const glm::vec3 toLight = parameters_.lightPosition - origin;
+  const float distance = glm::length(toLight);
+  const Ray ray{origin, toLight / distance, 0.0f, distance};
+  if (leavesConvexSlime || !(distance > 0.0f) || !geometry_.mayHit(ray)) {
+    colors[pixel] += multiplier;
+    return;
+  }
+  wavefront.shadows.push_back({ray, multiplier, pixel});
+}
+
+void WhittedTracer::traceShadows(const std::vector<PendingShadow>& shadows, TraceCounters& counters,
+                                 glm::vec3* colors) const {
+  Ray rays[8];
+  bool active[8] = {};
+  int pixels[8] = {};
+  glm::vec3 multipliers[8];
+  int size = 0;
+  const auto flush = [&] {
+    glm::vec3 visible[8];
+    lightTransmittance8(rays, active, visible, counters);
+    for (int k = 0; k < size; ++k)
+      if (largest(visible[k]) > 0.0f) colors[pixels[k]] += visible[k] * multipliers[k];
+    for (bool& a : active) a = false;
+    size = 0;
+  };
+  for (const PendingShadow& shadow : shadows) {
+    rays[size] = shadow.ray;
+    active[size] = true;
+    pixels[size] = shadow.pixel;
+    multipliers[size] = shadow.multiplier;
+    if (++size == 8) flush();
+  }
+  if (size > 0) flush();
 }
 
 FloorShading WhittedTracer::floorShading(const glm::vec3& point, const glm::vec3& direction, float distance) const {
@@ -199,35 +332,6 @@ FloorShading WhittedTracer::floorShading(const glm::vec3& point, const glm::vec3
   return shading;
 }
 
-glm::vec3 WhittedTracer::floorLocal(const FloorShading& shading, const glm::vec3& point, bool shadowed,
-                                    TraceCounters& counters) const {
-  const ShadingParameters& p = parameters_;
-  if (shading.lit == glm::vec3(0.0f)) return shading.ambient;  // the light is below the floor, or black
-  const glm::vec3 visible = shadowed && p.shadows
-      ? lightTransmittance(point + glm::vec3(0.0f, 0.0f, kRayOffset), counters) : glm::vec3(1.0f);
-  if (largest(visible) <= 0.0f) return shading.ambient;
-  return shading.ambient + visible * shading.lit;
-}
-
-glm::vec3 WhittedTracer::lightTransmittance(const glm::vec3& point, TraceCounters& counters, bool leavesSlime) const {
-  const ShadingParameters& p = parameters_;
-  ++counters.rays.shadow;
-  const glm::vec3 toLight = p.lightPosition - point;
-  const float distance = glm::length(toLight);
-  Ray ray{point, toLight / distance, 0.0f, distance};
-  glm::vec3 transmittance(1.0f);
-  const bool convex = geometry_.isConvex();
-  if (!(distance > 0.0f) || (leavesSlime && convex) || !geometry_.mayHit(ray)) return transmittance;
-  // Walk the crossings along the straight shadow ray (shadow rays are not bent): each crossing passes
-  // the surface's transmitted fraction, each stretch inside loses exp(−σ l).
-  for (int crossing = 0; crossing < kMaxShadowCrossings; ++crossing) {
-    ++counters.slimeQueries;
-    const SlimeHit hit = intersector_.intersect(ray);
-    if (!hit.valid() || !crossShadowSurface(ray, hit, transmittance)) return transmittance;
-  }
-  return glm::vec3(0.0f);
-}
-
 bool WhittedTracer::crossShadowSurface(Ray& ray, const SlimeHit& hit, glm::vec3& transmittance) const {
   const ShadingParameters& p = parameters_;
   const glm::vec3 hitPoint = ray.origin + hit.t * ray.direction;
@@ -251,19 +355,14 @@ bool WhittedTracer::crossShadowSurface(Ray& ray, const SlimeHit& hit, glm::vec3&
   return true;
 }
 
-void WhittedTracer::lightTransmittance8(const glm::vec3* points, const bool* active, glm::vec3* visible,
-                                        TraceCounters& counters) const {
-  Ray rays[8];
-  bool walking[8] = {};
+void WhittedTracer::lightTransmittance8(Ray* rays, const bool* active, glm::vec3* visible, TraceCounters& counters) const {
+  bool walking[8];
   for (int i = 0; i < 8; ++i) {
     visible[i] = glm::vec3(1.0f);
-    if (!active[i]) continue;
-    ++counters.rays.shadow;
-    const glm::vec3 toLight = parameters_.lightPosition - points[i];
-    const float distance = glm::length(toLight);
-    rays[i] = Ray{points[i], toLight / distance, 0.0f, distance};
-    walking[i] = distance > 0.0f && geometry_.mayHit(rays[i]);
+    walking[i] = active[i];
   }
+  // Walk the crossings along the straight shadow rays (shadow rays are not bent): each crossing
+  // passes the surface's transmitted fraction, each stretch inside loses exp(−σ l).
   for (int crossing = 0; crossing < kMaxShadowCrossings; ++crossing) {
     int count = 0;
     for (int i = 0; i < 8; ++i) count += walking[i];
@@ -278,53 +377,13 @@ void WhittedTracer::lightTransmittance8(const glm::vec3* points, const bool* act
     if (walking[i]) visible[i] = glm::vec3(0.0f);  // more crossings than kMaxShadowCrossings: blocked
 }
 
-void WhittedTracer::tracePrimary8(const Ray* rays, const SlimeHit* hits, int count, TraceCounters& counters,
-                                  FloorShading* floorCache, glm::vec3* colors) const {
-  const ShadingParameters& p = parameters_;
-  bool floorFirst[8] = {}, shadowed[8] = {};
-  glm::vec3 shadowOrigins[8], visible[8];
-  for (glm::vec3& origin : shadowOrigins) origin = glm::vec3(0.0f);
-  FloorShading fresh[8];
-  const FloorShading* shadings[8] = {};
-  for (int i = 0; i < count; ++i) {
-    const float tFloor = floorDistance(rays[i]);
-    floorFirst[i] = p.floorSpecular <= 0.0f && tFloor != kInfinity && !(hits[i].valid() && hits[i].t <= tFloor);
-    if (!floorFirst[i]) {  // the slime, the sky, or a varnished floor: one ray at a time
-      colors[i] = tracePrimary(rays[i], hits[i], counters, floorCache ? floorCache + i : nullptr);
-      continue;
-    }
-    // As shadeFloor for a primary ray on a matte floor, the shadow ray left for the packet below.
-    ++counters.rays.primary;
-    glm::vec3 point = rays[i].origin + tFloor * rays[i].direction;
-    point.z = 0.0f;
-    FloorShading* cached = floorCache ? floorCache + i : nullptr;
-    if (cached && cached->filled) {
-      ++counters.cachedFloorPixels;
-    } else {
-      fresh[i] = floorShading(point, rays[i].direction, tFloor);
-      if (cached) *cached = fresh[i];
-    }
-    shadings[i] = cached ? cached : &fresh[i];
-    shadowed[i] = p.shadows && shadings[i]->lit != glm::vec3(0.0f);
-    shadowOrigins[i] = point + glm::vec3(0.0f, 0.0f, kRayOffset);
-  }
-  lightTransmittance8(shadowOrigins, shadowed, visible, counters);
-  for (int i = 0; i < count; ++i) {
-    if (!floorFirst[i]) continue;
-    const FloorShading& shading = *shadings[i];
-    const glm::vec3 color = largest(visible[i]) > 0.0f ? shading.ambient + visible[i] * shading.lit : shading.ambient;
-    colors[i] = glm::mix(color, p.skyHorizon, shading.haze);
-  }
-}
-
 glm::vec3 WhittedTracer::environment(const Ray& ray, float travelled) const {
   const float t = floorDistance(ray);
   if (t == kInfinity) return sky(ray.direction);
-  TraceCounters unused;
   glm::vec3 point = ray.origin + t * ray.direction;
   point.z = 0.0f;
   const FloorShading shading = floorShading(point, ray.direction, travelled + t);
-  return glm::mix(floorLocal(shading, point, false, unused), parameters_.skyHorizon, shading.haze);
+  return glm::mix(shading.ambient + shading.lit, parameters_.skyHorizon, shading.haze);
 }
 
 glm::vec3 WhittedTracer::sky(const glm::vec3& direction) const {

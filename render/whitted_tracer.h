@@ -15,6 +15,8 @@
 #include "render/shading_parameters.h"
 #include "render/slime_geometry.h"
 
+#include <vector>
+
 namespace slime {
 
 // What a tracing thread counts (no shared writes): rays by kind plus slime queries actually made.
@@ -23,6 +25,7 @@ struct TraceCounters {
   std::uint64_t slimeQueries = 0;  // rays that reached Embree / the triangle loop
   std::uint64_t nonFinitePixels = 0;
   std::uint64_t cachedFloorPixels = 0;  // primary floor hits whose FloorShading came from the cache
+  std::uint64_t reusedPixels = 0;       // pixels copied from the last frame (RenderStats::reusedPixels)
   double busyMs = 0.0;                  // wall time spent in tiles by this thread
 };
 
@@ -43,52 +46,70 @@ class WhittedTracer {
                 const ShadingParameters& parameters)
       : geometry_(geometry), intersector_(intersector), floor_(floor), parameters_(parameters) {}
 
-  // Radiance along a primary ray whose slime hit has already been found (or found not to exist).
-  // `floorCache`, if given, holds this pixel's FloorShading: used when filled, else filled.
-  glm::vec3 tracePrimary(const Ray& ray, const SlimeHit& hit, TraceCounters& counters,
-                         FloorShading* floorCache = nullptr) const;
-
   // Radiance along `count` ≤ 8 neighbouring primary rays whose slime hits are known, into colors[].
-  // Where a matte floor is seen first, their shadow rays are traced together as one coherent packet
-  // per crossing (neighbouring floor points, one light); the same shading as tracePrimary.
+  // The rays' Whitted trees are traced breadth first, one generation at a time: every slime query of
+  // a generation and every shadow ray of the packet goes to the intersector as a packet of up to 8
+  // (neighbouring pixels refract and reflect alike, so these packets stay coherent).
   // `floorCache`, if given, holds the FloorShading of these count pixels.
   void tracePrimary8(const Ray* rays, const SlimeHit* hits, int count, TraceCounters& counters,
                      FloorShading* floorCache, glm::vec3* colors) const;
 
-  // Radiance along a primary ray (finds the slime hit itself).
-  glm::vec3 tracePrimary(const Ray& ray, TraceCounters& counters) const;
+  // One primary ray whose slime hit is known (tracePrimary8 with one ray).
+  glm::vec3 tracePrimary(const Ray& ray, const SlimeHit& hit, TraceCounters& counters,
+                         FloorShading* floorCache = nullptr) const;
 
-  // Fraction of the point light reaching `point` (per channel): 1 in the open, partial and coloured
-  // behind the translucent slime (surface transmission and Beer–Lambert along the chord), 0 if opaque.
-  // `leavesSlime`: the point is on the slime's lit outside (a convex slime cannot shadow it).
-  glm::vec3 lightTransmittance(const glm::vec3& point, TraceCounters& counters, bool leavesSlime = false) const;
-
-  // The closest slime hit along a ray, or none: the bounding-sphere test first, then the intersector.
-  SlimeHit findSlime(const Ray& ray, TraceCounters& counters) const;
+  struct Wavefront;  // per-thread work lists (whitted_tracer.cpp)
 
  private:
   enum class Kind { Primary, Reflection, Refraction };
   struct Path {
     int segment = 1;            // 1 for primary rays
-    glm::vec3 weight{1.0f};     // product of the factors so far
+    glm::vec3 weight{1.0f};     // product of the optical factors so far (decides whether a ray is worth tracing)
     float travelled = 0.0f;     // distance from the eye to the ray origin (footprint cone)
     bool inside = false;        // the ray runs inside the slime
     bool leavesSlime = false;   // the ray starts on the slime's surface heading outwards
   };
+  // A ray of the wavefront: its radiance times `factor` adds to pixel `pixel` of the packet.
+  struct PendingRay {
+    Ray ray;
+    Path path;
+    glm::vec3 factor{1.0f};
+    SlimeHit hit;
+    int pixel = 0;
+    Kind kind = Kind::Primary;
+    bool hitKnown = false;
+  };
+  // A shadow ray towards the light that may meet the slime: light transmittance × `multiplier` adds
+  // to pixel `pixel`.
+  struct PendingShadow {
+    Ray ray;
+    glm::vec3 multiplier{0.0f};
+    int pixel = 0;
+  };
 
-  glm::vec3 trace(const Ray& ray, const SlimeHit* knownHit, const Path& path, Kind kind, TraceCounters& counters,
-                  FloorShading* floorCache = nullptr) const;
-  glm::vec3 shadeSlime(const Ray& ray, const SlimeHit& hit, const Path& path, TraceCounters& counters) const;
-  glm::vec3 shadeFloor(const Ray& ray, float t, const Path& path, TraceCounters& counters,
-                       FloorShading* floorCache) const;
+  // The slime hits of the rays that do not know theirs, queried 8 at a time.
+  void findHits(std::vector<PendingRay>& rays, TraceCounters& counters) const;
+  void shade(const PendingRay& ray, Wavefront& wavefront, TraceCounters& counters, FloorShading* floorCache,
+             glm::vec3* colors) const;
+  void shadeSlime(const PendingRay& ray, Wavefront& wavefront, TraceCounters& counters, glm::vec3* colors) const;
+  // The floor at distance t along `ray`, its radiance times `factor` into pixel `pixel`.
+  void shadeFloor(const Ray& ray, float t, const Path& path, const glm::vec3& factor, int pixel, Wavefront& wavefront,
+                  TraceCounters& counters, FloorShading* floorCache, glm::vec3* colors) const;
+  // The light reaching `origin` times `multiplier`, for pixel `pixel`: added at once when nothing can
+  // shadow it (it leaves a convex slime's outside, or its ray misses the slime's bounds), else queued.
+  void addLight(const glm::vec3& origin, const glm::vec3& multiplier, int pixel, bool leavesConvexSlime,
+                Wavefront& wavefront, TraceCounters& counters, glm::vec3* colors) const;
+  // Traces the packet's queued shadow rays 8 at a time and adds what reaches each pixel.
+  void traceShadows(const std::vector<PendingShadow>& shadows, TraceCounters& counters, glm::vec3* colors) const;
   FloorShading floorShading(const glm::vec3& point, const glm::vec3& direction, float distance) const;
-  glm::vec3 floorLocal(const FloorShading& shading, const glm::vec3& point, bool shadowed, TraceCounters& counters) const;
   glm::vec3 environment(const Ray& ray, float travelled) const;  // floor (unshadowed) or sky, no slime
   // One crossing of a shadow ray with the slime's surface at `hit`: `transmittance` takes what passes
   // it and the ray moves past it. False when the walk is over (blocked, or out of a convex slime).
   bool crossShadowSurface(Ray& ray, const SlimeHit& hit, glm::vec3& transmittance) const;
-  // lightTransmittance of up to 8 floor points at once (active[i]), crossings traced as packets.
-  void lightTransmittance8(const glm::vec3* points, const bool* active, glm::vec3* visible, TraceCounters& counters) const;
+  // Fraction of the point light passing the slime along each of up to 8 shadow rays (active[i]; the
+  // rays are consumed), per channel: partial and coloured behind the translucent slime (surface
+  // transmission and Beer–Lambert along the chord), 0 if opaque. Crossings are traced as packets.
+  void lightTransmittance8(Ray* rays, const bool* active, glm::vec3* visible, TraceCounters& counters) const;
   glm::vec3 sky(const glm::vec3& direction) const;
 
   const SlimeGeometry& geometry_;
