@@ -5,6 +5,7 @@
 #include "render/embree_scene.h"
 #include "render/embree_util.h"
 #include "render/floor_texture.h"
+#include "render/screen_footprint.h"
 #include "render/slime_geometry.h"
 #include "render/tsan_handoff.h"
 #include "render/whitted_tracer.h"
@@ -69,6 +70,10 @@ struct Renderer::Impl {
   std::vector<FloorShading> floorCache;
   FloorCacheKey floorCacheView{};
   bool floorCacheValid = false;
+  // Under the same key, the final colour of each pixel outside the slime's footprint, once traced:
+  // such a pixel sees the floor or the sky and no shadow of the slime, so it is copied, not traced.
+  std::vector<glm::vec3> reusableColors;
+  std::vector<std::uint8_t> reusable;  // 1: reusableColors holds the pixel
 
   explicit Impl(const Settings& settings)
       : embree(settings.render.threads), floorSettings(settings.floor), floor(settings.floor) {
@@ -97,10 +102,11 @@ struct Renderer::Impl {
   }
 
   // Traces the pixels [rows) × [columns): primary rays 8 at a time as one coherent packet (only
-  // those that can reach the slime's bounding sphere), then shading ray by ray.
+  // those that can reach the slime's bounding sphere), then their Whitted trees as packets. With a
+  // floor cache, packets outside `footprint` are copied from the last frame once they have been traced.
   void traceTile(const WhittedTracer& tracer, const SlimeIntersector& intersector, const Camera& camera,
                  int samplesPerAxis, int rowBegin, int rowEnd, int columnBegin, int columnEnd, Image& image,
-                 FloorShading* floorShadings, TraceCounters& counts) const {
+                 FloorShading* floorShadings, const PixelRect& footprint, TraceCounters& counts) {
     FlushDenormals flush;
     const auto start = std::chrono::steady_clock::now();
     const float inverseSamples = 1.0f / static_cast<float>(samplesPerAxis * samplesPerAxis);
@@ -109,6 +115,15 @@ struct Renderer::Impl {
     const glm::vec3 right(camera.right * (camera.tanHalfFov * camera.aspect)), up(camera.up * camera.tanHalfFov);
     for (int y = rowBegin; y < rowEnd; ++y) {
       for (int x0 = columnBegin; x0 < columnEnd; x0 += kPacket) {
+        const int count = std::min(kPacket, columnEnd - x0);
+        const std::size_t first = static_cast<std::size_t>(y) * image.width + x0;
+        const bool outside = floorShadings && (y < footprint.y0 || y >= footprint.y1 || x0 + count <= footprint.x0 ||
+                                               x0 >= footprint.x1);
+        if (outside && std::all_of(&reusable[first], &reusable[first] + count, [](std::uint8_t r) { return r != 0; })) {
+          for (int i = 0; i < count; ++i) image.at(x0 + i, y) = reusableColors[first + i];
+          counts.reusedPixels += static_cast<std::uint64_t>(count);
+          continue;
+        }
         glm::vec3 sums[kPacket] = {};
         for (int sampleY = 0; sampleY < samplesPerAxis; ++sampleY) {
           for (int sampleX = 0; sampleX < samplesPerAxis; ++sampleX) {
@@ -129,7 +144,6 @@ struct Renderer::Impl {
               counts.slimeQueries += static_cast<std::uint64_t>(activeCount);
               intersector.intersect8(rays, active, hits);
             }
-            const int count = std::min(kPacket, columnEnd - x0);
             glm::vec3 colors[kPacket];
             tracer.tracePrimary8(rays, hits, count, counts,
                                  floorShadings ? floorShadings + static_cast<std::size_t>(y) * image.width + x0 : nullptr,
@@ -143,6 +157,10 @@ struct Renderer::Impl {
           const bool finite = std::isfinite(color.x + color.y + color.z);
           counts.nonFinitePixels += !finite;
           image.at(x0 + i, y) = finite ? color : glm::vec3(0.0f);
+          if (outside) {
+            reusableColors[first + i] = image.at(x0 + i, y);
+            reusable[first + i] = 1;
+          }
         }
       }
     }
@@ -177,14 +195,18 @@ RenderStats Renderer::render(const Settings& settings, Image& image) {
   const WhittedTracer tracer(impl.geometry, intersector, impl.floor, parameters);
 
   FloorShading* floorShadings = nullptr;
+  PixelRect footprint;
   if (samplesPerAxis == 1) {
     const FloorCacheKey view = floorCacheKey(camera, parameters, image.width, image.height);
     if (!impl.floorCacheValid || view != impl.floorCacheView) {
       impl.floorCache.assign(image.pixels.size(), FloorShading{});
+      impl.reusableColors.assign(image.pixels.size(), glm::vec3(0.0f));
+      impl.reusable.assign(image.pixels.size(), 0);
       impl.floorCacheView = view;
       impl.floorCacheValid = true;
     }
     floorShadings = impl.floorCache.data();
+    footprint = slimeFootprint(camera, impl.geometry, parameters, image.width, image.height);
   }
 
   for (TraceCounters& counts : impl.counters) counts = TraceCounters{};
@@ -193,7 +215,7 @@ RenderStats Renderer::render(const Settings& settings, Image& image) {
   if (brute) {
     // The seed's algorithm is the oracle: one thread, no packets that matter, every triangle.
     impl.traceTile(tracer, intersector, camera, samplesPerAxis, 0, image.height, 0, image.width, image,
-                   floorShadings, impl.counters.local());
+                   floorShadings, footprint, impl.counters.local());
   } else {
     handOff(&impl);  // the frame's inputs, to the workers
     impl.arena->execute([&] {
@@ -202,7 +224,7 @@ RenderStats Renderer::render(const Settings& settings, Image& image) {
                           takeOver(&impl);
                           impl.traceTile(tracer, intersector, camera, samplesPerAxis, tile.rows().begin(),
                                          tile.rows().end(), tile.cols().begin(), tile.cols().end(), image,
-                                         floorShadings, impl.counters.local());
+                                         floorShadings, footprint, impl.counters.local());
                           handOff(&impl);  // the tile's pixels and counters, back to the caller
                         });
     });
@@ -216,6 +238,7 @@ RenderStats Renderer::render(const Settings& settings, Image& image) {
     stats.slimeQueries += counts.slimeQueries;
     stats.nonFinitePixels += counts.nonFinitePixels;
     stats.cachedFloorPixels += counts.cachedFloorPixels;
+    stats.reusedPixels += counts.reusedPixels;
     stats.busyMs += counts.busyMs;
   }
   stats.traceMs = millisecondsSince(start);

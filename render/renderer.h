@@ -35,6 +35,9 @@ struct RenderStats {
   double busyMs = 0.0;   // time the threads spent in tiles, summed: busyMs / (traceMs · threads) = parallel use
   int threads = 0;       // threads tracing (the arena's concurrency)
   std::uint64_t cachedFloorPixels = 0;  // primary floor hits served from the still-view floor cache
+  // Pixels copied from the last frame, not traced: the camera is still and the slime cannot reach them
+  // (outside its footprint, render/screen_footprint.h). Their rays are not in `rays`.
+  std::uint64_t reusedPixels = 0;
   RayCounts rays;        // every ray by kind, whether it met Embree or only the analytic floor/sky
   std::uint64_t slimeQueries = 0;  // rays that could reach the slime's bounds and were tested against it
   std::uint64_t nonFinitePixels = 0;  // pixels whose colour came out NaN/inf (written black); must stay 0

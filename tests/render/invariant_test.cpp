@@ -2,7 +2,11 @@
 // Embree against the seed's brute-force algorithm, the mesh against the exact sphere, and no NaN.
 #include "render_fixture.h"
 
+#include "core/camera.h"
 #include "render/optics.h"
+#include "render/screen_footprint.h"
+#include "render/shading_parameters.h"
+#include "render/slime_geometry.h"
 
 #include <gtest/gtest.h>
 
@@ -56,9 +60,10 @@ TEST(Invariant, CentreRayIsAttenuatedByBeerLambertOverTheDiameter) {
   expectCentreAttenuation("mesh", 5, 5e-3f);  // the inscribed mesh's chord is a little shorter
 }
 
-// The renderer keeps the floor its primary rays saw while the view stays still; a frame drawn from
-// that cache must be exactly the frame a fresh renderer draws, after the slime moved (uncovering floor
-// the first frame never shaded) and after the camera or the light changed (the cache is dropped).
+// The renderer keeps the floor its primary rays saw while the view stays still, and copies the pixels
+// outside the slime's footprint; a frame drawn from those caches must be exactly the frame a fresh
+// renderer draws, after the slime moved (uncovering floor the first frame never shaded, covering
+// pixels it copied before) and after the camera or the light changed (the caches are dropped).
 TEST(Invariant, FramesFromTheFloorCacheEqualFreshFrames) {
   Settings settings = smallScene(160, 120);
   settings.slime.level = 3;
@@ -72,20 +77,74 @@ TEST(Invariant, FramesFromTheFloorCacheEqualFreshFrames) {
   renderer.render(settings, image);
   auto expectFresh = [&](const Settings& s, const TriangleMesh& mesh, const char* what) {
     renderer.updateSlime(mesh.positions, mesh.triangles);
-    renderer.render(s, image);
+    const RenderStats stats = renderer.render(s, image);
     const Image fresh = renderMesh(s, mesh);
-    ASSERT_EQ(image.pixels.size(), fresh.pixels.size());
+    EXPECT_EQ(image.pixels.size(), fresh.pixels.size()) << what;
+    if (image.pixels.size() != fresh.pixels.size()) return stats;
     std::size_t differing = 0;
     for (std::size_t i = 0; i < image.pixels.size(); ++i) differing += image.pixels[i] != fresh.pixels[i];
     EXPECT_EQ(differing, 0u) << what;
+    return stats;
   };
-  expectFresh(settings, moved, "slime moved");
+  const RenderStats movedStats = expectFresh(settings, moved, "slime moved");
+  EXPECT_GT(movedStats.reusedPixels, image.pixels.size() / 2) << "a still view copies most of the floor";
+  expectFresh(settings, resting, "slime moved back");
+  TriangleMesh raised = resting;
+  for (auto& p : raised.positions) p += glm::dvec3(-0.02, 0.0, 0.05);  // its shadow moves away from it
+  expectFresh(settings, raised, "slime lifted");
   settings.camera.yaw += 4.0;
   expectFresh(settings, moved, "camera turned");
   settings.light.position.x -= 0.1;
   expectFresh(settings, resting, "light moved");
   settings.floor.specular = 0.1;
   expectFresh(settings, resting, "floor varnished");
+}
+
+// The footprint (render/screen_footprint.h) must hold every pixel the slime changes: the difference
+// between the scene with the slime and without it, for slimes on the floor, in the air, stretched,
+// under a low light and on a varnished floor.
+TEST(Invariant, FootprintHoldsEveryPixelTheSlimeChanges) {
+  struct Case {
+    const char* what;
+    glm::dvec3 offset;
+    glm::dvec3 stretch;
+    double lightHeight;
+    double floorSpecular;
+  };
+  const Case cases[] = {{"resting", {0, 0, 0}, {1, 1, 1}, 0.35, 0.0},
+                        {"in the air", {0.02, 0.01, 0.06}, {1, 1, 1}, 0.35, 0.0},
+                        {"stretched", {0, 0, 0}, {1.5, 0.8, 1.2}, 0.35, 0.0},
+                        {"low light", {0, 0, 0}, {1, 1, 1}, 0.12, 0.0},
+                        {"varnished floor", {0, 0.02, 0.03}, {1, 1, 1}, 0.35, 0.2}};
+  for (const Case& c : cases) {
+    Settings settings = smallScene(160, 120);
+    settings.slime.level = 3;
+    settings.light.position.z = c.lightHeight;
+    settings.floor.specular = c.floorSpecular;
+    TriangleMesh mesh = restingMesh(settings);
+    const glm::dvec3 base = settings.slime.position;
+    for (auto& p : mesh.positions) p = base + (p - base) * c.stretch + c.offset;
+    const Image with = renderMesh(settings, mesh);
+    const Image without = renderMesh(settings, TriangleMesh{});
+    SlimeGeometry geometry;
+    geometry.update(mesh.positions, mesh.triangles);
+    const PixelRect footprint =
+        slimeFootprint(makeCamera(settings.camera, with.width, with.height), geometry,
+                       makeShadingParameters(settings, with.height), with.width, with.height);
+    int changed = 0, outside = 0;
+    for (int y = 0; y < with.height; ++y) {
+      for (int x = 0; x < with.width; ++x) {
+        if (with.at(x, y) == without.at(x, y)) continue;
+        ++changed;
+        outside += !footprint.contains(x, y);
+      }
+    }
+    EXPECT_GT(changed, 0) << c.what;
+    EXPECT_EQ(outside, 0) << c.what << ": " << outside << " changed pixels outside the footprint";
+    const int area = (footprint.x1 - footprint.x0) * (footprint.y1 - footprint.y0);
+    EXPECT_LT(area, with.width * with.height) << c.what << ": the footprint should not be the whole image (" << footprint.x0
+                                              << "," << footprint.y0 << ")-(" << footprint.x1 << "," << footprint.y1 << ")";
+  }
 }
 
 // The seed's algorithm (bounding sphere, then every triangle) and Embree must agree.
