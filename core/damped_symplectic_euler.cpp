@@ -10,50 +10,49 @@
 namespace slime {
 namespace {
 
-// Pass 1: returns 6V and adds 6∇_i V into `sixGradient` (volume.h's formula, with the same origin).
-double addSixVolumeGradient(const std::vector<glm::dvec3>& positions, const std::vector<glm::u32vec3>& triangles,
-                            std::vector<glm::dvec3>& sixGradient) {
-  const glm::dvec3 origin = positions[0];
-  double sixTimesVolume = 0.0;
-  for (const glm::u32vec3& t : triangles) {
-    const glm::dvec3 a = positions[t.x] - origin, b = positions[t.y] - origin, c = positions[t.z] - origin;
-    const glm::dvec3 bc = glm::cross(b, c);
-    sixTimesVolume += glm::dot(a, bc);
-    sixGradient[t.x] += bc;
-    sixGradient[t.y] += glm::cross(c, a);
-    sixGradient[t.z] += glm::cross(a, b);
-  }
-  return sixTimesVolume;
-}
-
-// Pass 2: Hooke's force F_j = -k (|x| - l) x/|x| on every spring (no damper: it is solved in pass 4),
-// and what the damper needs of the same x_ij.
-void addHookeForcesAndDamperGeometry(const SpringSet& springs, const std::vector<double>& dampingDecays,
-                                     const std::vector<glm::dvec3>& positions, std::vector<glm::dvec3>& forces,
-                                     std::vector<SpringDamperGeometry>& dampers) {
+// Pass 1: Hooke's force F_j = -k (|x| - l) x/|x| on every spring (no damper: it is solved in pass
+// 4), the edge's share ±(p_i - o) × x_ij of 6∇V at its opposite vertices ((p_i - o) × (p_j - o)
+// with the same origin o for every edge), and what the damper needs of the same x_ij.
+template <bool kWithVolume>
+void springPass(const SpringSet& springs, const glm::u32vec2* opposites, const std::vector<double>& dampingDecays,
+                const std::vector<glm::dvec3>& positions, DampedSymplecticEulerScratch& scratch) {
   const std::size_t count = springs.size();
+  const glm::u32vec2* ends = springs.ends.data();
+  const double* stiffnesses = springs.stiffnesses.data();
+  const double* restLengths = springs.restLengths.data();
+  const double* decays = dampingDecays.data();
+  glm::dvec3* forces = scratch.springForces.data();
+  glm::dvec3* sixGradient = scratch.sixVolumeGradient.data();
+  glm::dvec3* vectors = scratch.springVectors.data();
+  double* damperFactors = scratch.damperFactors.data();
+  const glm::dvec3 origin = positions[0];  // near the mesh, so the cross products stay well conditioned
   for (std::size_t s = 0; s < count; ++s) {
-    const std::uint32_t i = springs.ends[s].x, j = springs.ends[s].y;
+    const std::uint32_t i = ends[s].x, j = ends[s].y;
     const glm::dvec3 x = positions[j] - positions[i];
-    const double lengthSquared = glm::dot(x, x);
-    const double length = std::sqrt(lengthSquared);
+    const double length = std::sqrt(glm::dot(x, x));
     const double inverseLength = 1.0 / length;  // the one division per spring
-    const double hooke = springs.stiffnesses[s] * (length - springs.restLengths[s]) * inverseLength;
+    const double hooke = stiffnesses[s] * (length - restLengths[s]) * inverseLength;
     const glm::dvec3 forceOnJ = -hooke * x;
     forces[j] += forceOnJ;
     forces[i] -= forceOnJ;
-    dampers[s] = {x, dampingDecays[s] * (inverseLength * inverseLength)};
+    if constexpr (kWithVolume) {
+      const glm::dvec3 share = glm::cross(positions[i] - origin, x);
+      sixGradient[opposites[s].x] += share;
+      sixGradient[opposites[s].y] -= share;
+    }
+    vectors[s] = x;
+    damperFactors[s] = decays[s] * (inverseLength * inverseLength);
   }
 }
 
 // Pass 4, one spring: its relative speed along x̂ decays exactly over the half substep, the impulse
-// split by inverse mass (springs.cpp's dampOneSpring with the division done in pass 2).
-inline void dampOneSpring(const glm::u32vec2& ends, const SpringDamperGeometry& damper,
+// split by inverse mass (springs.cpp's dampOneSpring with the division done in pass 1).
+inline void dampOneSpring(const glm::u32vec2& ends, const glm::dvec3& x, double damperFactor,
                           const std::vector<double>& inverseMasses, std::vector<glm::dvec3>& velocities) {
   const std::uint32_t i = ends.x, j = ends.y;
-  const double impulse = glm::dot(velocities[j] - velocities[i], damper.x) * damper.factorPerLengthSquared;
-  velocities[j] += (impulse * inverseMasses[j]) * damper.x;
-  velocities[i] -= (impulse * inverseMasses[i]) * damper.x;
+  const double impulse = glm::dot(velocities[j] - velocities[i], x) * damperFactor;
+  velocities[j] += (impulse * inverseMasses[j]) * x;
+  velocities[i] -= (impulse * inverseMasses[i]) * x;
 }
 
 }  // namespace
@@ -70,17 +69,25 @@ void dampedSymplecticEulerSubstep(ParticleState& state, double h, const DampedSy
   // needs filling here.
   if (scratch.springForces.size() != count) scratch.springForces.assign(count, glm::dvec3(0.0));
   if (scratch.sixVolumeGradient.size() != count) scratch.sixVolumeGradient.assign(count, glm::dvec3(0.0));
-  scratch.dampers.resize(springs.size());
+  scratch.springVectors.resize(springs.size());
+  scratch.damperFactors.resize(springs.size());
 
-  // 1. The fill: p = p0 + K (1 - V/V0) and ∇V, at the positions of the kick.
-  const bool hasVolume = model.triangles && !model.triangles->empty();
+  // 1. The springs, and the fill's ∇V, at the positions of the kick.
+  const bool hasVolume = model.springOpposites != nullptr;
+  if (hasVolume)
+    springPass<true>(springs, model.springOpposites->data(), *model.dampingDecays, positions, scratch);
+  else
+    springPass<false>(springs, nullptr, *model.dampingDecays, positions, scratch);
+  // 2. The fill pressure p = p0 + K (1 - V/V0), with 18 V = Σ (p_i - o) · 6∇_i V.
   double pressureOverSix = 0.0;
   if (hasVolume) {
-    const double volume = addSixVolumeGradient(positions, *model.triangles, scratch.sixVolumeGradient) / 6.0;
-    pressureOverSix = fillPressure(volume, model.restVolume, model.restPressure, model.bulkModulus) / 6.0;
+    const glm::dvec3 origin = positions[0];
+    double eighteenTimesVolume = 0.0;
+    for (std::size_t i = 0; i < count; ++i)
+      eighteenTimesVolume += glm::dot(positions[i] - origin, scratch.sixVolumeGradient[i]);
+    pressureOverSix =
+        fillPressure(eighteenTimesVolume / 18.0, model.restVolume, model.restPressure, model.bulkModulus) / 6.0;
   }
-  // 2. The springs.
-  addHookeForcesAndDamperGeometry(springs, *model.dampingDecays, positions, scratch.springForces, scratch.dampers);
   // 3. Kick with a = w F + g (kinematic points keep their velocity).
   for (std::size_t i = 0; i < count; ++i) {
     glm::dvec3& springForce = scratch.springForces[i];
@@ -95,9 +102,9 @@ void dampedSymplecticEulerSubstep(ParticleState& state, double h, const DampedSy
   if (!model.dampingDecays->empty()) {
     const std::size_t springCount = springs.size();
     for (std::size_t s = 0; s < springCount; ++s)
-      dampOneSpring(springs.ends[s], scratch.dampers[s], inverseMasses, velocities);
+      dampOneSpring(springs.ends[s], scratch.springVectors[s], scratch.damperFactors[s], inverseMasses, velocities);
     for (std::size_t s = springCount; s-- > 0;)
-      dampOneSpring(springs.ends[s], scratch.dampers[s], inverseMasses, velocities);
+      dampOneSpring(springs.ends[s], scratch.springVectors[s], scratch.damperFactors[s], inverseMasses, velocities);
   }
   // 5. Drift, then put back on the floor whatever went through it.
   for (std::size_t i = 0; i < count; ++i) {

@@ -5,10 +5,11 @@
 //   symplecticEulerDrift → resolveFloorContact
 // and the same results up to floating-point rounding (tests/core/damped_symplectic_euler_test.cpp
 // checks it), but fused: the split version makes about ten passes over vertices, springs and
-// triangles per substep; this one makes five, and loads nothing it does not use (the elastic
+// triangles per substep; this one makes seven lighter ones, and loads nothing it does not use (the elastic
 // springs' velocities, the damper's positions and divisions).
 //   1. triangles: 6V and 6∇_i V = Σ (b × c), accumulated unscaled;
-//   2. springs:   Hooke forces, and for the damper each spring's x_ij and factor/|x_ij|²;
+//   2. springs:   x_ij, then Hooke's factor and the damper's factor/|x_ij|² (vectorised), then
+//                 the Hooke forces;
 //   3. vertices:  kick v += h (w (F + p ∇V) + g), clearing the accumulators for the next substep;
 //   4. springs:   the damper's symmetric Gauss–Seidel sweep, forward then backward;
 //   5. vertices:  drift x += v h and the floor contact.
@@ -26,7 +27,7 @@ namespace slime {
 struct DampedSymplecticEulerModel {
   const SpringSet* springs = nullptr;
   const std::vector<double>* dampingDecays = nullptr;    // per spring, springDampingDecays for this h
-  const std::vector<glm::u32vec3>* triangles = nullptr;  // null: no volume term
+  const std::vector<glm::u32vec2>* springOpposites = nullptr;  // edgeOpposites of the springs; null: no volume term
   double restVolume = 0.0;                               // V0, m^3
   double restPressure = 0.0;                             // p at V = V0, Pa
   double bulkModulus = 0.0;                              // K in p = p0 + K (1 - V/V0), Pa
@@ -34,17 +35,11 @@ struct DampedSymplecticEulerModel {
   double friction = 0.0;                                 // Coulomb μ of the floor
 };
 
-// One spring's damper over the substep, at the positions of the kick: x_ij and
-// (decay - 1) / ((w_i + w_j) |x_ij|²), so the sweeps need neither the positions nor a division.
-struct SpringDamperGeometry {
-  glm::dvec3 x;
-  double factorPerLengthSquared;
-};
-
 struct DampedSymplecticEulerScratch {
-  std::vector<glm::dvec3> springForces;        // Σ Hooke forces per vertex (kept zero between substeps)
-  std::vector<glm::dvec3> sixVolumeGradient;   // 6 ∇_i V (kept zero between substeps)
-  std::vector<SpringDamperGeometry> dampers;   // per spring
+  std::vector<glm::dvec3> springForces;       // Σ Hooke forces per vertex (kept zero between substeps)
+  std::vector<glm::dvec3> sixVolumeGradient;  // 6 ∇_i V (kept zero between substeps)
+  std::vector<glm::dvec3> springVectors;      // per spring, x_ij = p_j - p_i at the kick
+  std::vector<double> damperFactors;          // per spring, (decay - 1) / ((w_i + w_j) |x_ij|²)
 };
 
 // Advances every dynamic point (w > 0) by h; kinematic points (w = 0) drift with their own

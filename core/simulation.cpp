@@ -80,7 +80,7 @@ void Simulation::rebuildModels() {
   symplecticModel_ = DampedSymplecticEulerModel{};
   symplecticModel_.springs = &body_.springs;
   symplecticModel_.dampingDecays = &dampingDecays_;
-  symplecticModel_.triangles = forceModel_.triangles;
+  symplecticModel_.springOpposites = hasVolume ? &body_.springOpposites : nullptr;
   symplecticModel_.restVolume = body_.restVolume;
   symplecticModel_.restPressure = body_.restPressure;
   symplecticModel_.bulkModulus = body_.bulkModulus;

@@ -93,6 +93,7 @@ SlimeBody buildSlimeBody(const SlimeSettings& slime) {
   body.state.positions = std::move(mesh.positions);
   body.state.velocities.assign(body.state.positions.size(), glm::dvec3(0.0));
   body.springs = makeEdgeSprings(body.state.positions, body.triangles, slime.stiffness, 0.0);
+  body.springOpposites = edgeOpposites(body.springs.ends, body.triangles);
   body.edgeLengths = body.springs.restLengths;
   double sum = 0.0;
   for (double length : body.edgeLengths) sum += length;

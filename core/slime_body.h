@@ -32,6 +32,7 @@ struct SlimeBody {
   std::vector<double> freeInverseMasses;  // inverse masses when nothing is grabbed
   std::vector<Triangle> triangles;
   SpringSet springs;
+  std::vector<glm::u32vec2> springOpposites;  // per spring, the third vertices of its two triangles (volume.h)
   std::vector<glm::dvec3> restPositions;  // the built, round shape
   std::vector<double> restVertexAreas;    // each vertex's area share of the round shape, m^2
   std::vector<double> edgeLengths;     // d of each spring at build time (the series rule's d)
