@@ -39,15 +39,23 @@ struct FrameTiming {
   double refitMs = 0.0;
 };
 
+// Still: the view of a person watching or dragging the slime (the renderer reuses what the slime
+// cannot change). Moving: the camera turns by a thousandth of a degree every frame, as when orbiting,
+// so every pixel is traced every frame.
+enum class CameraMotion { Still, Moving };
+
 // warmup untimed frames, then `frames` timed ones; updateSlime every frame as the viewer does.
-FrameTiming timeFrames(Renderer& renderer, const Settings& settings, const TriangleMesh& mesh, int warmup, int frames,
-                       BenchProgress& progress, const std::string& what, double budgetMs = 0.0) {
+FrameTiming timeFrames(Renderer& renderer, const Settings& stillSettings, const TriangleMesh& mesh, int warmup,
+                       int frames, BenchProgress& progress, const std::string& what, double budgetMs = 0.0,
+                       CameraMotion motion = CameraMotion::Still) {
+  Settings settings = stillSettings;
   Image image;
   image.resize(settings.camera.width, settings.camera.height);
   std::vector<double> samples, refits;
   FrameTiming timing;
   double spent = 0.0;
   for (int frame = 0; frame < warmup + frames; ++frame) {
+    if (motion == CameraMotion::Moving) settings.camera.yaw = stillSettings.camera.yaw + (frame % 2 ? 1e-3 : -1e-3);
     renderer.updateSlime(mesh.positions, mesh.triangles);
     const Stopwatch watch;
     timing.stats = renderer.render(settings, image);
@@ -83,8 +91,9 @@ json raysPerSecondJson(const RenderStats& stats, double ms) {
 }
 
 void printRow(const json& c) {
-  std::printf("%5d %7d %3d %9.2f %9.2f %8.2f %9.2f %7.2f", c["level"].get<int>(), c["faces"].get<int>(),
-              c["threads"].get<int>(), c["ms_per_frame"].get<double>(), c["mrays_per_s"].get<double>(),
+  std::printf("%5d %7d %3d %9.2f %9.2f %9.2f %8.2f %9.2f %7.2f", c["level"].get<int>(), c["faces"].get<int>(),
+              c["threads"].get<int>(), c["ms_per_frame"].get<double>(), c["moving_camera_ms_per_frame"].get<double>(),
+              c["mrays_per_s"].get<double>(),
               c["limit_ms_per_frame"].get<double>(), c["limit_mqueries_per_s"].get<double>(),
               c["full_over_limit"].get<double>());
   if (c.contains("brute_ms_per_frame"))
@@ -112,7 +121,7 @@ json runRenderBench(const Settings& baseSettings, const RenderBenchOptions& opti
   const int perConfiguration = options.warmup + options.frames;
   double total = 0.0;
   for (int level : options.levels) {
-    total += 1.0 + threads.size() * (perConfiguration + options.frames + 1.0);
+    total += 1.0 + threads.size() * (2.0 * perConfiguration + options.frames + 1.0);
     if (level <= options.bruteMaxLevel) total += 3.0;
   }
   total += 30.0 * options.bvhLevels.size();
@@ -129,7 +138,8 @@ json runRenderBench(const Settings& baseSettings, const RenderBenchOptions& opti
   json configurations = json::array();
   CsvTable table{{"level", "faces", "threads", "ms_per_frame", "ms_min", "ms_max", "mrays_per_s", "rays_total",
                   "limit_ms_per_frame", "limit_mqueries_per_s", "full_over_limit", "brute_ms_per_frame",
-                  "speedup_over_brute", "speedup_over_1_thread", "limit_speedup_over_1_thread"}, {}};
+                  "speedup_over_brute", "speedup_over_1_thread", "limit_speedup_over_1_thread",
+                  "moving_camera_ms_per_frame"}, {}};
 
   for (int level : options.levels) {
     const std::string label = "level " + std::to_string(level);
@@ -155,6 +165,9 @@ json runRenderBench(const Settings& baseSettings, const RenderBenchOptions& opti
       settings.render.threads = count;
       Renderer renderer(settings);
       const FrameTiming full = timeFrames(renderer, settings, mesh, options.warmup, options.frames, progress, what);
+      Renderer movingRenderer(settings);
+      const FrameTiming moving = timeFrames(movingRenderer, settings, mesh, options.warmup, options.frames, progress,
+                                            what + ", moving camera", 0.0, CameraMotion::Moving);
 
       // The limit: the same queries through Embree alone, same thread count.
       EmbreeReplay replay(count, BvhUpdate::Refit);
@@ -181,6 +194,10 @@ json runRenderBench(const Settings& baseSettings, const RenderBenchOptions& opti
                 {"threads", count},
                 {"ms_per_frame", ms},
                 {"ms", toJson(full.ms)},
+                {"reused_pixels", full.stats.reusedPixels},
+                {"moving_camera_ms_per_frame", moving.ms.median},
+                {"moving_camera", {{"ms", toJson(moving.ms)}, {"mrays_per_s", mrate(static_cast<double>(moving.stats.rays.total()), moving.ms.median)},
+                                   {"rays", raysJson(moving.stats)}}},
                 {"refit_ms", full.refitMs},
                 {"mrays_per_s", mrate(static_cast<double>(full.stats.rays.total()), ms)},
                 {"mrays_per_s_by_kind", raysPerSecondJson(full.stats, ms)},
@@ -217,7 +234,7 @@ json runRenderBench(const Settings& baseSettings, const RenderBenchOptions& opti
     table.add({c["level"], c["faces"], c["threads"], c["ms_per_frame"], c["ms"]["min"], c["ms"]["max"], c["mrays_per_s"],
                c["rays"]["total"], c["limit_ms_per_frame"], c["limit_mqueries_per_s"], c["full_over_limit"],
                optional("brute_ms_per_frame"), optional("speedup_over_brute"), optional("speedup_over_1_thread"),
-               optional("limit_speedup_over_1_thread")});
+               optional("limit_speedup_over_1_thread"), c["moving_camera_ms_per_frame"]});
   }
   report["configurations"] = configurations;
 
@@ -246,7 +263,7 @@ json runRenderBench(const Settings& baseSettings, const RenderBenchOptions& opti
   report["seed"] = seed;
   progress.finish();
 
-  std::printf("level   faces thr  ms/frame  Mrays/s  limit ms  Mqueries/s full/limit  brute ms  speed-up\n");
+  std::printf("level   faces thr  ms/frame moving ms  Mrays/s  limit ms  Mqueries/s full/limit  brute ms  speed-up\n");
   for (const json& c : configurations) printRow(c);
   for (const json& b : bvh)
     std::printf("bvh level %d %-7s update %8.3f ms  trace round %7.2f ms  stretched %7.2f ms\n", b["level"].get<int>(),
