@@ -74,6 +74,9 @@ struct Renderer::Impl {
   // such a pixel sees the floor or the sky and no shadow of the slime, so it is copied, not traced.
   std::vector<glm::vec3> reusableColors;
   std::vector<std::uint8_t> reusable;  // 1: reusableColors holds the pixel
+  // The key changed this frame: every entry is stale. The tiles clear their own entries as they go,
+  // in parallel, rather than the frame clearing 19 MB up front (a moving camera does so every frame).
+  bool cachesStale = false;
 
   explicit Impl(const Settings& settings)
       : embree(settings.render.threads), floorSettings(settings.floor), floor(settings.floor) {
@@ -117,6 +120,12 @@ struct Renderer::Impl {
       for (int x0 = columnBegin; x0 < columnEnd; x0 += kPacket) {
         const int count = std::min(kPacket, columnEnd - x0);
         const std::size_t first = static_cast<std::size_t>(y) * image.width + x0;
+        if (floorShadings && cachesStale) {
+          for (int i = 0; i < count; ++i) {
+            floorShadings[first + i].filled = false;
+            reusable[first + i] = 0;
+          }
+        }
         const bool outside = floorShadings && (y < footprint.y0 || y >= footprint.y1 || x0 + count <= footprint.x0 ||
                                                x0 >= footprint.x1);
         if (outside && std::all_of(&reusable[first], &reusable[first] + count, [](std::uint8_t r) { return r != 0; })) {
@@ -198,10 +207,11 @@ RenderStats Renderer::render(const Settings& settings, Image& image) {
   PixelRect footprint;
   if (samplesPerAxis == 1) {
     const FloorCacheKey view = floorCacheKey(camera, parameters, image.width, image.height);
-    if (!impl.floorCacheValid || view != impl.floorCacheView) {
-      impl.floorCache.assign(image.pixels.size(), FloorShading{});
-      impl.reusableColors.assign(image.pixels.size(), glm::vec3(0.0f));
-      impl.reusable.assign(image.pixels.size(), 0);
+    impl.cachesStale = !impl.floorCacheValid || view != impl.floorCacheView;
+    if (impl.cachesStale) {
+      impl.floorCache.resize(image.pixels.size());
+      impl.reusableColors.resize(image.pixels.size());
+      impl.reusable.resize(image.pixels.size());
       impl.floorCacheView = view;
       impl.floorCacheValid = true;
     }
