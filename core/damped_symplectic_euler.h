@@ -35,11 +35,20 @@ struct DampedSymplecticEulerModel {
   double friction = 0.0;                                 // Coulomb μ of the floor
 };
 
+// Four doubles (x, y, z, 0): a dvec3 padded to 32 bytes so that one vector instruction (AVX2)
+// or two (SSE2) does what glm's dvec3 does in three scalar ones or a pair and a scalar. Stored
+// in a struct because GCC drops a vector type's alignment when it is a template argument.
+using Vector4 = double __attribute__((vector_size(32)));
+struct alignas(32) PaddedVector {
+  Vector4 lanes;
+};
+
 struct DampedSymplecticEulerScratch {
-  std::vector<glm::dvec3> springForces;       // Σ Hooke forces per vertex (kept zero between substeps)
-  std::vector<glm::dvec3> sixVolumeGradient;  // 6 ∇_i V (kept zero between substeps)
-  std::vector<glm::dvec3> springVectors;      // per spring, x_ij = p_j - p_i at the kick
-  std::vector<double> damperFactors;          // per spring, (decay - 1) / ((w_i + w_j) |x_ij|²)
+  std::vector<PaddedVector> positions, velocities;  // the state's, padded for the substep
+  std::vector<PaddedVector> springForces;           // Σ Hooke forces per vertex (kept zero between substeps)
+  std::vector<PaddedVector> sixVolumeGradient;      // 6 ∇_i V (kept zero between substeps)
+  std::vector<PaddedVector> springVectors;          // per spring, x_ij = p_j - p_i at the kick
+  std::vector<double> damperFactors;                // per spring, (decay - 1) / ((w_i + w_j) |x_ij|²)
 };
 
 // Advances every dynamic point (w > 0) by h; kinematic points (w = 0) drift with their own
