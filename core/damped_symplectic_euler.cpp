@@ -1,11 +1,10 @@
 #include "core/damped_symplectic_euler.h"
 
-#include "core/floor_contact.h"
-#include "core/volume.h"
-
+#include <cmath>
 #include <glm/geometric.hpp>
 
-#include <cmath>
+#include "core/floor_contact.h"
+#include "core/volume.h"
 
 // The helpers below take and return 32-byte vectors; GCC warns that their ABI differs with and
 // without AVX, which does not matter for functions that are always inlined in this file.
@@ -35,8 +34,9 @@ namespace {
 // 4), the edge's share ±(p_i - o) × x_ij of 6∇V at its opposite vertices ((p_i - o) × (p_j - o)
 // with the same origin o for every edge), and what the damper needs of the same x_ij.
 template <bool kWithVolume>
-[[gnu::always_inline]] inline void springPass(const SpringSet& springs, const glm::u32vec2* opposites, const double* decays,
-                       DampedSymplecticEulerScratch& scratch) {
+[[gnu::always_inline]] inline void springPass(const SpringSet& springs, const glm::u32vec2* opposites,
+                                              const double* decays, const double* inverseMasses,
+                                              DampedSymplecticEulerScratch& scratch) {
   const std::size_t count = springs.size();
   const glm::u32vec2* ends = springs.ends.data();
   const double* stiffnesses = springs.stiffnesses.data();
@@ -45,7 +45,7 @@ template <bool kWithVolume>
   PaddedVector* forces = scratch.springForces.data();
   PaddedVector* sixGradient = scratch.sixVolumeGradient.data();
   PaddedVector* vectors = scratch.springVectors.data();
-  double* damperFactors = scratch.damperFactors.data();
+  glm::dvec2* damperFactors = scratch.damperFactors.data();
   const Vector4 origin = positions[0].lanes;  // near the mesh, so the cross products stay well conditioned
   for (std::size_t s = 0; s < count; ++s) {
     const std::uint32_t i = ends[s].x, j = ends[s].y;
@@ -63,18 +63,20 @@ template <bool kWithVolume>
       sixGradient[opposites[s].y].lanes -= share;
     }
     vectors[s].lanes = x;
-    damperFactors[s] = decays[s] * (inverseLength * inverseLength);
+    const double factor = decays[s] * (inverseLength * inverseLength);
+    damperFactors[s] = {factor * inverseMasses[i], factor * inverseMasses[j]};
   }
 }
 
 // Pass 4, one spring: its relative speed along x̂ decays exactly over the half substep, the impulse
-// split by inverse mass (springs.cpp's dampOneSpring with the division done in pass 1).
-[[gnu::always_inline]] inline void dampOneSpring(const glm::u32vec2& ends, const Vector4& x, double damperFactor,
-                          const double* inverseMasses, PaddedVector* velocities) {
+// split by inverse mass (springs.cpp's dampOneSpring with the division and the inverse masses
+// folded into the two factors in pass 1).
+[[gnu::always_inline]] inline void dampOneSpring(const glm::u32vec2& ends, const Vector4& x,
+                                                 const glm::dvec2& damperFactors, PaddedVector* velocities) {
   const std::uint32_t i = ends.x, j = ends.y;
-  const double impulse = dot(velocities[j].lanes - velocities[i].lanes, x) * damperFactor;
-  velocities[j].lanes += broadcast(impulse * inverseMasses[j]) * x;
-  velocities[i].lanes -= broadcast(impulse * inverseMasses[i]) * x;
+  const double relative = dot(velocities[j].lanes - velocities[i].lanes, x);
+  velocities[j].lanes += broadcast(relative * damperFactors.y) * x;
+  velocities[i].lanes -= broadcast(relative * damperFactors.x) * x;
 }
 
 }  // namespace
@@ -108,9 +110,10 @@ void dampedSymplecticEulerSubstep(ParticleState& state, double h, const DampedSy
   // 1. The springs, and the fill's ∇V, at the positions of the kick.
   const bool hasVolume = model.springOpposites != nullptr;
   if (hasVolume)
-    springPass<true>(springs, model.springOpposites->data(), model.dampingDecays->data(), scratch);
+    springPass<true>(springs, model.springOpposites->data(), model.dampingDecays->data(), inverseMasses,
+                     scratch);
   else
-    springPass<false>(springs, nullptr, model.dampingDecays->data(), scratch);
+    springPass<false>(springs, nullptr, model.dampingDecays->data(), inverseMasses, scratch);
   // 2. The fill pressure p = p0 + K (1 - V/V0), with 18 V = Σ (p_i - o) · 6∇_i V.
   double pressureOverSix = 0.0;
   if (hasVolume) {
@@ -119,7 +122,8 @@ void dampedSymplecticEulerSubstep(ParticleState& state, double h, const DampedSy
     for (std::size_t i = 0; i < count; ++i)
       eighteenTimesVolume += dot(positions[i].lanes - origin, scratch.sixVolumeGradient[i].lanes);
     pressureOverSix =
-        fillPressure(eighteenTimesVolume / 18.0, model.restVolume, model.restPressure, model.bulkModulus) / 6.0;
+        fillPressure(eighteenTimesVolume / 18.0, model.restVolume, model.restPressure, model.bulkModulus) /
+        6.0;
   }
   // 3. Kick with a = w F + g (kinematic points keep their velocity).
   const Vector4 gravity = pad(model.gravity);
@@ -128,7 +132,8 @@ void dampedSymplecticEulerSubstep(ParticleState& state, double h, const DampedSy
     Vector4& sixGradient = scratch.sixVolumeGradient[i].lanes;
     const double w = inverseMasses[i];
     if (w != 0.0)
-      velocities[i].lanes += ((springForce + broadcast(pressureOverSix) * sixGradient) * broadcast(w) + gravity) * broadcast(h);
+      velocities[i].lanes +=
+          ((springForce + broadcast(pressureOverSix) * sixGradient) * broadcast(w) + gravity) * broadcast(h);
     springForce = Vector4{};
     sixGradient = Vector4{};
   }
@@ -136,11 +141,11 @@ void dampedSymplecticEulerSubstep(ParticleState& state, double h, const DampedSy
   //    sweep is not a symmetric contraction and destabilised symplectic Euler).
   const glm::u32vec2* ends = springs.ends.data();
   const PaddedVector* vectors = scratch.springVectors.data();
-  const double* damperFactors = scratch.damperFactors.data();
+  const glm::dvec2* damperFactors = scratch.damperFactors.data();
   for (std::size_t s = 0; s < springCount; ++s)
-    dampOneSpring(ends[s], vectors[s].lanes, damperFactors[s], inverseMasses, velocities);
+    dampOneSpring(ends[s], vectors[s].lanes, damperFactors[s], velocities);
   for (std::size_t s = springCount; s-- > 0;)
-    dampOneSpring(ends[s], vectors[s].lanes, damperFactors[s], inverseMasses, velocities);
+    dampOneSpring(ends[s], vectors[s].lanes, damperFactors[s], velocities);
   // 5. Drift, then put back on the floor whatever went through it.
   for (std::size_t i = 0; i < count; ++i) {
     glm::dvec3& position = state.positions[i];

@@ -5,34 +5,38 @@
 //   symplecticEulerDrift → resolveFloorContact
 // and the same results up to floating-point rounding (tests/core/damped_symplectic_euler_test.cpp
 // checks it), but fused: the split version makes about ten passes over vertices, springs and
-// triangles per substep; this one makes seven lighter ones, and loads nothing it does not use (the elastic
-// springs' velocities, the damper's positions and divisions).
-//   1. triangles: 6V and 6∇_i V = Σ (b × c), accumulated unscaled;
-//   2. springs:   x_ij, then Hooke's factor and the damper's factor/|x_ij|² (vectorised), then
-//                 the Hooke forces;
+// triangles per substep, this one makes six, and loads nothing it does not use (the elastic
+// springs' velocities, the damper's positions, masses and divisions):
+//   0. vertices:  the state copied into padded arrays (PaddedVector below);
+//   1. springs:   Hooke's force, each edge's share of 6∇V (volume.h: one cross product per edge,
+//                 none per triangle), and x_ij and the damper's factors for the same x_ij;
+//   2. vertices:  V = Σ p_i · ∇_i V / 3, hence the fill pressure p = p0 + K (1 - V/V0);
 //   3. vertices:  kick v += h (w (F + p ∇V) + g), clearing the accumulators for the next substep;
 //   4. springs:   the damper's symmetric Gauss–Seidel sweep, forward then backward;
-//   5. vertices:  drift x += v h and the floor contact.
+//   5. vertices:  drift x += v h and the floor contact, back into the state.
+// Where the CPU has AVX2 a build of it for AVX2 is chosen at run time; both builds give the same
+// bits (the same operations in the same order, no fused multiply-add).
 #pragma once
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <vector>
 
 #include "core/particle_state.h"
 #include "core/springs.h"
-
-#include <glm/vec3.hpp>
-
-#include <vector>
 
 namespace slime {
 
 struct DampedSymplecticEulerModel {
   const SpringSet* springs = nullptr;
-  const std::vector<double>* dampingDecays = nullptr;    // per spring, springDampingDecays for this h
-  const std::vector<glm::u32vec2>* springOpposites = nullptr;  // edgeOpposites of the springs; null: no volume term
-  double restVolume = 0.0;                               // V0, m^3
-  double restPressure = 0.0;                             // p at V = V0, Pa
-  double bulkModulus = 0.0;                              // K in p = p0 + K (1 - V/V0), Pa
-  glm::dvec3 gravity{0.0, 0.0, -9.81};                   // m/s^2
-  double friction = 0.0;                                 // Coulomb μ of the floor
+  const std::vector<double>* dampingDecays = nullptr;  // per spring, springDampingDecays for this h
+  const std::vector<glm::u32vec2>* springOpposites =
+      nullptr;                          // edgeOpposites of the springs; null: no volume term
+  double restVolume = 0.0;              // V0, m^3
+  double restPressure = 0.0;            // p at V = V0, Pa
+  double bulkModulus = 0.0;             // K in p = p0 + K (1 - V/V0), Pa
+  glm::dvec3 gravity{0.0, 0.0, -9.81};  // m/s^2
+  double friction = 0.0;                // Coulomb μ of the floor
 };
 
 // Four doubles (x, y, z, 0): a dvec3 padded to 32 bytes so that one vector instruction (AVX2)
@@ -48,7 +52,7 @@ struct DampedSymplecticEulerScratch {
   std::vector<PaddedVector> springForces;           // Σ Hooke forces per vertex (kept zero between substeps)
   std::vector<PaddedVector> sixVolumeGradient;      // 6 ∇_i V (kept zero between substeps)
   std::vector<PaddedVector> springVectors;          // per spring, x_ij = p_j - p_i at the kick
-  std::vector<double> damperFactors;                // per spring, (decay - 1) / ((w_i + w_j) |x_ij|²)
+  std::vector<glm::dvec2> damperFactors;  // per spring, (decay - 1) (w_i, w_j) / ((w_i + w_j) |x_ij|²)
 };
 
 // Advances every dynamic point (w > 0) by h; kinematic points (w = 0) drift with their own

@@ -3,6 +3,13 @@
 // they must agree up to floating-point rounding, with the fill, a kinematic point and the floor in play;
 // and its volume gradient per edge against volume.h's per triangle.
 #include "core/damped_symplectic_euler.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <stdexcept>
+
 #include "core/floor_contact.h"
 #include "core/force_model.h"
 #include "core/icosphere.h"
@@ -10,12 +17,6 @@
 #include "core/settings_io.h"
 #include "core/slime_body.h"
 #include "core/volume.h"
-
-#include <glm/geometric.hpp>
-#include <gtest/gtest.h>
-
-#include <cmath>
-#include <stdexcept>
 
 namespace slime {
 namespace {
@@ -31,7 +32,8 @@ TEST(DampedSymplecticEuler, FusedSubstepMatchesThePassByPassOne) {
   ParticleState start = body.state;
   for (std::size_t i = 0; i < start.size(); ++i) {
     const double phase = 0.37 * static_cast<double>(i);
-    start.velocities[i] = {0.3 * std::sin(phase), 0.2 * std::cos(1.7 * phase), -0.5 + 0.1 * std::sin(3.1 * phase)};
+    start.velocities[i] = {0.3 * std::sin(phase), 0.2 * std::cos(1.7 * phase),
+                           -0.5 + 0.1 * std::sin(3.1 * phase)};
     start.positions[i].z -= 0.03;
   }
   start.inverseMasses[5] = 0.0;
@@ -95,7 +97,8 @@ TEST(DampedSymplecticEuler, VolumeGradientPerEdgeMatchesPerTriangle) {
   std::vector<glm::dvec3> gradient(mesh.positions.size(), glm::dvec3(0.0));
   const glm::dvec3 origin = mesh.positions[0];
   for (std::size_t e = 0; e < edges.size(); ++e) {
-    const glm::dvec3 share = glm::cross(mesh.positions[edges[e].x] - origin, mesh.positions[edges[e].y] - origin) / 6.0;
+    const glm::dvec3 share =
+        glm::cross(mesh.positions[edges[e].x] - origin, mesh.positions[edges[e].y] - origin) / 6.0;
     gradient[opposites[e].x] += share;
     gradient[opposites[e].y] -= share;
   }
