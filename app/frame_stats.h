@@ -1,6 +1,7 @@
 // What the Stats panel shows: time per frame stage, rays traced, and a history of frame times.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 
@@ -23,12 +24,16 @@ struct FrameStats {
   double fps = 0.0;                      // smoothed frames per second
   std::uint64_t rays = 0;                // rays traced in the last frame
   double megaraysPerSecond = 0.0;        // rays / trace time of the last traced frame
+  double reusedFraction = 0.0;           // pixels copied from the frame before, not traced (still view)
+  int traceThreads = 0;                  // threads tracing the last traced frame
+  double threadUse = 0.0;                // their busy time / (trace time × threads), 0..1
   int physicsSteps = 0;                  // fixed steps run in the last frame
   int imageWidth = 0;                    // traced image size of the last frame
   int imageHeight = 0;
   std::array<float, kHistory> frameHistoryMs{};  // ring buffer of frame times
   int historyNext = 0;                   // where the next frame time goes
   std::int64_t frames = 0;
+  double totalFrameMs = 0.0;             // every frame's wall time, summed
   double simulationSpeed = 1.0;          // simulated seconds per wall second, smoothed
 
   void recordSimulatedTime(double simulatedSeconds, double wallSeconds) {
@@ -44,6 +49,19 @@ struct FrameStats {
     const double instantFps = milliseconds > 0.0 ? 1000.0 / milliseconds : 0.0;
     fps = frames == 0 ? instantFps : 0.9 * fps + 0.1 * instantFps;
     ++frames;
+    totalFrameMs += milliseconds;
+  }
+
+  // Frames per second over the whole run.
+  double meanFps() const { return totalFrameMs > 0.0 ? 1000.0 * static_cast<double>(frames) / totalFrameMs : 0.0; }
+
+  // Median wall time of the last min(frames, kHistory) frames.
+  double medianRecentFrameMs() const {
+    const int count = static_cast<int>(std::min<std::int64_t>(frames, kHistory));
+    if (count == 0) return 0.0;
+    std::array<float, kHistory> recent = frameHistoryMs;  // until the ring wraps, its first `count` entries
+    std::nth_element(recent.begin(), recent.begin() + count / 2, recent.begin() + count);
+    return recent[count / 2];
   }
 };
 

@@ -160,6 +160,8 @@ void statsWindow(const PanelView& view) {
     ImGui::Text("UI      %6.1f ms", stats.stages.ui);
     ImGui::Text("rays    %.2f M/frame", static_cast<double>(stats.rays) / 1e6);
     ImGui::Text("        %.1f Mrays/s", stats.megaraysPerSecond);
+    ImGui::Text("reused  %.0f%% of pixels", 100.0 * stats.reusedFraction);
+    ImGui::Text("threads %d, %.0f%% busy", stats.traceThreads, 100.0 * stats.threadUse);
     ImGui::Text("sim     x%.2f real time", stats.simulationSpeed);
     ImGui::PlotLines("##frame", stats.frameHistoryMs.data(), FrameStats::kHistory, stats.historyNext,
                      "frame ms", 0.0f, FLT_MAX, ImVec2(kStatsWidth - 16.0f, 40.0f));

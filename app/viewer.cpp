@@ -244,6 +244,9 @@ void Viewer::traceImage() {
   stats_.stages.refit += render.refitMs;
   stats_.rays = render.rays.total();
   stats_.megaraysPerSecond = render.traceMs > 0.0 ? static_cast<double>(stats_.rays) / (render.traceMs * 1e3) : 0.0;
+  stats_.reusedFraction = static_cast<double>(render.reusedPixels) / (static_cast<double>(size.x) * size.y);
+  stats_.traceThreads = render.threads;
+  stats_.threadUse = render.traceMs > 0.0 && render.threads > 0 ? render.busyMs / (render.traceMs * render.threads) : 0.0;
   stats_.imageWidth = size.x;
   stats_.imageHeight = size.y;
   sceneChanged_ = false;
@@ -365,6 +368,8 @@ void Viewer::writeReport() const {
   const nlohmann::json report = {
       {"frames", stats_.frames},
       {"fps", stats_.fps},
+      {"mean_fps", stats_.meanFps()},
+      {"median_frame_ms_recent", stats_.medianRecentFrameMs()},
       {"framebuffer", {framebuffer.x, framebuffer.y}},
       {"simulated_seconds", simulation_.time()},
       {"steps", simulation_.stepCount()},
