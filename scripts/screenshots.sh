@@ -1,0 +1,33 @@
+#!/bin/bash
+# Redraws the README's viewer screenshots (docs/viewer.png, docs/viewer-drag.png): the real window at
+# the default 734x564 under Xvfb, driven by xdotool like the window tests. Needs a built slime:
+#   scripts/screenshots.sh [path/to/slime]   (default build/release/app/slime)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+slime="$(realpath "${1:-build/release/app/slime}")"
+[ -x "$slime" ] || { echo "screenshots.sh: no slime binary at $slime (build first: scripts/test.sh)" >&2; exit 2; }
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+
+cat > "$work/drive.sh" <<'DRIVE'
+#!/bin/bash
+set -euo pipefail
+source tests/scripts/viewer_lib.sh "$1" "$2"
+start_viewer --size 734x564
+sleep 5                                   # the slime falls and settles
+screenshot 1
+xdotool mousemove --window "$WINDOW" 400 190 mousedown 1   # on the slime's upper right
+for y in 175 160 145 130 115 100 85 70; do
+  xdotool mousemove --window "$WINDOW" 430 "$y"
+  sleep 0.15
+done
+sleep 2
+screenshot 2
+xdotool mouseup 1
+quit_viewer
+[ "$(report '.grabs')" -ge 1 ] || fail "the press at (400, 190) did not grab the slime"
+DRIVE
+xvfb-run -a -s "-screen 0 1024x768x24" bash "$work/drive.sh" "$slime" "$work/out"
+cp "$work/out/shot-1.png" docs/viewer.png
+cp "$work/out/shot-2.png" docs/viewer-drag.png
+echo "wrote docs/viewer.png and docs/viewer-drag.png"
