@@ -1,5 +1,9 @@
 #include "core/damped_symplectic_euler.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
 
@@ -30,24 +34,63 @@ namespace {
   return aYzx * bZxy - aZxy * bYzx;
 }
 
-// Pass 1: Hooke's force F_j = -k (|x| - l) x/|x| on every spring (no damper: it is solved in pass
-// 4), the edge's share ±(p_i - o) × x_ij of 6∇V at its opposite vertices ((p_i - o) × (p_j - o)
-// with the same origin o for every edge), and what the damper needs of the same x_ij.
-template <bool kWithVolume>
-[[gnu::always_inline]] inline void springPass(const SpringSet& springs, const glm::u32vec2* opposites,
-                                              const double* decays, const double* inverseMasses,
-                                              DampedSymplecticEulerScratch& scratch) {
-  const std::size_t count = springs.size();
-  const glm::u32vec2* ends = springs.ends.data();
-  const double* stiffnesses = springs.stiffnesses.data();
-  const double* restLengths = springs.restLengths.data();
-  const PaddedVector* positions = scratch.positions.data();
-  PaddedVector* forces = scratch.springForces.data();
-  PaddedVector* sixGradient = scratch.sixVolumeGradient.data();
-  PaddedVector* vectors = scratch.springVectors.data();
-  glm::dvec2* damperFactors = scratch.damperFactors.data();
-  const Vector4 origin = positions[0].lanes;  // near the mesh, so the cross products stay well conditioned
-  for (std::size_t s = 0; s < count; ++s) {
+// What the passes of one substep read and write, as plain pointers so that the range kernels
+// below can be built for AVX2 and called from threads.
+struct SubstepData {
+  std::size_t pointCount = 0;
+  std::size_t blockCount = 1;  // spring blocks, each with its own force and gradient accumulators
+  double h = 0.0;
+  glm::dvec3* statePositions = nullptr;
+  glm::dvec3* stateVelocities = nullptr;
+  const double* inverseMasses = nullptr;
+  PaddedVector* positions = nullptr;
+  PaddedVector* velocities = nullptr;
+  PaddedVector* springForces = nullptr;       // blockCount arrays of pointCount
+  PaddedVector* sixVolumeGradient = nullptr;  // blockCount arrays of pointCount
+  PaddedVector* springVectors = nullptr;
+  glm::dvec2* damperFactors = nullptr;
+  const glm::u32vec2* ends = nullptr;
+  const glm::u32vec2* opposites = nullptr;  // null: no volume term
+  const double* stiffnesses = nullptr;
+  const double* restLengths = nullptr;
+  const double* decays = nullptr;
+  Vector4 origin{};  // p_0, near the mesh, so the cross products stay well conditioned
+  Vector4 gravity{};
+  double friction = 0.0;
+};
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__SANITIZE_ADDRESS__)
+#define SLIME_AVX2_CLONE __attribute__((target_clones("avx2", "default")))
+#else
+#define SLIME_AVX2_CLONE
+#endif
+
+// Pass 0: the state, padded.
+SLIME_AVX2_CLONE void padPoints(const SubstepData& d, std::size_t begin, std::size_t end) {
+  for (std::size_t i = begin; i < end; ++i) {
+    d.positions[i].lanes = pad(d.statePositions[i]);
+    d.velocities[i].lanes = pad(d.stateVelocities[i]);
+  }
+}
+
+// Pass 1 over springs [begin, end): Hooke's force F_j = -k (|x| - l) x/|x| (no damper: it is
+// solved in pass 4), the edge's share ±(p_i - o) × x_ij of 6∇V at its opposite vertices
+// ((p_i - o) × (p_j - o) with the same origin o for every edge), and what the damper needs of the
+// same x_ij, with the inverse masses folded in.
+SLIME_AVX2_CLONE void addSpringForces(const SubstepData& d, std::size_t begin, std::size_t end,
+                                      PaddedVector* forces, PaddedVector* sixGradient) {
+  // Locals, so the compiler need not reload them after each store through a pointer.
+  const glm::u32vec2* ends = d.ends;
+  const glm::u32vec2* opposites = d.opposites;
+  const PaddedVector* positions = d.positions;
+  const double* stiffnesses = d.stiffnesses;
+  const double* restLengths = d.restLengths;
+  const double* decays = d.decays;
+  const double* inverseMasses = d.inverseMasses;
+  PaddedVector* springVectors = d.springVectors;
+  glm::dvec2* damperFactors = d.damperFactors;
+  const Vector4 origin = d.origin;
+  for (std::size_t s = begin; s < end; ++s) {
     const std::uint32_t i = ends[s].x, j = ends[s].y;
     const Vector4 positionI = positions[i].lanes;
     const Vector4 x = positions[j].lanes - positionI;
@@ -57,14 +100,45 @@ template <bool kWithVolume>
     const Vector4 forceOnJ = broadcast(-hooke) * x;
     forces[j].lanes += forceOnJ;
     forces[i].lanes -= forceOnJ;
-    if constexpr (kWithVolume) {
+    if (opposites) {
       const Vector4 share = cross(positionI - origin, x);
       sixGradient[opposites[s].x].lanes += share;
       sixGradient[opposites[s].y].lanes -= share;
     }
-    vectors[s].lanes = x;
+    springVectors[s].lanes = x;
     const double factor = decays[s] * (inverseLength * inverseLength);
     damperFactors[s] = {factor * inverseMasses[i], factor * inverseMasses[j]};
+  }
+}
+
+// Pass 2 over points [begin, end): their part of 18 V = Σ (p_i - o) · 6∇_i V.
+SLIME_AVX2_CLONE double eighteenTimesVolume(const SubstepData& d, std::size_t begin, std::size_t end) {
+  double sum = 0.0;
+  for (std::size_t i = begin; i < end; ++i) {
+    Vector4 sixGradient = d.sixVolumeGradient[i].lanes;
+    for (std::size_t b = 1; b < d.blockCount; ++b)
+      sixGradient += d.sixVolumeGradient[b * d.pointCount + i].lanes;
+    sum += dot(d.positions[i].lanes - d.origin, sixGradient);
+  }
+  return sum;
+}
+
+// Pass 3 over points [begin, end): kick with a = w F + g (kinematic points keep their velocity),
+// clearing the accumulators it read.
+SLIME_AVX2_CLONE void kick(const SubstepData& d, std::size_t begin, std::size_t end, double pressureOverSix) {
+  for (std::size_t i = begin; i < end; ++i) {
+    Vector4 springForce{}, sixGradient{};
+    for (std::size_t b = 0; b < d.blockCount; ++b) {
+      springForce += d.springForces[b * d.pointCount + i].lanes;
+      sixGradient += d.sixVolumeGradient[b * d.pointCount + i].lanes;
+      d.springForces[b * d.pointCount + i].lanes = Vector4{};
+      d.sixVolumeGradient[b * d.pointCount + i].lanes = Vector4{};
+    }
+    const double w = d.inverseMasses[i];
+    if (w != 0.0)
+      d.velocities[i].lanes +=
+          ((springForce + broadcast(pressureOverSix) * sixGradient) * broadcast(w) + d.gravity) *
+          broadcast(d.h);
   }
 }
 
@@ -72,88 +146,144 @@ template <bool kWithVolume>
 // split by inverse mass (springs.cpp's dampOneSpring with the division and the inverse masses
 // folded into the two factors in pass 1).
 [[gnu::always_inline]] inline void dampOneSpring(const glm::u32vec2& ends, const Vector4& x,
-                                                 const glm::dvec2& damperFactors, PaddedVector* velocities) {
+                                                 const glm::dvec2& factors, PaddedVector* velocities) {
   const std::uint32_t i = ends.x, j = ends.y;
   const double relative = dot(velocities[j].lanes - velocities[i].lanes, x);
-  velocities[j].lanes += broadcast(relative * damperFactors.y) * x;
-  velocities[i].lanes -= broadcast(relative * damperFactors.x) * x;
+  velocities[j].lanes += broadcast(relative * factors.y) * x;
+  velocities[i].lanes -= broadcast(relative * factors.x) * x;
+}
+SLIME_AVX2_CLONE void dampForward(const SubstepData& d, std::size_t begin, std::size_t end) {
+  const glm::u32vec2* ends = d.ends;
+  const PaddedVector* springVectors = d.springVectors;
+  const glm::dvec2* damperFactors = d.damperFactors;
+  PaddedVector* velocities = d.velocities;
+  for (std::size_t s = begin; s < end; ++s)
+    dampOneSpring(ends[s], springVectors[s].lanes, damperFactors[s], velocities);
+}
+SLIME_AVX2_CLONE void dampBackward(const SubstepData& d, std::size_t begin, std::size_t end) {
+  const glm::u32vec2* ends = d.ends;
+  const PaddedVector* springVectors = d.springVectors;
+  const glm::dvec2* damperFactors = d.damperFactors;
+  PaddedVector* velocities = d.velocities;
+  for (std::size_t s = end; s-- > begin;)
+    dampOneSpring(ends[s], springVectors[s].lanes, damperFactors[s], velocities);
+}
+
+// Pass 5 over points [begin, end): drift, then put back on the floor whatever went through it.
+SLIME_AVX2_CLONE void drift(const SubstepData& d, std::size_t begin, std::size_t end) {
+  for (std::size_t i = begin; i < end; ++i) {
+    glm::dvec3& position = d.statePositions[i];
+    glm::dvec3& velocity = d.stateVelocities[i];
+    velocity = unpad(d.velocities[i].lanes);
+    position += velocity * d.h;
+    if (d.inverseMasses[i] != 0.0) resolveFloorContactAt(position, velocity, d.friction);
+  }
+}
+
+// Runs `kernel(begin, end)` over [0, count) in fixed chunks, on threads or not.
+template <typename Kernel>
+void forChunks(bool parallel, std::size_t count, std::size_t chunk, const Kernel& kernel) {
+  if (!parallel) {
+    kernel(std::size_t{0}, count);
+    return;
+  }
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, count, chunk),
+      [&](const tbb::blocked_range<std::size_t>& range) { kernel(range.begin(), range.end()); },
+      tbb::simple_partitioner{});
 }
 
 }  // namespace
 
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__SANITIZE_ADDRESS__)
-__attribute__((target_clones("avx2", "default")))
-#endif
 void dampedSymplecticEulerSubstep(ParticleState& state, double h, const DampedSymplecticEulerModel& model,
                                   DampedSymplecticEulerScratch& scratch) {
   const std::size_t count = state.size();
   if (count == 0) return;
   const SpringSet& springs = *model.springs;
   const std::size_t springCount = springs.size();
-  const double* inverseMasses = state.inverseMasses.data();
+  // Threads only for big meshes, chosen by size alone, so that the result never depends on how
+  // many threads there are (every sum below is over fixed chunks in a fixed order).
+  const bool parallel = count >= kParallelPointCount && model.independentRuns != nullptr;
+  const std::size_t blockCount = parallel ? kParallelSpringBlocks : 1;
   // The accumulators stay zero between substeps (pass 3 clears what it reads), so only a new size
   // needs filling here.
-  if (scratch.springForces.size() != count) scratch.springForces.assign(count, PaddedVector{});
-  if (scratch.sixVolumeGradient.size() != count) scratch.sixVolumeGradient.assign(count, PaddedVector{});
+  if (scratch.springForces.size() != count * blockCount) {
+    scratch.springForces.assign(count * blockCount, PaddedVector{});
+    scratch.sixVolumeGradient.assign(count * blockCount, PaddedVector{});
+  }
   scratch.positions.resize(count);
   scratch.velocities.resize(count);
   scratch.springVectors.resize(springCount);
   scratch.damperFactors.resize(springCount);
-  PaddedVector* positions = scratch.positions.data();
-  PaddedVector* velocities = scratch.velocities.data();
+
+  SubstepData d;
+  d.pointCount = count;
+  d.blockCount = blockCount;
+  d.h = h;
+  d.statePositions = state.positions.data();
+  d.stateVelocities = state.velocities.data();
+  d.inverseMasses = state.inverseMasses.data();
+  d.positions = scratch.positions.data();
+  d.velocities = scratch.velocities.data();
+  d.springForces = scratch.springForces.data();
+  d.sixVolumeGradient = scratch.sixVolumeGradient.data();
+  d.springVectors = scratch.springVectors.data();
+  d.damperFactors = scratch.damperFactors.data();
+  d.ends = springs.ends.data();
+  d.opposites = model.springOpposites ? model.springOpposites->data() : nullptr;
+  d.stiffnesses = springs.stiffnesses.data();
+  d.restLengths = springs.restLengths.data();
+  d.decays = model.dampingDecays->data();
+  d.origin = pad(state.positions[0]);
+  d.gravity = pad(model.gravity);
+  d.friction = model.friction;
 
   // 0. The state, padded.
-  for (std::size_t i = 0; i < count; ++i) {
-    positions[i].lanes = pad(state.positions[i]);
-    velocities[i].lanes = pad(state.velocities[i]);
-  }
-  // 1. The springs, and the fill's ∇V, at the positions of the kick.
-  const bool hasVolume = model.springOpposites != nullptr;
-  if (hasVolume)
-    springPass<true>(springs, model.springOpposites->data(), model.dampingDecays->data(), inverseMasses,
-                     scratch);
-  else
-    springPass<false>(springs, nullptr, model.dampingDecays->data(), inverseMasses, scratch);
-  // 2. The fill pressure p = p0 + K (1 - V/V0), with 18 V = Σ (p_i - o) · 6∇_i V.
+  forChunks(parallel, count, kPointChunk, [&](std::size_t b, std::size_t e) { padPoints(d, b, e); });
+  // 1. The springs, and the fill's ∇V, at the positions of the kick: block b of the springs into
+  //    accumulator b (the springs of a block may share vertices with another block's).
+  const std::size_t blockSize = (springCount + blockCount - 1) / blockCount;
+  forChunks(parallel, blockCount, 1, [&](std::size_t first, std::size_t last) {
+    for (std::size_t b = first; b < last; ++b)
+      addSpringForces(d, std::min(springCount, b * blockSize), std::min(springCount, (b + 1) * blockSize),
+                      d.springForces + b * count, d.sixVolumeGradient + b * count);
+  });
+  // 2. The fill pressure p = p0 + K (1 - V/V0), V summed over fixed chunks of points.
   double pressureOverSix = 0.0;
-  if (hasVolume) {
-    const Vector4 origin = positions[0].lanes;
-    double eighteenTimesVolume = 0.0;
-    for (std::size_t i = 0; i < count; ++i)
-      eighteenTimesVolume += dot(positions[i].lanes - origin, scratch.sixVolumeGradient[i].lanes);
-    pressureOverSix =
-        fillPressure(eighteenTimesVolume / 18.0, model.restVolume, model.restPressure, model.bulkModulus) /
-        6.0;
+  if (d.opposites) {
+    const std::size_t chunks = (count + kPointChunk - 1) / kPointChunk;
+    scratch.volumeParts.assign(chunks, 0.0);
+    forChunks(parallel, chunks, 1, [&](std::size_t first, std::size_t last) {
+      for (std::size_t c = first; c < last; ++c)
+        scratch.volumeParts[c] =
+            eighteenTimesVolume(d, c * kPointChunk, std::min(count, (c + 1) * kPointChunk));
+    });
+    double sum = 0.0;
+    for (double part : scratch.volumeParts) sum += part;
+    pressureOverSix = fillPressure(sum / 18.0, model.restVolume, model.restPressure, model.bulkModulus) / 6.0;
   }
-  // 3. Kick with a = w F + g (kinematic points keep their velocity).
-  const Vector4 gravity = pad(model.gravity);
-  for (std::size_t i = 0; i < count; ++i) {
-    Vector4& springForce = scratch.springForces[i].lanes;
-    Vector4& sixGradient = scratch.sixVolumeGradient[i].lanes;
-    const double w = inverseMasses[i];
-    if (w != 0.0)
-      velocities[i].lanes +=
-          ((springForce + broadcast(pressureOverSix) * sixGradient) * broadcast(w) + gravity) * broadcast(h);
-    springForce = Vector4{};
-    sixGradient = Vector4{};
-  }
+  // 3. Kick.
+  forChunks(parallel, count, kPointChunk,
+            [&](std::size_t b, std::size_t e) { kick(d, b, e, pressureOverSix); });
   // 4. The damper, implicitly: symmetric Gauss–Seidel, forward then backward, h/2 each (a one-way
-  //    sweep is not a symmetric contraction and destabilised symplectic Euler).
-  const glm::u32vec2* ends = springs.ends.data();
-  const PaddedVector* vectors = scratch.springVectors.data();
-  const glm::dvec2* damperFactors = scratch.damperFactors.data();
-  for (std::size_t s = 0; s < springCount; ++s)
-    dampOneSpring(ends[s], vectors[s].lanes, damperFactors[s], velocities);
-  for (std::size_t s = springCount; s-- > 0;)
-    dampOneSpring(ends[s], vectors[s].lanes, damperFactors[s], velocities);
-  // 5. Drift, then put back on the floor whatever went through it.
-  for (std::size_t i = 0; i < count; ++i) {
-    glm::dvec3& position = state.positions[i];
-    glm::dvec3& velocity = state.velocities[i];
-    velocity = unpad(velocities[i].lanes);
-    position += velocity * h;
-    if (inverseMasses[i] != 0.0) resolveFloorContactAt(position, velocity, model.friction);
+  //    sweep is not a symmetric contraction and destabilised symplectic Euler). On threads, run by
+  //    run of springs that share no vertex, so that every spring sees what the serial sweep shows it.
+  if (!parallel) {
+    dampForward(d, 0, springCount);
+    dampBackward(d, 0, springCount);
+  } else {
+    const std::vector<std::size_t>& runs = *model.independentRuns;  // starts, then springCount
+    auto sweepRun = [&](std::size_t run, bool forward) {
+      const std::size_t first = runs[run], length = runs[run + 1] - first;
+      forChunks(length >= 2 * kSpringChunk, length, kSpringChunk, [&](std::size_t b, std::size_t e) {
+        forward ? dampForward(d, first + b, first + e) : dampBackward(d, first + b, first + e);
+      });
+    };
+    for (std::size_t run = 0; run + 1 < runs.size(); ++run) sweepRun(run, true);
+    for (std::size_t run = runs.size() - 1; run-- > 0;) sweepRun(run, false);
   }
+  // 5. Drift and floor, back into the state.
+  forChunks(parallel, count, kPointChunk, [&](std::size_t b, std::size_t e) { drift(d, b, e); });
 }
 
 }  // namespace slime

@@ -16,8 +16,13 @@
 //   5. vertices:  drift x += v h and the floor contact, back into the state.
 // Where the CPU has AVX2 a build of it for AVX2 is chosen at run time; both builds give the same
 // bits (the same operations in the same order, no fused multiply-add).
+// From kParallelPointCount points on (level 6 and up) the passes run on TBB threads: over points in
+// fixed chunks, the springs of pass 1 in kParallelSpringBlocks fixed blocks with an accumulator each,
+// the sweeps run by run of springs that share no vertex (independentSpringRuns). The result then
+// depends on the mesh size only, never on the number of threads.
 #pragma once
 
+#include <cstddef>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <vector>
@@ -26,6 +31,11 @@
 #include "core/springs.h"
 
 namespace slime {
+
+constexpr std::size_t kParallelPointCount = 20000;
+constexpr std::size_t kParallelSpringBlocks = 2;
+constexpr std::size_t kPointChunk = 4096;   // points per task, and per partial sum of the volume
+constexpr std::size_t kSpringChunk = 4096;  // springs per task in the sweeps
 
 struct DampedSymplecticEulerModel {
   const SpringSet* springs = nullptr;
@@ -37,6 +47,7 @@ struct DampedSymplecticEulerModel {
   double bulkModulus = 0.0;             // K in p = p0 + K (1 - V/V0), Pa
   glm::dvec3 gravity{0.0, 0.0, -9.81};  // m/s^2
   double friction = 0.0;                // Coulomb μ of the floor
+  const std::vector<std::size_t>* independentRuns = nullptr;  // independentSpringRuns; null: never on threads
 };
 
 // Four doubles (x, y, z, 0): a dvec3 padded to 32 bytes so that one vector instruction (AVX2)
@@ -53,6 +64,7 @@ struct DampedSymplecticEulerScratch {
   std::vector<PaddedVector> sixVolumeGradient;      // 6 ∇_i V (kept zero between substeps)
   std::vector<PaddedVector> springVectors;          // per spring, x_ij = p_j - p_i at the kick
   std::vector<glm::dvec2> damperFactors;  // per spring, (decay - 1) (w_i, w_j) / ((w_i + w_j) |x_ij|²)
+  std::vector<double> volumeParts;        // 18 V per chunk of points
 };
 
 // Advances every dynamic point (w > 0) by h; kinematic points (w = 0) drift with their own

@@ -86,6 +86,8 @@ void Simulation::rebuildModels() {
   symplecticModel_.bulkModulus = body_.bulkModulus;
   symplecticModel_.gravity = gravity;
   symplecticModel_.friction = settings_.slime.friction;
+  independentSpringRuns_ = independentSpringRuns(body_.springs.ends, body_.state.size());
+  symplecticModel_.independentRuns = &independentSpringRuns_;
   const ForceModel* model = integrator_ == Integrator::SymplecticEuler ? &elasticModel_ : &forceModel_;
   accelerationField_ = [this, model](const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v,
                                      std::vector<glm::dvec3>& a) {

@@ -101,6 +101,7 @@ class Simulation {
   double dampingDecayStep_ = -1.0;      // -1: recompute (after a grab, release or material change)
   DampedSymplecticEulerModel symplecticModel_;  // what symplectic_euler's fused substep reads
   DampedSymplecticEulerScratch symplecticScratch_;
+  std::vector<std::size_t> independentSpringRuns_;  // for the fused substep's threads
   XpbdModel xpbdModel_;
   AccelerationField accelerationField_;
   ForceScratch forceScratch_;

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <utility>
 
 namespace slime {
@@ -81,6 +82,18 @@ std::vector<glm::u32vec2> orderedForIndependence(const std::vector<glm::u32vec2>
   std::vector<glm::u32vec2> ordered(edges.size());
   for (std::size_t e = 0; e < edges.size(); ++e) ordered[e] = edges[keyed[e].second];
   return ordered;
+}
+
+std::vector<std::size_t> independentSpringRuns(const std::vector<glm::u32vec2>& ends, std::size_t vertexCount) {
+  std::vector<std::size_t> starts;
+  std::vector<std::size_t> lastRunAt(vertexCount, SIZE_MAX);  // the run that last touched each vertex
+  for (std::size_t s = 0; s < ends.size(); ++s) {
+    const std::size_t current = starts.empty() ? SIZE_MAX : starts.size() - 1;
+    if (starts.empty() || lastRunAt[ends[s].x] == current || lastRunAt[ends[s].y] == current) starts.push_back(s);
+    lastRunAt[ends[s].x] = lastRunAt[ends[s].y] = starts.size() - 1;
+  }
+  starts.push_back(ends.size());
+  return starts;
 }
 
 void springDampingDecays(const SpringSet& springs, const std::vector<double>& inverseMasses, double damping,

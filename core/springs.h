@@ -61,6 +61,11 @@ void dampSpringsImplicitly(const SpringSet& springs, const std::vector<glm::dvec
 // next, which keeps the CPU's pipeline full. Deterministic.
 std::vector<glm::u32vec2> orderedForIndependence(const std::vector<glm::u32vec2>& edges, std::size_t vertexCount);
 
+// Where each maximal run of consecutive springs sharing no vertex starts, then springs.size(): the
+// springs of one run can be swept in any order, or at once on threads, with the same result as in
+// order. With orderedForIndependence each colour is (about) one run.
+std::vector<std::size_t> independentSpringRuns(const std::vector<glm::u32vec2>& ends, std::size_t vertexCount);
+
 // Springs on the unique edges of `triangles` (ordered for independence), rest lengths = current edge length / (1 + prestrain),
 // stiffness by the series rule with d_e = the mean edge length.
 SpringSet makeEdgeSprings(const std::vector<glm::dvec3>& positions,

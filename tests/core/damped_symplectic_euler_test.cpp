@@ -1,10 +1,12 @@
 // The fused substep of the default integrator against the same mathematics done pass by pass
 // (computeAccelerations without the damper → kick → dampSpringsImplicitly → drift → floor):
-// they must agree up to floating-point rounding, with the fill, a kinematic point and the floor in play;
-// and its volume gradient per edge against volume.h's per triangle.
+// they must agree up to floating-point rounding, with the fill, a kinematic point and the floor in play,
+// serially and on threads; threads must not change a bit; and its volume gradient per edge against
+// volume.h's per triangle.
 #include "core/damped_symplectic_euler.h"
 
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
 #include <cmath>
 #include <glm/geometric.hpp>
@@ -15,17 +17,23 @@
 #include "core/icosphere.h"
 #include "core/integrators.h"
 #include "core/settings_io.h"
+#include "core/simulation.h"
 #include "core/slime_body.h"
 #include "core/volume.h"
 
 namespace slime {
 namespace {
 
-TEST(DampedSymplecticEuler, FusedSubstepMatchesThePassByPassOne) {
+// Level 3 runs the serial substep, level 6 the one on threads.
+class FusedSubstep : public ::testing::TestWithParam<int> {};
+
+TEST_P(FusedSubstep, MatchesThePassByPassOne) {
   Settings settings = defaultSettings();
-  settings.slime.level = 3;
+  settings.slime.level = GetParam();
   const SlimeBody body = buildSlimeBody(settings.slime);
-  const double h = 5e-4, friction = 0.6;
+  const double h =
+      GetParam() >= 6 ? 1.25e-4 : 5e-4;  // within the stable step (8 substeps of 1 ms at level 6)
+  const double friction = 0.6;
   const glm::dvec3 gravity{0.0, 0.0, -9.81};
 
   // A lively state: a swirl of velocities, the ball half through the floor, one point held.
@@ -59,6 +67,8 @@ TEST(DampedSymplecticEuler, FusedSubstepMatchesThePassByPassOne) {
   model.springs = &body.springs;
   model.dampingDecays = &decays;
   model.springOpposites = &body.springOpposites;
+  const std::vector<std::size_t> runs = independentSpringRuns(body.springs.ends, body.state.size());
+  model.independentRuns = &runs;
   model.restVolume = body.restVolume;
   model.restPressure = body.restPressure;
   model.bulkModulus = body.bulkModulus;
@@ -75,12 +85,55 @@ TEST(DampedSymplecticEuler, FusedSubstepMatchesThePassByPassOne) {
     dampedSymplecticEulerSubstep(fused, h, model, scratch);
   }
   double largestSpeed = 0.0;
-  for (const glm::dvec3& v : split.velocities) largestSpeed = std::max(largestSpeed, glm::length(v));
+  for (const glm::dvec3& v : split.velocities) {
+    ASSERT_TRUE(std::isfinite(glm::length(v)));
+    largestSpeed = std::max(largestSpeed, glm::length(v));
+  }
   ASSERT_GT(largestSpeed, 0.1);  // something did happen
   for (std::size_t i = 0; i < split.size(); ++i) {
     EXPECT_LT(glm::length(fused.positions[i] - split.positions[i]), 1e-12) << "vertex " << i;
     EXPECT_LT(glm::length(fused.velocities[i] - split.velocities[i]), 1e-9 * largestSpeed) << "vertex " << i;
     EXPECT_GE(fused.positions[i].z, 0.0);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Levels, FusedSubstep, ::testing::Values(3, 6));
+
+TEST(DampedSymplecticEuler, ThreadsDoNotChangeTheResult) {
+  Settings settings = defaultSettings();
+  settings.slime.level = 6;  // big enough for threads
+  auto simulate = [&](int threads) {
+    std::vector<glm::dvec3> positions;
+    tbb::task_arena arena(threads);
+    arena.execute([&] {
+      Simulation simulation(settings);
+      for (int step = 0; step < 20; ++step) simulation.step();
+      positions = simulation.positions();
+    });
+    return positions;
+  };
+  ASSERT_GE(Simulation(settings).positions().size(), kParallelPointCount);
+  const std::vector<glm::dvec3> one = simulate(1), two = simulate(2), three = simulate(3);
+  for (std::size_t i = 0; i < one.size(); ++i) {
+    ASSERT_EQ(one[i], two[i]) << "vertex " << i;
+    ASSERT_EQ(one[i], three[i]) << "vertex " << i;
+  }
+}
+
+TEST(DampedSymplecticEuler, IndependentRunsShareNoVertex) {
+  const SlimeBody body = buildSlimeBody(defaultSettings().slime);
+  const std::vector<std::size_t> runs = independentSpringRuns(body.springs.ends, body.state.size());
+  ASSERT_GE(runs.size(), 2u);
+  EXPECT_EQ(runs.front(), 0u);
+  EXPECT_EQ(runs.back(), body.springs.size());
+  EXPECT_LT(runs.size(), 16u);  // about one run per colour
+  for (std::size_t run = 0; run + 1 < runs.size(); ++run) {
+    std::vector<bool> touched(body.state.size(), false);
+    for (std::size_t s = runs[run]; s < runs[run + 1]; ++s) {
+      const glm::u32vec2 ends = body.springs.ends[s];
+      ASSERT_FALSE(touched[ends.x] || touched[ends.y]) << "spring " << s;
+      touched[ends.x] = touched[ends.y] = true;
+    }
   }
 }
 
