@@ -53,7 +53,7 @@ struct SubstepData {
   const glm::u32vec2* opposites = nullptr;  // null: no volume term
   const double* stiffnesses = nullptr;
   const double* restLengths = nullptr;
-  const double* decays = nullptr;
+  const glm::dvec2* dampingShares = nullptr;
   Vector4 origin{};  // p_0, near the mesh, so the cross products stay well conditioned
   Vector4 gravity{};
   double friction = 0.0;
@@ -85,8 +85,7 @@ SLIME_AVX2_CLONE void addSpringForces(const SubstepData& d, std::size_t begin, s
   const PaddedVector* positions = d.positions;
   const double* stiffnesses = d.stiffnesses;
   const double* restLengths = d.restLengths;
-  const double* decays = d.decays;
-  const double* inverseMasses = d.inverseMasses;
+  const glm::dvec2* dampingShares = d.dampingShares;
   PaddedVector* springVectors = d.springVectors;
   glm::dvec2* damperFactors = d.damperFactors;
   const Vector4 origin = d.origin;
@@ -106,8 +105,7 @@ SLIME_AVX2_CLONE void addSpringForces(const SubstepData& d, std::size_t begin, s
       sixGradient[opposites[s].y].lanes -= share;
     }
     springVectors[s].lanes = x;
-    const double factor = decays[s] * (inverseLength * inverseLength);
-    damperFactors[s] = {factor * inverseMasses[i], factor * inverseMasses[j]};
+    damperFactors[s] = dampingShares[s] * (inverseLength * inverseLength);
   }
 }
 
@@ -233,7 +231,7 @@ void dampedSymplecticEulerSubstep(ParticleState& state, double h, const DampedSy
   d.opposites = model.springOpposites ? model.springOpposites->data() : nullptr;
   d.stiffnesses = springs.stiffnesses.data();
   d.restLengths = springs.restLengths.data();
-  d.decays = model.dampingDecays->data();
+  d.dampingShares = model.dampingShares->data();
   d.origin = pad(state.positions[0]);
   d.gravity = pad(model.gravity);
   d.friction = model.friction;

@@ -39,7 +39,7 @@ constexpr std::size_t kSpringChunk = 4096;  // springs per task in the sweeps
 
 struct DampedSymplecticEulerModel {
   const SpringSet* springs = nullptr;
-  const std::vector<double>* dampingDecays = nullptr;  // per spring, springDampingDecays for this h
+  const std::vector<glm::dvec2>* dampingShares = nullptr;  // per spring, springDampingShares for this h
   const std::vector<glm::u32vec2>* springOpposites =
       nullptr;                          // edgeOpposites of the springs; null: no volume term
   double restVolume = 0.0;              // V0, m^3

@@ -79,7 +79,7 @@ void Simulation::rebuildModels() {
   elasticModel_.damping = 0.0;
   symplecticModel_ = DampedSymplecticEulerModel{};
   symplecticModel_.springs = &body_.springs;
-  symplecticModel_.dampingDecays = &dampingDecays_;
+  symplecticModel_.dampingShares = &dampingShares_;
   symplecticModel_.springOpposites = hasVolume ? &body_.springOpposites : nullptr;
   symplecticModel_.restVolume = body_.restVolume;
   symplecticModel_.restPressure = body_.restPressure;
@@ -146,7 +146,7 @@ void Simulation::substep(double h) {
     // in one call. The floor leaves kinematic points alone, so placing the grabbed ones after it
     // gives what the other integrators' order gives.
     if (dampingDecayStep_ != h) {
-      springDampingDecays(body_.springs, state.inverseMasses, settings_.slime.damping, h, dampingDecays_);
+      springDampingShares(body_.springs, state.inverseMasses, settings_.slime.damping, h, dampingShares_);
       dampingDecayStep_ = h;
     }
     dampedSymplecticEulerSubstep(state, h, symplecticModel_, symplecticScratch_);

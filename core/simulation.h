@@ -97,7 +97,7 @@ class Simulation {
   bool automaticSubsteps_ = true;
   double highestFrequency_ = 0.0;
   double highestDampingRate_ = 0.0;
-  std::vector<double> dampingDecays_;  // per spring, for the substep length dampingDecayStep_
+  std::vector<glm::dvec2> dampingShares_;  // per spring, for the substep length dampingDecayStep_
   double dampingDecayStep_ = -1.0;      // -1: recompute (after a grab, release or material change)
   DampedSymplecticEulerModel symplecticModel_;  // what symplectic_euler's fused substep reads
   DampedSymplecticEulerScratch symplecticScratch_;

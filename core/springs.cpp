@@ -105,6 +105,15 @@ void springDampingDecays(const SpringSet& springs, const std::vector<double>& in
   }
 }
 
+void springDampingShares(const SpringSet& springs, const std::vector<double>& inverseMasses, double damping,
+                         double h, std::vector<glm::dvec2>& shares) {
+  std::vector<double> decays;
+  springDampingDecays(springs, inverseMasses, damping, h, decays);
+  shares.resize(springs.size());
+  for (std::size_t s = 0; s < springs.size(); ++s)
+    shares[s] = decays[s] * glm::dvec2(inverseMasses[springs.ends[s].x], inverseMasses[springs.ends[s].y]);
+}
+
 void dampSpringsImplicitly(const SpringSet& springs, const std::vector<glm::dvec3>& positions,
                            const std::vector<double>& inverseMasses, const std::vector<double>& decays,
                            std::vector<glm::dvec3>& velocities) {

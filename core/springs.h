@@ -55,6 +55,10 @@ void springDampingDecays(const SpringSet& springs, const std::vector<double>& in
 void dampSpringsImplicitly(const SpringSet& springs, const std::vector<glm::dvec3>& positions,
                            const std::vector<double>& inverseMasses, const std::vector<double>& decays,
                            std::vector<glm::dvec3>& velocities);
+// The same factors times (w_i, w_j): each end's share of the impulse, as the fused substep
+// (damped_symplectic_euler.h) uses them.
+void springDampingShares(const SpringSet& springs, const std::vector<double>& inverseMasses, double damping,
+                         double h, std::vector<glm::dvec2>& shares);
 
 // The edges reordered so that consecutive ones rarely share a vertex (greedy edge colouring, edges
 // sorted by colour): sweeps that write both ends then carry no dependency from one spring to the

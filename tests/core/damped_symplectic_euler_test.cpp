@@ -65,7 +65,9 @@ TEST_P(FusedSubstep, MatchesThePassByPassOne) {
 
   DampedSymplecticEulerModel model;
   model.springs = &body.springs;
-  model.dampingDecays = &decays;
+  std::vector<glm::dvec2> shares;
+  springDampingShares(body.springs, start.inverseMasses, settings.slime.damping, h, shares);
+  model.dampingShares = &shares;
   model.springOpposites = &body.springOpposites;
   const std::vector<std::size_t> runs = independentSpringRuns(body.springs.ends, body.state.size());
   model.independentRuns = &runs;
