@@ -75,8 +75,6 @@ void Simulation::rebuildModels() {
   xpbdModel_.triangles = hasVolume ? &body_.triangles : nullptr;
   xpbdModel_.restVolume = body_.restVolume;
   xpbdModel_.gravity = gravity;
-  elasticModel_ = forceModel_;
-  elasticModel_.damping = 0.0;
   symplecticModel_ = DampedSymplecticEulerModel{};
   symplecticModel_.springs = &body_.springs;
   symplecticModel_.dampingShares = &dampingShares_;
@@ -88,10 +86,10 @@ void Simulation::rebuildModels() {
   symplecticModel_.friction = settings_.slime.friction;
   independentSpringRuns_ = independentSpringRuns(body_.springs.ends, body_.state.size());
   symplecticModel_.independentRuns = &independentSpringRuns_;
-  const ForceModel* model = integrator_ == Integrator::SymplecticEuler ? &elasticModel_ : &forceModel_;
-  accelerationField_ = [this, model](const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v,
-                                     std::vector<glm::dvec3>& a) {
-    computeAccelerations(*model, body_.state.inverseMasses, x, v, forceScratch_, a);
+  // What explicit_euler and rk4 integrate (symplectic_euler has its own fused substep).
+  accelerationField_ = [this](const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v,
+                               std::vector<glm::dvec3>& a) {
+    computeAccelerations(forceModel_, body_.state.inverseMasses, x, v, forceScratch_, a);
   };
   dampingDecayStep_ = -1.0;
   // ω_max² of the springs plus that of the fill's breathing mode, (K/V0) Σ w_i |∇_i V|².

@@ -93,7 +93,6 @@ class Simulation {
   SlimeBody body_;
   Integrator integrator_ = Integrator::SymplecticEuler;
   ForceModel forceModel_;    // every force, the damper explicit
-  ForceModel elasticModel_;  // without the damper (symplectic_euler damps implicitly)
   bool automaticSubsteps_ = true;
   double highestFrequency_ = 0.0;
   double highestDampingRate_ = 0.0;
