@@ -1,14 +1,14 @@
 #include "core/damped_symplectic_euler.h"
 
+#include "core/floor_contact.h"
+#include "core/volume.h"
+
+#include <glm/geometric.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
-#include <glm/geometric.hpp>
-
-#include "core/floor_contact.h"
-#include "core/volume.h"
 
 // The helpers below take and return 32-byte vectors; GCC warns that their ABI differs with and
 // without AVX, which does not matter for functions that are always inlined in this file.

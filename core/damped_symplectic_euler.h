@@ -22,13 +22,14 @@
 // depends on the mesh size only, never on the number of threads.
 #pragma once
 
-#include <cstddef>
-#include <glm/vec2.hpp>
-#include <glm/vec3.hpp>
-#include <vector>
-
 #include "core/particle_state.h"
 #include "core/springs.h"
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include <cstddef>
+#include <vector>
 
 namespace slime {
 

@@ -4,14 +4,6 @@
 // serially and on threads; threads must not change a bit; and its volume gradient per edge against
 // volume.h's per triangle.
 #include "core/damped_symplectic_euler.h"
-
-#include <gtest/gtest.h>
-#include <tbb/task_arena.h>
-
-#include <cmath>
-#include <glm/geometric.hpp>
-#include <stdexcept>
-
 #include "core/floor_contact.h"
 #include "core/force_model.h"
 #include "core/icosphere.h"
@@ -20,6 +12,14 @@
 #include "core/simulation.h"
 #include "core/slime_body.h"
 #include "core/volume.h"
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
 
 namespace slime {
 namespace {
