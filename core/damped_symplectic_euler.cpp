@@ -10,28 +10,27 @@
 #include <algorithm>
 #include <cmath>
 
-// The helpers below take and return 32-byte vectors; GCC warns that their ABI differs with and
-// without AVX, which does not matter for functions that are always inlined in this file.
-#pragma GCC diagnostic ignored "-Wpsabi"
-
 namespace slime {
 namespace {
 
-[[gnu::always_inline]] inline Vector4 pad(const glm::dvec3& v) { return Vector4{v.x, v.y, v.z, 0.0}; }
+// The helpers pass 32-byte vectors by reference only: by value their ABI would differ between the
+// AVX2 and the baseline build (GCC warns, Clang refuses). A scalar times a vector multiplies each lane.
+[[gnu::always_inline]] inline void pad(const glm::dvec3& v, Vector4& padded) {
+  padded = Vector4{v.x, v.y, v.z, 0.0};
+}
 [[gnu::always_inline]] inline glm::dvec3 unpad(const Vector4& v) { return {v[0], v[1], v[2]}; }
-[[gnu::always_inline]] inline Vector4 broadcast(double s) { return Vector4{s, s, s, s}; }
 // glm::dot's order, ((x + y) + z), so the result does not depend on the vector width.
 [[gnu::always_inline]] inline double dot(const Vector4& a, const Vector4& b) {
   const Vector4 product = a * b;
   return (product[0] + product[1]) + product[2];
 }
 // a × b = a.yzx b.zxy - a.zxy b.yzx (the fourth lane stays 0).
-[[gnu::always_inline]] inline Vector4 cross(const Vector4& a, const Vector4& b) {
+[[gnu::always_inline]] inline void cross(const Vector4& a, const Vector4& b, Vector4& product) {
   const Vector4 aYzx = __builtin_shufflevector(a, a, 1, 2, 0, 3);
   const Vector4 aZxy = __builtin_shufflevector(a, a, 2, 0, 1, 3);
   const Vector4 bYzx = __builtin_shufflevector(b, b, 1, 2, 0, 3);
   const Vector4 bZxy = __builtin_shufflevector(b, b, 2, 0, 1, 3);
-  return aYzx * bZxy - aZxy * bYzx;
+  product = aYzx * bZxy - aZxy * bYzx;
 }
 
 // What the passes of one substep read and write, as plain pointers so that the range kernels
@@ -68,8 +67,8 @@ struct SubstepData {
 // Pass 0: the state, padded.
 SLIME_AVX2_CLONE void padPoints(const SubstepData& d, std::size_t begin, std::size_t end) {
   for (std::size_t i = begin; i < end; ++i) {
-    d.positions[i].lanes = pad(d.statePositions[i]);
-    d.velocities[i].lanes = pad(d.stateVelocities[i]);
+    pad(d.statePositions[i], d.positions[i].lanes);
+    pad(d.stateVelocities[i], d.velocities[i].lanes);
   }
 }
 
@@ -96,11 +95,12 @@ SLIME_AVX2_CLONE void addSpringForces(const SubstepData& d, std::size_t begin, s
     const double length = std::sqrt(dot(x, x));
     const double inverseLength = 1.0 / length;  // the one division per spring
     const double hooke = stiffnesses[s] * (length - restLengths[s]) * inverseLength;
-    const Vector4 forceOnJ = broadcast(-hooke) * x;
+    const Vector4 forceOnJ = -hooke * x;
     forces[j].lanes += forceOnJ;
     forces[i].lanes -= forceOnJ;
     if (opposites) {
-      const Vector4 share = cross(positionI - origin, x);
+      Vector4 share;
+      cross(positionI - origin, x, share);
       sixGradient[opposites[s].x].lanes += share;
       sixGradient[opposites[s].y].lanes -= share;
     }
@@ -134,9 +134,7 @@ SLIME_AVX2_CLONE void kick(const SubstepData& d, std::size_t begin, std::size_t 
     }
     const double w = d.inverseMasses[i];
     if (w != 0.0)
-      d.velocities[i].lanes +=
-          ((springForce + broadcast(pressureOverSix) * sixGradient) * broadcast(w) + d.gravity) *
-          broadcast(d.h);
+      d.velocities[i].lanes += ((springForce + pressureOverSix * sixGradient) * w + d.gravity) * d.h;
   }
 }
 
@@ -147,8 +145,8 @@ SLIME_AVX2_CLONE void kick(const SubstepData& d, std::size_t begin, std::size_t 
                                                  const glm::dvec2& factors, PaddedVector* velocities) {
   const std::uint32_t i = ends.x, j = ends.y;
   const double relative = dot(velocities[j].lanes - velocities[i].lanes, x);
-  velocities[j].lanes += broadcast(relative * factors.y) * x;
-  velocities[i].lanes -= broadcast(relative * factors.x) * x;
+  velocities[j].lanes += (relative * factors.y) * x;
+  velocities[i].lanes -= (relative * factors.x) * x;
 }
 SLIME_AVX2_CLONE void dampForward(const SubstepData& d, std::size_t begin, std::size_t end) {
   const glm::u32vec2* ends = d.ends;
@@ -232,8 +230,8 @@ void dampedSymplecticEulerSubstep(ParticleState& state, double h, const DampedSy
   d.stiffnesses = springs.stiffnesses.data();
   d.restLengths = springs.restLengths.data();
   d.dampingShares = model.dampingShares->data();
-  d.origin = pad(state.positions[0]);
-  d.gravity = pad(model.gravity);
+  pad(state.positions[0], d.origin);
+  pad(model.gravity, d.gravity);
   d.friction = model.friction;
 
   // 0. The state, padded.
