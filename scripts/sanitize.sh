@@ -22,7 +22,12 @@ for preset in "${@:-asan tsan}"; do
         ASAN_OPTIONS="${ASAN_OPTIONS/detect_leaks=1/detect_leaks=0}" ctest --preset asan -j2 --timeout 900 -R "$gl" ;;
       tsan)
         cmake --build --preset tsan --target core_tests render_tests
-        ctest --preset tsan -j2 --timeout 900 -L '^(core|render)$' ;;
+        # The level-6 physics runs many thousands of TBB passes; each pass's task hand-over happens
+        # inside Debian's uninstrumented libtbb, so TSan reports and suppresses it every time, which
+        # takes minutes per simulated second. DampedSymplecticEuler.ThreadsDoNotChangeTheResult keeps
+        # those threaded passes under TSan; the two long level-6 settles below run in release and asan.
+        ctest --preset tsan -j2 --timeout 900 -L '^(core|render)$' \
+          -E 'DefaultsHoldLevel6|FusedSubstep.MatchesThePassByPassOne/6' ;;
     esac
   done
 done
