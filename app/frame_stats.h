@@ -35,6 +35,34 @@ struct FrameStats {
   std::int64_t frames = 0;
   double totalFrameMs = 0.0;             // every frame's wall time, summed
   double simulationSpeed = 1.0;          // simulated seconds per wall second, smoothed
+  StageTimes stageSums;                  // every frame's stages summed (trace, refit: traced frames only)
+  std::int64_t tracedFrames = 0;         // frames that traced an image
+
+  // Adds the frame's stages to the sums; `traced`: this frame traced (and refitted) an image.
+  void recordStages(bool traced) {
+    stageSums.physics += stages.physics;
+    stageSums.upload += stages.upload;
+    stageSums.ui += stages.ui;
+    if (!traced) return;
+    stageSums.refit += stages.refit;
+    stageSums.trace += stages.trace;
+    ++tracedFrames;
+  }
+
+  // Mean milliseconds per frame of each stage (trace and refit: per traced frame).
+  StageTimes meanStages() const {
+    StageTimes mean;
+    if (frames > 0) {
+      mean.physics = stageSums.physics / static_cast<double>(frames);
+      mean.upload = stageSums.upload / static_cast<double>(frames);
+      mean.ui = stageSums.ui / static_cast<double>(frames);
+    }
+    if (tracedFrames > 0) {
+      mean.refit = stageSums.refit / static_cast<double>(tracedFrames);
+      mean.trace = stageSums.trace / static_cast<double>(tracedFrames);
+    }
+    return mean;
+  }
 
   void recordSimulatedTime(double simulatedSeconds, double wallSeconds) {
     if (wallSeconds <= 0.0) return;

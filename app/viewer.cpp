@@ -3,6 +3,7 @@
 #include "app/gl.h"
 #include "app/screenshot.h"
 #include "core/camera.h"
+#include "core/level_of_detail.h"
 #include "core/settings_io.h"
 
 #include <backends/imgui_impl_opengl3.h>
@@ -78,6 +79,7 @@ bool Viewer::frame() {
   uploadImage();
   drawPanelsAndOverlay();
   present();
+  stats_.recordStages(imageTraced_);
   stats_.recordFrame(frameTime.milliseconds());
   return !quit_;
 }
@@ -218,24 +220,38 @@ void Viewer::stepPhysics(double wallSeconds, const glm::dvec3& target) {
 
 // --- refit, trace, upload --------------------------------------------------------------------------
 
+// The slime is drawn again when the scene changed anyway or its motion since it was last drawn
+// would show (kInvisibleMotionPixels); slow creep is traced once it adds up.
 void Viewer::refitSlime() {
   const Stopwatch refitTime;
-  if (slimeMoved_) {
+  if (slimeMoved_ && (sceneChanged_ || motionWouldShow())) {
     renderer_.updateSlime(simulation_.positions(), simulation_.triangles());
+    drawnPositions_ = simulation_.positions();
     slimeMoved_ = false;
     sceneChanged_ = true;
   }
   stats_.stages.refit = refitTime.milliseconds();
 }
 
-void Viewer::traceImage() {
-  imageTraced_ = false;
+bool Viewer::motionWouldShow() const {
+  const glm::ivec2 size = tracedImageSize();
+  return size.y <= 0 || largestMotionPixels(drawnPositions_, simulation_.positions(), settings_.camera.position,
+                                            settings_.camera.fov, size.y) >= kInvisibleMotionPixels;
+}
+
+glm::ivec2 Viewer::tracedImageSize() const {
   const glm::ivec2 framebuffer = backend_.framebufferSize();
-  if (framebuffer.x <= 0 || framebuffer.y <= 0) return;  // minimised: nothing to show
+  if (framebuffer.x <= 0 || framebuffer.y <= 0) return {0, 0};  // minimised: nothing to show
   // A coarser image while the user moves things keeps the window responsive; the full one when still.
   const double scale = settings_.render.scale * (interacting() ? kInteractiveScale : 1.0);
-  const glm::ivec2 size{std::max(1, static_cast<int>(std::lround(framebuffer.x * scale))),
-                        std::max(1, static_cast<int>(std::lround(framebuffer.y * scale)))};
+  return {std::max(1, static_cast<int>(std::lround(framebuffer.x * scale))),
+          std::max(1, static_cast<int>(std::lround(framebuffer.y * scale)))};
+}
+
+void Viewer::traceImage() {
+  imageTraced_ = false;
+  const glm::ivec2 size = tracedImageSize();
+  if (size.x <= 0) return;
   if (!sceneChanged_ && size == glm::ivec2(image_.width, image_.height)) return;  // nothing new to see
   const Stopwatch traceTime;
   image_.resize(size.x, size.y);
@@ -314,6 +330,7 @@ void Viewer::reloadSlime() {
   builtSlime_ = settings_.slime;
   clock_.reset();
   slimeMoved_ = true;
+  drawnPositions_.clear();  // a new mesh: draw it whatever it moved
   metrics_ = simulation_.metrics();
 }
 
@@ -365,11 +382,16 @@ glm::dvec3 Viewer::slimeCentre() const {
 void Viewer::writeReport() const {
   if (options_.reportPath.empty()) return;
   const glm::ivec2 framebuffer = backend_.framebufferSize();
+  const StageTimes meanStages = stats_.meanStages();
   const nlohmann::json report = {
       {"frames", stats_.frames},
       {"fps", stats_.fps},
       {"mean_fps", stats_.meanFps()},
       {"median_frame_ms_recent", stats_.medianRecentFrameMs()},
+      {"traced_frames", stats_.tracedFrames},
+      {"mean_stage_ms",
+       {{"physics", meanStages.physics}, {"refit", meanStages.refit}, {"trace", meanStages.trace},
+        {"upload", meanStages.upload}, {"ui", meanStages.ui}}},
       {"framebuffer", {framebuffer.x, framebuffer.y}},
       {"simulated_seconds", simulation_.time()},
       {"steps", simulation_.stepCount()},

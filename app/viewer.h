@@ -71,6 +71,8 @@ class Viewer {
   glm::dvec3 grabTargetFor() const;
   void stepPhysics(double wallSeconds, const glm::dvec3& target);
   void refitSlime();
+  bool motionWouldShow() const;         // the slime moved visibly since it was last drawn
+  glm::ivec2 tracedImageSize() const;   // the image this frame traces; {0, 0} when minimised
   void traceImage();
   void uploadImage();
   void drawPanelsAndOverlay();
@@ -107,6 +109,7 @@ class Viewer {
   bool quit_ = false;
   bool singleStepPending_ = false;
   bool slimeMoved_ = true;         // the mesh changed since the last refit
+  std::vector<glm::dvec3> drawnPositions_;  // the vertices as the renderer last got them
   bool sceneChanged_ = true;       // camera, settings or size changed since the last trace
   bool imageTraced_ = false;       // this frame traced a new image
   glm::dvec3 grabTargetDrawn_{0.0};  // the target the grabbed points were last pulled to

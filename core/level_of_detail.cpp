@@ -4,8 +4,10 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 namespace slime {
 namespace {
@@ -25,9 +27,30 @@ double icosphereSagitta(int level) {
   return kSagitta.back() * std::pow(0.25, level - kMaxLevel);
 }
 
+double pixelsPerMetre(double distance, double fovDegrees, int imageHeight) {
+  return imageHeight / (2.0 * distance * std::tan(fovDegrees * kPi / 360.0));
+}
+
 double projectedSagittaPixels(int level, double radius, double distance, double fovDegrees, int imageHeight) {
-  const double pixelsPerMetre = imageHeight / (2.0 * distance * std::tan(fovDegrees * kPi / 360.0));
-  return icosphereSagitta(level) * radius * pixelsPerMetre;
+  return icosphereSagitta(level) * radius * pixelsPerMetre(distance, fovDegrees, imageHeight);
+}
+
+double largestMotionPixels(const std::vector<glm::dvec3>& drawn, const std::vector<glm::dvec3>& now,
+                           const glm::dvec3& eye, double fovDegrees, int imageHeight) {
+  constexpr double kUnbounded = std::numeric_limits<double>::infinity();
+  if (drawn.size() != now.size() || now.empty()) return kUnbounded;
+  glm::dvec3 centre(0.0);
+  for (const glm::dvec3& p : now) centre += p;
+  centre /= static_cast<double>(now.size());
+  double boundSquared = 0.0, motionSquared = 0.0;
+  for (std::size_t i = 0; i < now.size(); ++i) {
+    boundSquared = std::max(boundSquared, glm::dot(now[i] - centre, now[i] - centre));
+    const double moved = glm::dot(now[i] - drawn[i], now[i] - drawn[i]);
+    if (!(moved <= motionSquared)) motionSquared = moved;  // NaN wins, and so reads as unbounded
+  }
+  const double nearest = glm::length(eye - centre) - std::sqrt(boundSquared);
+  if (!(nearest > 0.0) || !std::isfinite(motionSquared)) return kUnbounded;
+  return std::sqrt(motionSquared) * pixelsPerMetre(nearest, fovDegrees, imageHeight);
 }
 
 int chooseLevel(double radius, double distance, double fovDegrees, int imageHeight, double maxErrorPixels) {

@@ -14,6 +14,10 @@
 
 #include "core/settings.h"
 
+#include <glm/vec3.hpp>
+
+#include <vector>
+
 namespace slime {
 
 // Sagitta in pixels below which the mesh looks like the sphere. Measured by `slime bench accuracy`
@@ -24,6 +28,22 @@ constexpr double kInvisibleSagittaPixels = 0.25;
 
 // δ_L: the sagitta of level L relative to the radius (levels beyond the table quarter per level).
 double icosphereSagitta(int level);
+
+// Pixels one metre spans, at `distance` from the eye, on an image `imageHeight` pixels high.
+double pixelsPerMetre(double distance, double fovDegrees, int imageHeight);
+
+// Vertex motion in pixels below which the viewer does not trace the slime again: a twenty-fifth of
+// kInvisibleSagittaPixels. Every vertex moved this far in random directions changes 0.06 % of the
+// pixels by more than 2 steps of 8-bit sRGB (a one-pixel move: 7.5 %), invisible by the same rule
+// (tests/render/invariant_test.cpp). The viewer compares against the vertices it last drew, so slow
+// creep is drawn once it adds up.
+constexpr double kInvisibleMotionPixels = 0.01;
+
+// How far, in pixels, the vertex that moved most between `drawn` and `now` appears to move: its
+// displacement seen at the nearest depth of `now`'s bounding sphere from the eye. Infinite when
+// the two differ in size or the eye is inside that sphere (nothing then bounds the motion on screen).
+double largestMotionPixels(const std::vector<glm::dvec3>& drawn, const std::vector<glm::dvec3>& now,
+                           const glm::dvec3& eye, double fovDegrees, int imageHeight);
 
 // e_L in pixels for a slime of `radius` whose centre is `distance` from the eye (same units).
 double projectedSagittaPixels(int level, double radius, double distance, double fovDegrees, int imageHeight);

@@ -24,5 +24,26 @@ TEST(FrameStats, MedianOfRecentFramesIgnoresAFewStalls) {
   EXPECT_EQ(stats.medianRecentFrameMs(), 25.0);
 }
 
+TEST(FrameStats, MeanStagesAverageTraceOverTracedFramesOnly) {
+  FrameStats stats;
+  EXPECT_EQ(stats.meanStages().trace, 0.0);
+  // Two frames that trace (20 ms each) and two that only run physics and draw the panels.
+  for (int i = 0; i < 4; ++i) {
+    const bool traced = i % 2 == 0;
+    stats.stages.physics = 4.0 + i;  // 4, 5, 6, 7
+    stats.stages.ui = 2.0;
+    stats.stages.upload = traced ? 1.0 : 0.0;
+    if (traced) stats.stages.trace = 20.0 + i;  // 20, 22; the others keep the last traced value
+    stats.recordStages(traced);
+    stats.recordFrame(30.0);
+  }
+  const StageTimes mean = stats.meanStages();
+  EXPECT_DOUBLE_EQ(mean.physics, 5.5);
+  EXPECT_DOUBLE_EQ(mean.ui, 2.0);
+  EXPECT_DOUBLE_EQ(mean.upload, 0.5);
+  EXPECT_DOUBLE_EQ(mean.trace, 21.0);
+  EXPECT_EQ(stats.tracedFrames, 2);
+}
+
 }  // namespace
 }  // namespace slime

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace slime {
 namespace {
@@ -83,6 +84,28 @@ TEST(EffectiveLevel, SimulationBuildsTheAutoLevel) {
   EXPECT_EQ(simulation.settings().slime.level, effectiveLevel(settings));
   const std::size_t fourToL = std::size_t{1} << (2 * effectiveLevel(settings));
   EXPECT_EQ(simulation.triangles().size(), 20 * fourToL);
+}
+
+TEST(VisibleMotion, LargestDisplacementSeenAtTheNearestDepth) {
+  // A unit-radius ball 3 m in front of the eye: its nearest point is 2 m away, where with a 90° field
+  // of view on 600 pixels one metre spans 150 pixels.
+  const TriangleMesh mesh = makeIcosphere(2, 1.0, glm::dvec3(0.0, 3.0, 0.0));
+  std::vector<glm::dvec3> moved = mesh.positions;
+  EXPECT_EQ(largestMotionPixels(mesh.positions, moved, glm::dvec3(0.0), 90.0, 600), 0.0);
+  moved[5] += glm::dvec3(0.0, 0.0, 1e-3);  // the largest of several moves counts
+  moved[7] += glm::dvec3(2e-4, 0.0, 0.0);
+  EXPECT_NEAR(largestMotionPixels(mesh.positions, moved, glm::dvec3(0.0), 90.0, 600), 0.15, 1e-4);  // the move shifts the bound by < 1 mm
+}
+
+TEST(VisibleMotion, UnboundedWhenTheMeshChangedOrTheEyeIsInside) {
+  const TriangleMesh mesh = makeIcosphere(1, 1.0, glm::dvec3(0.0, 3.0, 0.0));
+  const TriangleMesh finer = makeIcosphere(2, 1.0, glm::dvec3(0.0, 3.0, 0.0));
+  EXPECT_TRUE(std::isinf(largestMotionPixels(mesh.positions, finer.positions, glm::dvec3(0.0), 45.0, 564)));
+  EXPECT_TRUE(std::isinf(largestMotionPixels({}, {}, glm::dvec3(0.0), 45.0, 564)));
+  EXPECT_TRUE(std::isinf(largestMotionPixels(mesh.positions, mesh.positions, glm::dvec3(0.0, 3.5, 0.0), 45.0, 564)));
+  std::vector<glm::dvec3> broken = mesh.positions;
+  broken[0].x = std::nan("");
+  EXPECT_TRUE(std::isinf(largestMotionPixels(mesh.positions, broken, glm::dvec3(0.0), 45.0, 564)));
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include "render_fixture.h"
 
 #include "core/camera.h"
+#include "core/level_of_detail.h"
 #include "render/optics.h"
 #include "render/screen_footprint.h"
 #include "render/shading_parameters.h"
@@ -11,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 namespace slime::testing {
@@ -145,6 +147,43 @@ TEST(Invariant, FootprintHoldsEveryPixelTheSlimeChanges) {
     EXPECT_LT(area, with.width * with.height) << c.what << ": the footprint should not be the whole image (" << footprint.x0
                                               << "," << footprint.y0 << ")-(" << footprint.x1 << "," << footprint.y1 << ")";
   }
+}
+
+// The viewer skips tracing a slime whose vertices moved less than kInvisibleMotionPixels since it was
+// last drawn (core/level_of_detail.h). Every vertex moved that far, each in its own random direction
+// (the worst for the normals), must be invisible by the rule the level of detail rests on
+// (app/bench_accuracy.h: at most 1 % of the pixels off by more than 2 steps of 8-bit sRGB; with one
+// sample a pixel, the pixels whose centre a silhouette or a refracted plank edge crosses flip
+// whatever the move). A move of one pixel must show by the same rule.
+TEST(Invariant, MotionBelowTheRedrawThresholdDoesNotShow) {
+  Settings settings = smallScene(367, 282);  // the default view at half size
+  const TriangleMesh mesh = restingMesh(settings);
+  auto movedBy = [&](double pixels) {
+    std::mt19937 random(7);
+    std::normal_distribution<double> gaussian;
+    TriangleMesh moved = mesh;
+    for (glm::dvec3& p : moved.positions)
+      p += 1e-6 * glm::normalize(glm::dvec3(gaussian(random), gaussian(random), gaussian(random)));
+    // The vertices moved by a micrometre each: scale the moves to `pixels` as the viewer measures them.
+    const double pixelsPerUnitMove = largestMotionPixels(mesh.positions, moved.positions, settings.camera.position,
+                                                         settings.camera.fov, settings.camera.height);
+    for (std::size_t i = 0; i < moved.positions.size(); ++i)
+      moved.positions[i] = mesh.positions[i] + (moved.positions[i] - mesh.positions[i]) * (pixels / pixelsPerUnitMove);
+    EXPECT_NEAR(largestMotionPixels(mesh.positions, moved.positions, settings.camera.position, settings.camera.fov,
+                                    settings.camera.height),
+                pixels, 0.05 * pixels);
+    return moved;
+  };
+  const Image drawn = renderMesh(settings, mesh);
+  const Image invisible = renderMesh(settings, movedBy(kInvisibleMotionPixels));
+  constexpr double kStep = 2.0, kFraction = 0.01;
+  const ImageDifference d = compareImages(drawn, invisible, kStep);
+  EXPECT_LE(d.fractionAbove, kFraction) << d.fractionAbove * 100 << " % of pixels over 2 steps";
+  if (d.fractionAbove > kFraction) writePng(differenceImage(drawn, invisible), outputPath("motion_below_threshold_diff.png"));
+  const ImageDifference visible = compareImages(drawn, renderMesh(settings, movedBy(1.0)), kStep);
+  EXPECT_GT(visible.fractionAbove, kFraction) << "a one-pixel move must show, or this test proves nothing";
+  std::printf("motion %.2f px: %.3f %% of pixels over 2 steps; 1 px: %.2f %%\n", kInvisibleMotionPixels,
+              100 * d.fractionAbove, 100 * visible.fractionAbove);
 }
 
 // The seed's algorithm (bounding sphere, then every triangle) and Embree must agree.
