@@ -125,9 +125,11 @@ SLIME_AVX2_CLONE double eighteenTimesVolume(const SubstepData& d, std::size_t be
   return sum;
 }
 
-// Pass 3 over points [begin, end): kick with a = w F + g (kinematic points keep their velocity),
-// clearing the accumulators it read.
+// Pass 3 over points [begin, end): the first half kick, v += a h/2 with a = w F + g (kinematic
+// points keep their velocity). It clears the accumulators it read, except that block 0's force
+// keeps the half kick a h/2 for the drift pass to give again.
 SLIME_AVX2_CLONE void kick(const SubstepData& d, std::size_t begin, std::size_t end, double pressureOverSix) {
+  const double halfStep = 0.5 * d.h;
   for (std::size_t i = begin; i < end; ++i) {
     Vector4 springForce{}, sixGradient{};
     for (std::size_t b = 0; b < d.blockCount; ++b) {
@@ -137,8 +139,10 @@ SLIME_AVX2_CLONE void kick(const SubstepData& d, std::size_t begin, std::size_t 
       d.sixVolumeGradient[b * d.pointCount + i].lanes = Vector4{};
     }
     const double w = d.inverseMasses[i];
-    if (w != 0.0)
-      d.velocities[i].lanes += ((springForce + pressureOverSix * sixGradient) * w + d.gravity) * d.h;
+    if (w == 0.0) continue;
+    const Vector4 halfKick = ((springForce + pressureOverSix * sixGradient) * w + d.gravity) * halfStep;
+    d.velocities[i].lanes += halfKick;
+    d.springForces[i].lanes = halfKick;
   }
 }
 
@@ -169,12 +173,14 @@ SLIME_AVX2_CLONE void dampBackward(const SubstepData& d, std::size_t begin, std:
     dampOneSpring(ends[s], springVectors[s].lanes, damperFactors[s], velocities);
 }
 
-// Pass 5 over points [begin, end): drift, then put back on the floor whatever went through it.
+// Pass 5 over points [begin, end): the second half kick (clearing what pass 3 kept of it), the
+// drift, then the floor puts back on it whatever went through it.
 SLIME_AVX2_CLONE void drift(const SubstepData& d, std::size_t begin, std::size_t end) {
   for (std::size_t i = begin; i < end; ++i) {
     glm::dvec3& position = d.statePositions[i];
     glm::dvec3& velocity = d.stateVelocities[i];
-    velocity = unpad(d.velocities[i].lanes);
+    velocity = unpad(d.velocities[i].lanes + d.springForces[i].lanes);
+    d.springForces[i].lanes = Vector4{};
     position += velocity * d.h;
     if (d.inverseMasses[i] != 0.0) resolveFloorContactAt(position, velocity, d.friction);
   }
@@ -273,7 +279,7 @@ void dampedSymplecticEulerSubstep(ParticleState& state, double h, const DampedSy
     for (double part : scratch.volumeParts) sum += part;
     pressureOverSix = fillPressure(sum / 18.0, model.restVolume, model.restPressure, model.bulkModulus) / 6.0;
   }
-  // 3. Kick.
+  // 3. The first half kick.
   forChunks(parallel, count, kPointChunk,
             [&](std::size_t b, std::size_t e) { kick(d, b, e, pressureOverSix); });
   // 4. The damper, implicitly: symmetric Gauss–Seidel, forward then backward, h/2 each (a one-way
@@ -293,7 +299,7 @@ void dampedSymplecticEulerSubstep(ParticleState& state, double h, const DampedSy
     for (std::size_t run = 0; run + 1 < runs.size(); ++run) sweepRun(run, true);
     for (std::size_t run = runs.size() - 1; run-- > 0;) sweepRun(run, false);
   }
-  // 5. Drift and floor, back into the state.
+  // 5. The second half kick, the drift and the floor, back into the state.
   forChunks(parallel, count, kPointChunk, [&](std::size_t b, std::size_t e) { drift(d, b, e); });
 }
 

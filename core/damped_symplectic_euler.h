@@ -1,8 +1,13 @@
 // The default integrator's whole substep in few passes over memory: symplectic Euler on the elastic
 // forces (springs without their damper, fill pressure, gravity), the springs' damper solved
-// implicitly between kick and drift, then the floor contact. The same mathematics as
-//   computeAccelerations (damping 0) → symplecticEulerKick → dampSpringsImplicitly →
-//   symplecticEulerDrift → resolveFloorContact
+// implicitly between two half kicks, then the drift and the floor contact. The same mathematics as
+//   computeAccelerations (damping 0) → symplecticEulerKick (h/2) → dampSpringsImplicitly →
+//   symplecticEulerKick (h/2, the same forces) → symplecticEulerDrift → resolveFloorContact
+// Why between half kicks: there the velocity is leapfrog's synchronous one, whose step keeps
+// ½ vᵀM v + ½ xᵀ(K - h²K M⁻¹K/4) x (Hairer, Lubich & Wanner 2006); that has no x·v cross term, so
+// a damper that only slows relative motion can only lower it. After a whole kick the kept quantity
+// has a cross term (h/2) xᵀK v that a damper can raise: with slime.damping ≥ 0.5 points beside
+// the contact patch were pumped to 0.9 m/s (tests/core/simulation_test.cpp, StifferDamper).
 // and the same results up to floating-point rounding (tests/core/damped_symplectic_euler_test.cpp
 // checks it), but fused: the split version makes about ten passes over vertices, springs and
 // triangles per substep, this one makes six, and loads nothing it does not use (the elastic
@@ -11,9 +16,10 @@
 //   1. springs:   Hooke's force, each edge's share of 6∇V (volume.h: one cross product per edge,
 //                 none per triangle), and x_ij and the damper's factors for the same x_ij;
 //   2. vertices:  V = Σ p_i · ∇_i V / 3, hence the fill pressure p = p0 + K (1 - V/V0);
-//   3. vertices:  kick v += h (w (F + p ∇V) + g), clearing the accumulators for the next substep;
+//   3. vertices:  half kick v += h/2 (w (F + p ∇V) + g), clearing the accumulators for the next
+//                 substep but for the half kick, which it keeps;
 //   4. springs:   the damper's symmetric Gauss–Seidel sweep, forward then backward;
-//   5. vertices:  drift x += v h and the floor contact, back into the state.
+//   5. vertices:  the kept half kick again, drift x += v h and the floor contact, back into the state.
 // Where the CPU has AVX2 a build of it for AVX2 is chosen at run time; both builds give the same
 // bits (the same operations in the same order, no fused multiply-add).
 // From kParallelPointCount points on (level 6 and up) the passes run on TBB threads: over points in
