@@ -98,6 +98,9 @@ bool slimeSection(SlimeSettings& slime, const PanelView& view, PanelRequests& re
   edited |= slider("mass", slime.mass, "slime.mass", 0.01, 5.0, "%.3f kg", true);
   edited |= slider("stiffness", slime.stiffness, "slime.stiffness", 1.0, 2000.0, "%.1f N/m", true);
   edited |= slider("damping", slime.damping, "slime.damping", 0.0, 2.0, "%.3f N.s/m", true);
+  edited |= slider("pressure", slime.pressure, "slime.pressure", 0.0, 20.0, "%.2f", true);
+  edited |= slider("friction", slime.friction, "slime.friction", 0.0, 2.0, "%.2f");
+  edited |= slider("rolling", slime.rolling, "slime.rolling", 0.0, 100.0, "%.1f /s", true);
   edited |= slider("level", slime.level, "slime.level", 0, 7);
   edited |= slider("radius", slime.radius, "slime.radius", 0.01, 0.1, "%.3f m");
   if (ImGui::Button("Reload slime")) requests.reloadSlime = true;

@@ -33,4 +33,13 @@ inline bool resolveFloorContactAt(glm::dvec3& position, glm::dvec3& velocity, do
 // Returns how many points touched the floor.
 std::size_t resolveFloorContact(ParticleState& state, double friction);
 
+// Rolling resistance: while a dynamic point lies on the floor (z ≤ 0, as resolveFloorContact leaves
+// it), the body's turning about its centre of mass, ω = I⁻¹ L over the dynamic points, decays by
+// exp(-rate·dt): each point loses (1 - exp(-rate·dt)) ω × (x - c). That is the mass-weighted
+// projection of the velocities on rigid turning, scaled, so it keeps the momentum, only lowers the
+// kinetic energy, and leaves stretching, sliding and falling alone. It stands for what the surface
+// model lacks: a real slime's viscous bulk, which dissipates as it rocks or rolls on its flattened
+// contact patch. Returns whether the body touched the floor.
+bool dampTurningOnFloor(ParticleState& state, double rate, double dt);
+
 }  // namespace slime

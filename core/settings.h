@@ -45,6 +45,7 @@ struct SlimeSettings {
   double damping = 0.1;                  // damper coefficient k_d along each spring, N·s/m
   double pressure = 3.0;                 // volume preservation strength, relative (0 = none)
   double friction = 0.6;                 // Coulomb friction coefficient against the floor
+  double rolling = 5.0;                  // rolling resistance: 1/s at which the slime's turning decays on the floor
   glm::dvec3 position{0.0, 0.0, 0.10};   // start position of the centre, m
   glm::dvec3 color{0.25, 0.85, 0.35};    // slime colour: surface tint and per-channel transmittance
   double transmission = 0.7;             // k_t: weight of the refracted ray

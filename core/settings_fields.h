@@ -60,6 +60,7 @@ void forEachField(S& s, Visitor&& visit) {
   visit("slime.damping", s.slime.damping, Limits{0.0, 100.0, "N·s/m"});
   visit("slime.pressure", s.slime.pressure, Limits{0.0, 100.0, "relative"});
   visit("slime.friction", s.slime.friction, Limits{0.0, 10.0, "Coulomb coefficient"});
+  visit("slime.rolling", s.slime.rolling, Limits{0.0, 1000.0, "1/s"});
   visit("slime.position", s.slime.position, Limits{-100.0, 100.0, "m"});
   // Slime: optics
   visit("slime.color", s.slime.color, Limits{0.0, 1.0, "linear RGB"});

@@ -18,6 +18,7 @@ namespace {
 constexpr int kGoodStateInterval = 8;   // steps between saved good states
 constexpr int kMaxRefinement = 64;      // the guard doubles substeps after a rollback, up to this
 constexpr double kGrabSpeed = 1.5;      // m/s: how fast grabbed points follow a jumping target
+constexpr int kRollingInterval = 4;     // steps between applications of the rolling resistance
 
 }  // namespace
 
@@ -128,6 +129,10 @@ void Simulation::step() {
   for (int s = 0; s < substeps; ++s) substep(h);
   time_ += settings_.sim.dt;
   ++stepCount_;
+  // Rolling resistance damps a slow motion (the rocking it is for has a period near 1.4 s), so it
+  // acts every few steps, decaying over all of them at once; every step it cost 13 % of a step.
+  if (stepCount_ % kRollingInterval == 0)
+    dampTurningOnFloor(body_.state, settings_.slime.rolling, kRollingInterval * settings_.sim.dt);
   const std::string what = findDivergence(body_.state);
   if (!what.empty()) {
     rollBack(what);

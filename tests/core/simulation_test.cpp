@@ -98,6 +98,22 @@ TEST_P(StifferDamper, StillComesToRest) {
 
 INSTANTIATE_TEST_SUITE_P(Dampings, StifferDamper, ::testing::Values(0.5, 2.0, 100.0));
 
+// The default ball must come to rest, not just slow down: without the rolling resistance it rocked
+// on its stuck contact patch (period about 1.4 s) for minutes, and the viewer traced every frame.
+// At rest here means no point faster than 0.2 mm/s, which moves 0.01 px a frame at 60 fps in the
+// default view, the motion the viewer does not redraw (core/level_of_detail.h).
+TEST(DefaultBall, ComesToRestOnTheFloor) {
+  Simulation simulation(defaultSettings());
+  run(simulation, 8.0);
+  double fastest = 0.0;
+  for (int step = 0; step < 2000; ++step) {
+    simulation.step();
+    fastest = std::max(fastest, simulation.metrics().maxSpeed);
+  }
+  std::printf("fastest point from 8 s to 10 s %.2e m/s\n", fastest);
+  EXPECT_LT(fastest, 2e-4);
+}
+
 class EveryIntegrator : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(EveryIntegrator, StableOnTheDefaultSceneAtLevel3) {
