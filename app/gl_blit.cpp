@@ -18,16 +18,12 @@ void main() {
 }
 )";
 
-// The sRGB transfer function (IEC 61966-2-1), the same the PNG writer applies.
+// The texture holds sRGB bytes already; the default framebuffer stores what it is given.
 constexpr const char* kFragmentShader = R"(#version 330 core
 in vec2 uv;
 out vec4 color;
 uniform sampler2D image;
-vec3 encodeSrgb(vec3 linear) {
-  vec3 clamped = clamp(linear, 0.0, 1.0);
-  return mix(clamped * 12.92, 1.055 * pow(clamped, vec3(1.0 / 2.4)) - 0.055, step(0.0031308, clamped));
-}
-void main() { color = vec4(encodeSrgb(texture(image, uv).rgb), 1.0); }
+void main() { color = vec4(texture(image, uv).rgb, 1.0); }
 )";
 
 unsigned compileShader(GLenum kind, const char* source) {
@@ -73,15 +69,15 @@ GlBlit::~GlBlit() {
   glDeleteProgram(program_);
 }
 
-void GlBlit::upload(const std::vector<glm::vec3>& pixels, int width, int height) {
-  if (width <= 0 || height <= 0 || pixels.size() < static_cast<std::size_t>(width) * height) return;
+void GlBlit::upload(const std::vector<std::uint8_t>& rgba, int width, int height) {
+  if (width <= 0 || height <= 0 || rgba.size() < 4 * static_cast<std::size_t>(width) * height) return;
   glBindTexture(GL_TEXTURE_2D, texture_);
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);  // a pixel is three floats: rows are always 4-byte aligned
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);  // 4 bytes a pixel: rows are always 4-byte aligned
   if (textureSize_ != glm::ivec2(width, height)) {
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, width, height, 0, GL_RGB, GL_FLOAT, pixels.data());
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
     textureSize_ = {width, height};
   } else {
-    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, GL_RGB, GL_FLOAT, pixels.data());
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
   }
 }
 
@@ -89,12 +85,18 @@ void GlBlit::draw(glm::ivec2 viewportSize) const {
   glViewport(0, 0, viewportSize.x, viewportSize.y);
   glDisable(GL_BLEND);
   glDisable(GL_DEPTH_TEST);
-  glClearColor(0.08f, 0.08f, 0.09f, 1.0f);
-  glClear(GL_COLOR_BUFFER_BIT);
-  if (textureSize_.x == 0) return;
+  if (textureSize_.x == 0) {  // nothing traced yet; otherwise the triangle covers every pixel
+    glClearColor(0.08f, 0.08f, 0.09f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    return;
+  }
   glUseProgram(program_);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, texture_);
+  // Texel for pixel when the sizes agree (software GL then takes its fast path), else bilinear.
+  const GLint filter = textureSize_ == viewportSize ? GL_NEAREST : GL_LINEAR;
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
   glUniform1i(glGetUniformLocation(program_, "image"), 0);
   glBindVertexArray(vertexArray_);
   glDrawArrays(GL_TRIANGLES, 0, 3);

@@ -5,6 +5,7 @@
 #include "core/camera.h"
 #include "core/level_of_detail.h"
 #include "core/settings_io.h"
+#include "render/image_io.h"
 
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
@@ -271,7 +272,10 @@ void Viewer::traceImage() {
 
 void Viewer::uploadImage() {
   const Stopwatch uploadTime;
-  if (imageTraced_) blit_.upload(image_.pixels, image_.width, image_.height);
+  if (imageTraced_) {
+    toSrgb8(image_, 4, imageBytes_);
+    blit_.upload(imageBytes_, image_.width, image_.height);
+  }
   stats_.stages.upload = uploadTime.milliseconds();
 }
 

@@ -3,7 +3,12 @@
 #include <stb_image.h>
 #include <stb_image_write.h>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -31,17 +36,77 @@ float srgbToLinear(float encoded) {
   return encoded <= 0.04045f ? encoded / 12.92f : std::pow((encoded + 0.055f) / 1.055f, 2.4f);
 }
 
-std::vector<std::uint8_t> toSrgb8(const Image& image) {
-  std::vector<std::uint8_t> bytes(image.pixels.size() * 3);
-  auto encode = [](float linear) {
-    if (!(linear == linear)) linear = 0.0f;  // NaN would be a bug upstream; never write garbage
-    return static_cast<std::uint8_t>(std::lround(linearToSrgb(linear) * 255.0f));
-  };
-  for (std::size_t i = 0; i < image.pixels.size(); ++i) {
-    bytes[3 * i + 0] = encode(image.pixels[i].x);
-    bytes[3 * i + 1] = encode(image.pixels[i].y);
-    bytes[3 * i + 2] = encode(image.pixels[i].z);
+namespace {
+
+int encodeByCurve(float linear) { return static_cast<int>(std::lround(linearToSrgb(linear) * 255.0f)); }
+
+// For floats ≥ 0 the order of the bit patterns is the order of the values. Cut [0, 1] into buckets
+// of 2^16 consecutive floats: no bucket holds two of the points where encodeByCurve steps (in
+// [0.5, 1) a bucket is 0.0039 wide and a step of the 8-bit code at least 0.0059 of linear; each
+// octave lower halves the bucket and shrinks the step less), so a value's code is its bucket's
+// first code, plus one if it has reached the bucket's next step. (2^17 failed just above 0.5.)
+constexpr int kBucketShift = 16;
+
+struct EncodingTable {
+  std::vector<std::uint8_t> firstCode;  // per bucket, the code of its smallest float
+  std::vector<float> nextStep;          // per bucket, the smallest float with a greater code (or 2)
+
+  EncodingTable() {
+    const auto bitsOf = [](float value) { return std::bit_cast<std::uint32_t>(value); };
+    // steps[c]: the smallest float in [0, 1] that encodeByCurve takes to c or more, by bisection.
+    std::array<float, 257> steps{};
+    for (int code = 1; code <= 255; ++code) {
+      std::uint32_t low = bitsOf(0.0f), high = bitsOf(1.0f);  // encodeByCurve(1) = 255 ≥ code
+      while (low < high) {
+        const std::uint32_t middle = low + (high - low) / 2;
+        if (encodeByCurve(std::bit_cast<float>(middle)) >= code) high = middle;
+        else low = middle + 1;
+      }
+      steps[code] = std::bit_cast<float>(low);
+    }
+    steps[256] = 2.0f;  // beyond every value that reaches the table
+    const std::size_t buckets = (bitsOf(1.0f) >> kBucketShift) + 1;
+    firstCode.resize(buckets);
+    nextStep.resize(buckets);
+    for (std::size_t k = 0; k < buckets; ++k) {
+      const float first = std::bit_cast<float>(static_cast<std::uint32_t>(k << kBucketShift));
+      const int code = encodeByCurve(first);
+      firstCode[k] = static_cast<std::uint8_t>(code);
+      nextStep[k] = steps[code + 1];
+    }
   }
+};
+
+}  // namespace
+
+std::uint8_t encodeSrgb8(float linear) {
+  static const EncodingTable table;
+  if (!(linear > 0.0f)) return 0;  // also NaN, which would be a bug upstream: never write garbage
+  if (linear >= 1.0f) return 255;
+  const std::size_t bucket = std::bit_cast<std::uint32_t>(linear) >> kBucketShift;
+  return static_cast<std::uint8_t>(table.firstCode[bucket] + (linear >= table.nextStep[bucket] ? 1 : 0));
+}
+
+void toSrgb8(const Image& image, int channels, std::vector<std::uint8_t>& bytes) {
+  const std::size_t width = static_cast<std::size_t>(std::max(image.width, 0));
+  bytes.resize(image.pixels.size() * static_cast<std::size_t>(channels));
+  const auto encodeRows = [&](const tbb::blocked_range<int>& rows) {
+    for (int row = rows.begin(); row < rows.end(); ++row)
+      for (std::size_t column = 0; column < width; ++column) {
+        const std::size_t i = static_cast<std::size_t>(row) * width + column;
+        std::uint8_t* out = bytes.data() + i * static_cast<std::size_t>(channels);
+        out[0] = encodeSrgb8(image.pixels[i].x);
+        out[1] = encodeSrgb8(image.pixels[i].y);
+        out[2] = encodeSrgb8(image.pixels[i].z);
+        if (channels == 4) out[3] = 255;
+      }
+  };
+  tbb::parallel_for(tbb::blocked_range<int>(0, std::max(image.height, 0), 16), encodeRows);
+}
+
+std::vector<std::uint8_t> toSrgb8(const Image& image) {
+  std::vector<std::uint8_t> bytes;
+  toSrgb8(image, 3, bytes);
   return bytes;
 }
 

@@ -17,8 +17,16 @@ using LinearImage = Image;
 float linearToSrgb(float linear);
 float srgbToLinear(float encoded);
 
-// Clamped to [0,1], sRGB-encoded, rounded to 8 bits: 3 bytes per pixel, row-major, top row first.
-std::vector<std::uint8_t> toSrgb8(const Image& image);
+// One linear value clamped to [0,1] (NaN as 0), sRGB-encoded and rounded to 8 bits: exactly
+// lround(linearToSrgb(x) · 255), by one table lookup and one comparison instead of a pow (the
+// points where that result steps are worked out once, by bisection on the curve itself).
+std::uint8_t encodeSrgb8(float linear);
+
+// The whole image so encoded: `channels` bytes per pixel (3, or 4 with alpha 255), row-major, top row
+// first, into `bytes` (resized; reused without allocating when its size is right). Rows run on TBB
+// threads.
+void toSrgb8(const Image& image, int channels, std::vector<std::uint8_t>& bytes);
+std::vector<std::uint8_t> toSrgb8(const Image& image);  // 3 bytes per pixel
 
 // Writes the image as an 8-bit sRGB PNG. Throws std::runtime_error naming the path on failure.
 void writePng(const Image& image, const std::string& path);

@@ -6,7 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <filesystem>
 #include <fstream>
 
@@ -23,6 +26,48 @@ TEST(ImageIo, SrgbRoundTripIsExactInEightBits) {
   ASSERT_EQ(back.width, 16);
   EXPECT_EQ(compareImages(image, back, 0.0).fractionAbove, 0.0);
   EXPECT_NEAR(linearToSrgb(0.5f), 0.735357f, 1e-5f);  // IEC 61966-2-1
+}
+
+// The table encoder against the curve it stands for, lround(linearToSrgb(x) · 255): at every float
+// near each of the 255 points where the code steps (found by scanning, not by the encoder's own
+// bisection), on a sweep of a million floats over [0, 1], and for what lies outside.
+TEST(ImageIo, TableEncoderIsExactlyTheCurve) {
+  const auto curve = [](float x) { return static_cast<int>(std::lround(linearToSrgb(x) * 255.0f)); };
+  const std::uint32_t one = std::bit_cast<std::uint32_t>(1.0f);
+  int mismatches = 0, steps = 0;
+  const auto check = [&](std::uint32_t bits) {
+    const float x = std::bit_cast<float>(bits);
+    if (encodeSrgb8(x) != curve(x) && ++mismatches <= 5)
+      ADD_FAILURE() << "x = " << x << ": table " << int(encodeSrgb8(x)) << ", curve " << curve(x);
+  };
+  for (std::uint32_t bits = 0; bits <= one; bits += 997) check(bits);
+  // Each step of the code, located by bisection on the curve between neighbouring sweep points.
+  for (std::uint32_t bits = 0; bits + 4096 <= one; bits += 4096) {
+    if (curve(std::bit_cast<float>(bits)) == curve(std::bit_cast<float>(bits + 4096))) continue;
+    std::uint32_t low = bits, high = bits + 4096;
+    while (high - low > 1) {
+      const std::uint32_t middle = low + (high - low) / 2;
+      (curve(std::bit_cast<float>(middle)) == curve(std::bit_cast<float>(low)) ? low : high) = middle;
+    }
+    ++steps;
+    for (std::uint32_t near = high - 3; near <= high + 3; ++near) check(near);
+  }
+  EXPECT_EQ(steps, 255);
+  EXPECT_EQ(mismatches, 0);
+  EXPECT_EQ(encodeSrgb8(-0.5f), 0);
+  EXPECT_EQ(encodeSrgb8(std::numeric_limits<float>::quiet_NaN()), 0);
+  EXPECT_EQ(encodeSrgb8(7.0f), 255);
+  EXPECT_EQ(encodeSrgb8(std::numeric_limits<float>::infinity()), 255);
+  Image image;
+  image.resize(3, 2);
+  image.pixels[4] = glm::vec3(0.2f, 0.5f, 0.9f);
+  std::vector<std::uint8_t> rgba;
+  toSrgb8(image, 4, rgba);
+  ASSERT_EQ(rgba.size(), 24u);
+  EXPECT_EQ(rgba[16], curve(0.2f));
+  EXPECT_EQ(rgba[17], curve(0.5f));
+  EXPECT_EQ(rgba[18], curve(0.9f));
+  EXPECT_EQ(rgba[19], 255);
 }
 
 TEST(ImageIo, FailedWriteLeavesNoFile) {
