@@ -5,7 +5,6 @@
 #include "core/camera.h"
 #include "core/level_of_detail.h"
 #include "core/settings_io.h"
-#include "render/image_io.h"
 
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
@@ -256,7 +255,7 @@ void Viewer::traceImage() {
   if (!sceneChanged_ && size == glm::ivec2(image_.width, image_.height)) return;  // nothing new to see
   const Stopwatch traceTime;
   image_.resize(size.x, size.y);
-  const RenderStats render = renderer_.render(frameSettings(size), image_);
+  const RenderStats render = renderer_.render(frameSettings(size), image_, &imageBytes_);
   stats_.stages.trace = traceTime.milliseconds();
   stats_.stages.refit += render.refitMs;
   stats_.rays = render.rays.total();
@@ -272,10 +271,7 @@ void Viewer::traceImage() {
 
 void Viewer::uploadImage() {
   const Stopwatch uploadTime;
-  if (imageTraced_) {
-    toSrgb8(image_, 4, imageBytes_);
-    blit_.upload(imageBytes_, image_.width, image_.height);
-  }
+  if (imageTraced_) blit_.upload(imageBytes_, image_.width, image_.height);
   stats_.stages.upload = uploadTime.milliseconds();
 }
 

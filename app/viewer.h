@@ -98,7 +98,7 @@ class Viewer {
   Simulation simulation_;
   Renderer renderer_;
   Image image_;
-  std::vector<std::uint8_t> imageBytes_;  // image_ sRGB-encoded for the blit
+  std::vector<std::uint8_t> imageBytes_;  // image_ as sRGB RGBA bytes, for the blit
   GlBlit blit_;
   CameraController cameraController_;
   GrabInteraction grab_;

@@ -87,19 +87,23 @@ std::uint8_t encodeSrgb8(float linear) {
   return static_cast<std::uint8_t>(table.firstCode[bucket] + (linear >= table.nextStep[bucket] ? 1 : 0));
 }
 
+void encodeSrgb8(const glm::vec3* pixels, std::size_t count, int channels, std::uint8_t* out) {
+  for (std::size_t i = 0; i < count; ++i, out += channels) {
+    out[0] = encodeSrgb8(pixels[i].x);
+    out[1] = encodeSrgb8(pixels[i].y);
+    out[2] = encodeSrgb8(pixels[i].z);
+    if (channels == 4) out[3] = 255;
+  }
+}
+
 void toSrgb8(const Image& image, int channels, std::vector<std::uint8_t>& bytes) {
   const std::size_t width = static_cast<std::size_t>(std::max(image.width, 0));
   bytes.resize(image.pixels.size() * static_cast<std::size_t>(channels));
   const auto encodeRows = [&](const tbb::blocked_range<int>& rows) {
-    for (int row = rows.begin(); row < rows.end(); ++row)
-      for (std::size_t column = 0; column < width; ++column) {
-        const std::size_t i = static_cast<std::size_t>(row) * width + column;
-        std::uint8_t* out = bytes.data() + i * static_cast<std::size_t>(channels);
-        out[0] = encodeSrgb8(image.pixels[i].x);
-        out[1] = encodeSrgb8(image.pixels[i].y);
-        out[2] = encodeSrgb8(image.pixels[i].z);
-        if (channels == 4) out[3] = 255;
-      }
+    for (int row = rows.begin(); row < rows.end(); ++row) {
+      const std::size_t first = static_cast<std::size_t>(row) * width;
+      encodeSrgb8(image.pixels.data() + first, width, channels, bytes.data() + first * static_cast<std::size_t>(channels));
+    }
   };
   tbb::parallel_for(tbb::blocked_range<int>(0, std::max(image.height, 0), 16), encodeRows);
 }

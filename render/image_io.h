@@ -22,6 +22,9 @@ float srgbToLinear(float encoded);
 // points where that result steps are worked out once, by bisection on the curve itself).
 std::uint8_t encodeSrgb8(float linear);
 
+// `count` pixels so encoded into `channels` (3, or 4 with alpha 255) bytes each.
+void encodeSrgb8(const glm::vec3* pixels, std::size_t count, int channels, std::uint8_t* out);
+
 // The whole image so encoded: `channels` bytes per pixel (3, or 4 with alpha 255), row-major, top row
 // first, into `bytes` (resized; reused without allocating when its size is right). Rows run on TBB
 // threads.

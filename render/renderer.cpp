@@ -5,6 +5,7 @@
 #include "render/embree_scene.h"
 #include "render/embree_util.h"
 #include "render/floor_texture.h"
+#include "render/image_io.h"
 #include "render/screen_footprint.h"
 #include "render/slime_geometry.h"
 #include "render/tsan_handoff.h"
@@ -109,7 +110,7 @@ struct Renderer::Impl {
   // floor cache, packets outside `footprint` are copied from the last frame once they have been traced.
   void traceTile(const WhittedTracer& tracer, const SlimeIntersector& intersector, const Camera& camera,
                  int samplesPerAxis, int rowBegin, int rowEnd, int columnBegin, int columnEnd, Image& image,
-                 FloorShading* floorShadings, const PixelRect& footprint, TraceCounters& counts) {
+                 std::uint8_t* srgba, FloorShading* floorShadings, const PixelRect& footprint, TraceCounters& counts) {
     FlushDenormals flush;
     const auto start = std::chrono::steady_clock::now();
     const float inverseSamples = 1.0f / static_cast<float>(samplesPerAxis * samplesPerAxis);
@@ -130,6 +131,7 @@ struct Renderer::Impl {
                                                x0 >= footprint.x1);
         if (outside && std::all_of(&reusable[first], &reusable[first] + count, [](std::uint8_t r) { return r != 0; })) {
           for (int i = 0; i < count; ++i) image.at(x0 + i, y) = reusableColors[first + i];
+          if (srgba) encodeSrgb8(&image.pixels[first], static_cast<std::size_t>(count), 4, srgba + 4 * first);
           counts.reusedPixels += static_cast<std::uint64_t>(count);
           continue;
         }
@@ -171,6 +173,7 @@ struct Renderer::Impl {
             reusable[first + i] = 1;
           }
         }
+        if (srgba) encodeSrgb8(&image.pixels[first], static_cast<std::size_t>(count), 4, srgba + 4 * first);
       }
     }
     counts.busyMs += millisecondsSince(start);
@@ -188,13 +191,18 @@ void Renderer::updateSlime(const std::vector<glm::dvec3>& positions, const std::
   impl_->refitMs = millisecondsSince(start);
 }
 
-RenderStats Renderer::render(const Settings& settings, Image& image) {
+RenderStats Renderer::render(const Settings& settings, Image& image, std::vector<std::uint8_t>* srgba) {
   Impl& impl = *impl_;
   const auto start = std::chrono::steady_clock::now();
   impl.sync(settings);
   RenderStats stats;
   stats.refitMs = impl.refitMs;
   if (image.width <= 0 || image.height <= 0) return stats;
+  std::uint8_t* bytes = nullptr;
+  if (srgba) {
+    srgba->resize(4 * image.pixels.size());
+    bytes = srgba->data();
+  }
 
   const ShadingParameters parameters = makeShadingParameters(settings, image.height);
   const Camera camera = makeCamera(settings.camera, image.width, image.height);
@@ -224,7 +232,7 @@ RenderStats Renderer::render(const Settings& settings, Image& image) {
   stats.threads = brute ? 1 : impl.arena->max_concurrency();
   if (brute) {
     // The seed's algorithm is the oracle: one thread, no packets that matter, every triangle.
-    impl.traceTile(tracer, intersector, camera, samplesPerAxis, 0, image.height, 0, image.width, image,
+    impl.traceTile(tracer, intersector, camera, samplesPerAxis, 0, image.height, 0, image.width, image, bytes,
                    floorShadings, footprint, impl.counters.local());
   } else {
     handOff(&impl);  // the frame's inputs, to the workers
@@ -233,7 +241,7 @@ RenderStats Renderer::render(const Settings& settings, Image& image) {
                         [&](const tbb::blocked_range2d<int>& tile) {
                           takeOver(&impl);
                           impl.traceTile(tracer, intersector, camera, samplesPerAxis, tile.rows().begin(),
-                                         tile.rows().end(), tile.cols().begin(), tile.cols().end(), image,
+                                         tile.rows().end(), tile.cols().begin(), tile.cols().end(), image, bytes,
                                          floorShadings, footprint, impl.counters.local());
                           handOff(&impl);  // the tile's pixels and counters, back to the caller
                         });

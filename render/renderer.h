@@ -53,8 +53,10 @@ class Renderer {
   // Writes the slime's vertices into the Embree buffer and refits; rebuilds when the topology changes.
   void updateSlime(const std::vector<glm::dvec3>& positions, const std::vector<Triangle>& triangles);
 
-  // Traces the scene seen by settings.camera into `image` at the image's current size.
-  RenderStats render(const Settings& settings, Image& image);
+  // Traces the scene seen by settings.camera into `image` at the image's current size. With `srgba`,
+  // each tile also writes its pixels there as 8-bit sRGB, 4 bytes a pixel (image_io.h's toSrgb8
+  // with 4 channels, the same bytes), while they are in cache: what a window shows.
+  RenderStats render(const Settings& settings, Image& image, std::vector<std::uint8_t>* srgba = nullptr);
 
   // The point where the ray through image point (u, v) in [0,1]² first hits the slime, if it does.
   std::optional<glm::dvec3> pick(const Settings& settings, double u, double v) const;

@@ -66,6 +66,7 @@ TEST(Invariant, CentreRayIsAttenuatedByBeerLambertOverTheDiameter) {
 // outside the slime's footprint; a frame drawn from those caches must be exactly the frame a fresh
 // renderer draws, after the slime moved (uncovering floor the first frame never shaded, covering
 // pixels it copied before) and after the camera or the light changed (the caches are dropped).
+// With the window's byte output on, the bytes the tiles write must be the image's own encoding.
 TEST(Invariant, FramesFromTheFloorCacheEqualFreshFrames) {
   Settings settings = smallScene(160, 120);
   settings.slime.level = 3;
@@ -75,11 +76,15 @@ TEST(Invariant, FramesFromTheFloorCacheEqualFreshFrames) {
   Renderer renderer(settings);
   Image image;
   image.resize(settings.camera.width, settings.camera.height);
+  std::vector<std::uint8_t> bytes;  // the window's sRGB bytes, written by the tiles as they go
   renderer.updateSlime(resting.positions, resting.triangles);
-  renderer.render(settings, image);
+  renderer.render(settings, image, &bytes);
   auto expectFresh = [&](const Settings& s, const TriangleMesh& mesh, const char* what) {
     renderer.updateSlime(mesh.positions, mesh.triangles);
-    const RenderStats stats = renderer.render(s, image);
+    const RenderStats stats = renderer.render(s, image, &bytes);
+    std::vector<std::uint8_t> encoded;
+    toSrgb8(image, 4, encoded);
+    EXPECT_TRUE(bytes == encoded) << what << ": the tiles' bytes are not the image's";
     const Image fresh = renderMesh(s, mesh);
     EXPECT_EQ(image.pixels.size(), fresh.pixels.size()) << what;
     if (image.pixels.size() != fresh.pixels.size()) return stats;
