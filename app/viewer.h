@@ -1,6 +1,7 @@
 // The interactive viewer: the ray-traced slime with Dear ImGui panels over it. One frame is a list of
-// named steps — input → physics → refit → trace → upload → panels → present — run the same way in a
-// GLFW window and headless (the ViewerBackend seam), so `snapshot --ui` shows what the window shows.
+// named steps — input → refit → trace → upload → panels → present, with the physics steps on a
+// second thread beside the panels and present — run the same way in a GLFW window and headless (the
+// ViewerBackend seam), so `snapshot --ui` shows what the window shows.
 //
 // Ordering that matters: ImGui's frame starts before the input step so that io.WantCaptureMouse/
 // Keyboard can hide input the panels take; panel edits land in the settings at the end of a frame
@@ -69,13 +70,22 @@ class Viewer {
   void handleInput(const FrameInput& input);
   // The grab target for this frame's steps, read from the window on the main thread.
   glm::dvec3 grabTargetFor() const;
-  void stepPhysics(double wallSeconds, const glm::dvec3& target);
+  // What a frame's steps did, handed back from the physics thread and applied after it joined.
+  struct PhysicsOutcome {
+    int steps = 0;
+    double milliseconds = 0.0;
+    double wallSeconds = 0.0;  // the frame time the steps were for
+    SlimeMetrics metrics;      // after the steps, if there were any
+  };
+  PhysicsOutcome stepPhysics(double wallSeconds, const glm::dvec3& target);  // touches simulation_ only
+  void applyPhysicsOutcome(const PhysicsOutcome& outcome);
   void refitSlime();
   bool motionWouldShow() const;         // the slime moved visibly since it was last drawn
   glm::ivec2 tracedImageSize() const;   // the image this frame traces; {0, 0} when minimised
   void traceImage();
   void uploadImage();
-  void drawPanelsAndOverlay();
+  PanelRequests drawPanelsAndOverlay(const glm::dvec3& heldCentre);  // reads, never edits, the slime
+  void applyPanelRequests(const PanelRequests& requests);
   void present();
 
   // Helpers of the steps.
