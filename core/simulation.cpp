@@ -76,6 +76,7 @@ void Simulation::rebuildModels() {
   xpbdModel_.triangles = hasVolume ? &body_.triangles : nullptr;
   xpbdModel_.restVolume = body_.restVolume;
   xpbdModel_.gravity = gravity;
+  xpbdModel_.friction = settings_.slime.friction;
   symplecticModel_ = DampedSymplecticEulerModel{};
   symplecticModel_.springs = &body_.springs;
   symplecticModel_.dampingShares = &dampingShares_;

@@ -54,8 +54,20 @@ void xpbdSubstep(ParticleState& state, double h, const XpbdModel& model, XpbdScr
   }
   if (model.springs) projectSprings(state, h, model, scratch.previousPositions);
   if (model.triangles && !model.triangles->empty()) projectVolume(state, model, scratch);
-  for (std::size_t i = 0; i < count; ++i)
-    state.velocities[i] = (state.positions[i] - scratch.previousPositions[i]) / h;
+  for (std::size_t i = 0; i < count; ++i) {
+    glm::dvec3& x = state.positions[i];
+    const glm::dvec3& previous = scratch.previousPositions[i];
+    if (state.inverseMasses[i] != 0.0 && x.z < 0.0) {
+      const double depth = -x.z;
+      x.z = 0.0;
+      const glm::dvec2 slide(x.x - previous.x, x.y - previous.y);
+      const double length = glm::length(slide);
+      const double undo = length <= model.friction * depth ? 1.0 : model.friction * depth / length;
+      x.x -= undo * slide.x;
+      x.y -= undo * slide.y;
+    }
+    state.velocities[i] = (x - previous) / h;
+  }
 }
 
 }  // namespace slime
