@@ -4,6 +4,7 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace slime {
@@ -56,8 +57,11 @@ void xpbdSubstep(ParticleState& state, double h, const XpbdModel& model, XpbdScr
   if (model.triangles && !model.triangles->empty()) projectVolume(state, model, scratch);
   for (std::size_t i = 0; i < count; ++i) {
     glm::dvec3& x = state.positions[i];
-    const glm::dvec3& previous = scratch.previousPositions[i];
+    glm::dvec3& previous = scratch.previousPositions[i];
     if (state.inverseMasses[i] != 0.0 && x.z < 0.0) {
+      // A point that started the substep inside the floor (a scene placed so) is lifted out
+      // without the lift becoming speed: v = Δx/h would throw it up at depth/h.
+      previous.z = std::max(previous.z, 0.0);
       const double depth = -x.z;
       x.z = 0.0;
       const glm::dvec2 slide(x.x - previous.x, x.y - previous.y);
