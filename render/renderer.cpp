@@ -38,19 +38,22 @@ bool sameFloor(const FloorSettings& a, const FloorSettings& b) {
   return a.pattern == b.pattern && a.scale == b.scale && a.colorA == b.colorA && a.colorB == b.colorB && a.image == b.image;
 }
 
-// Everything a primary ray's FloorShading depends on: the view, the image size and the floor's
-// lighting (the floor texture itself is checked by Impl::sync).
-using FloorCacheKey = std::array<double, 33>;
+// Everything a primary ray's FloorShading, and the colour of a pixel outside the slime's footprint,
+// depend on: the view, the image size, the floor's lighting, the sky, and whether the floor sends
+// shadow and mirror rays (the floor texture itself is checked by Impl::sync).
+using FloorCacheKey = std::array<double, 38>;
 
 FloorCacheKey floorCacheKey(const Camera& camera, const ShadingParameters& p, int width, int height) {
-  const glm::vec3 light = p.lightPosition, color = p.lightColor, ambient = p.ambientLight, horizon = p.skyHorizon;
+  const glm::vec3 light = p.lightPosition, color = p.lightColor, ambient = p.ambientLight, horizon = p.skyHorizon,
+                  zenith = p.skyZenith;
   return {camera.position.x, camera.position.y, camera.position.z, camera.forward.x, camera.forward.y,
           camera.forward.z,  camera.right.x,    camera.right.y,    camera.right.z,    camera.up.x,
           camera.up.y,       camera.up.z,       camera.tanHalfFov, camera.aspect,     static_cast<double>(width),
           static_cast<double>(height), p.floorDiffuse, p.floorSpecular, p.floorShininess, p.hazeDistance,
           p.pixelSpread,     light.x,           light.y,           light.z,           color.x,
           color.y,           color.z,           ambient.x,         ambient.y,         ambient.z,
-          horizon.x,         horizon.y,         horizon.z};
+          horizon.x,         horizon.y,         horizon.z,         zenith.x,          zenith.y,
+          zenith.z,          static_cast<double>(p.depth), p.shadows ? 1.0 : 0.0};
 }
 
 }  // namespace

@@ -105,6 +105,12 @@ TEST(Invariant, FramesFromTheFloorCacheEqualFreshFrames) {
   expectFresh(settings, resting, "light moved");
   settings.floor.specular = 0.1;
   expectFresh(settings, resting, "floor varnished");
+  expectFresh(settings, moved, "slime moved under the varnish");
+  settings.render.depth = 1;  // no mirror rays: the copied floor must lose its reflections
+  expectFresh(settings, resting, "depth 1");
+  settings.render.depth = 3;
+  settings.render.shadows = false;
+  expectFresh(settings, moved, "shadows off");
 }
 
 // The footprint (render/screen_footprint.h) must hold every pixel the slime changes: the difference
