@@ -56,6 +56,11 @@ FloorCacheKey floorCacheKey(const Camera& camera, const ShadingParameters& p, in
           zenith.z,          static_cast<double>(p.depth), p.shadows ? 1.0 : 0.0};
 }
 
+// Whether the packet of `count` pixels from (x0, y) lies wholly outside `rect`.
+bool outsideRect(const PixelRect& rect, int x0, int count, int y) {
+  return y < rect.y0 || y >= rect.y1 || x0 + count <= rect.x0 || x0 >= rect.x1;
+}
+
 }  // namespace
 
 struct Renderer::Impl {
@@ -81,6 +86,14 @@ struct Renderer::Impl {
   // The key changed this frame: every entry is stale. The tiles clear their own entries as they go,
   // in parallel, rather than the frame clearing 19 MB up front (a moving camera does so every frame).
   bool cachesStale = false;
+  // The buffers the last frame wrote, its footprint, and whether it kept the caches (one sample per
+  // pixel, finished): a pixel outside that footprint and this one already holds its copied colour
+  // and bytes when the buffers are the same (imageInPlace, bytesInPlace).
+  const glm::vec3* lastPixels = nullptr;
+  const std::uint8_t* lastBytes = nullptr;
+  PixelRect lastFootprint;
+  bool lastKeptCaches = false;
+  bool imageInPlace = false, bytesInPlace = false;
 
   explicit Impl(const Settings& settings)
       : embree(settings.render.threads), floorSettings(settings.floor), floor(settings.floor) {
@@ -130,11 +143,14 @@ struct Renderer::Impl {
             reusable[first + i] = 0;
           }
         }
-        const bool outside = floorShadings && (y < footprint.y0 || y >= footprint.y1 || x0 + count <= footprint.x0 ||
-                                               x0 >= footprint.x1);
+        const bool outside = floorShadings && outsideRect(footprint, x0, count, y);
         if (outside && std::all_of(&reusable[first], &reusable[first] + count, [](std::uint8_t r) { return r != 0; })) {
-          for (int i = 0; i < count; ++i) image.at(x0 + i, y) = reusableColors[first + i];
-          if (srgba) encodeSrgb8(&image.pixels[first], static_cast<std::size_t>(count), 4, srgba + 4 * first);
+          // Outside the last frame's footprint too, the last frame copied or stored exactly these colours.
+          const bool inPlace = imageInPlace && outsideRect(lastFootprint, x0, count, y);
+          if (!inPlace)
+            for (int i = 0; i < count; ++i) image.at(x0 + i, y) = reusableColors[first + i];
+          if (srgba && !(inPlace && bytesInPlace))
+            encodeSrgb8(&image.pixels[first], static_cast<std::size_t>(count), 4, srgba + 4 * first);
           counts.reusedPixels += static_cast<std::uint64_t>(count);
           continue;
         }
@@ -216,6 +232,9 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
 
   FloorShading* floorShadings = nullptr;
   PixelRect footprint;
+  const bool lastKeptCaches = impl.lastKeptCaches;
+  impl.lastKeptCaches = false;  // until this frame is finished
+  impl.imageInPlace = impl.bytesInPlace = false;
   if (samplesPerAxis == 1) {
     const FloorCacheKey view = floorCacheKey(camera, parameters, image.width, image.height);
     impl.cachesStale = !impl.floorCacheValid || view != impl.floorCacheView;
@@ -228,6 +247,8 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
     }
     floorShadings = impl.floorCache.data();
     footprint = slimeFootprint(camera, impl.geometry, parameters, image.width, image.height);
+    impl.imageInPlace = lastKeptCaches && !impl.cachesStale && impl.lastPixels == image.pixels.data();
+    impl.bytesInPlace = impl.imageInPlace && bytes && impl.lastBytes == bytes;
   }
 
   for (TraceCounters& counts : impl.counters) counts = TraceCounters{};
@@ -262,6 +283,10 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
     stats.reusedPixels += counts.reusedPixels;
     stats.busyMs += counts.busyMs;
   }
+  impl.lastPixels = image.pixels.data();
+  impl.lastBytes = bytes;
+  impl.lastFootprint = footprint;
+  impl.lastKeptCaches = floorShadings != nullptr;
   stats.traceMs = millisecondsSince(start);
   return stats;
 }
