@@ -275,7 +275,7 @@ void Viewer::traceImage() {
   if (!sceneChanged_ && size == glm::ivec2(image_.width, image_.height)) return;  // nothing new to see
   const Stopwatch traceTime;
   image_.resize(size.x, size.y);
-  const RenderStats render = renderer_.render(frameSettings(size), image_, &imageBytes_);
+  const RenderStats render = renderer_.render(frameSettings(size), image_, &imageBytes_, /*buffersKept=*/true);
   stats_.stages.trace = traceTime.milliseconds();
   stats_.stages.refit += render.refitMs;
   stats_.rays = render.rays.total();

@@ -88,7 +88,7 @@ struct Renderer::Impl {
   bool cachesStale = false;
   // The buffers the last frame wrote, its footprint, and whether it kept the caches (one sample per
   // pixel, finished): a pixel outside that footprint and this one already holds its copied colour
-  // and bytes when the buffers are the same (imageInPlace, bytesInPlace).
+  // and bytes when the caller kept the same buffers (imageInPlace, bytesInPlace).
   const glm::vec3* lastPixels = nullptr;
   const std::uint8_t* lastBytes = nullptr;
   PixelRect lastFootprint;
@@ -210,7 +210,8 @@ void Renderer::updateSlime(const std::vector<glm::dvec3>& positions, const std::
   impl_->refitMs = millisecondsSince(start);
 }
 
-RenderStats Renderer::render(const Settings& settings, Image& image, std::vector<std::uint8_t>* srgba) {
+RenderStats Renderer::render(const Settings& settings, Image& image, std::vector<std::uint8_t>* srgba,
+                             bool buffersKept) {
   Impl& impl = *impl_;
   const auto start = std::chrono::steady_clock::now();
   impl.sync(settings);
@@ -247,7 +248,7 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
     }
     floorShadings = impl.floorCache.data();
     footprint = slimeFootprint(camera, impl.geometry, parameters, image.width, image.height);
-    impl.imageInPlace = lastKeptCaches && !impl.cachesStale && impl.lastPixels == image.pixels.data();
+    impl.imageInPlace = buffersKept && lastKeptCaches && !impl.cachesStale && impl.lastPixels == image.pixels.data();
     impl.bytesInPlace = impl.imageInPlace && bytes && impl.lastBytes == bytes;
   }
 

@@ -55,11 +55,12 @@ class Renderer {
 
   // Traces the scene seen by settings.camera into `image` at the image's current size. With `srgba`,
   // each tile also writes its pixels there as 8-bit sRGB, 4 bytes a pixel (image_io.h's toSrgb8
-  // with 4 channels, the same bytes), while they are in cache: what a window shows. A caller that
-  // passes the same `image` and `srgba` every frame and does not write to them in between gets
-  // pixels that cannot have changed (outside the slime's footprint now and in the last frame) left
-  // as they are, not written again.
-  RenderStats render(const Settings& settings, Image& image, std::vector<std::uint8_t>* srgba = nullptr);
+  // with 4 channels, the same bytes), while they are in cache: what a window shows.
+  // `buffersKept` promises that `image` and `srgba` are the buffers of the last call, unwritten
+  // since (a window's): pixels that cannot have changed, outside the slime's footprint now and in the
+  // last frame, are then left as they are. Without it every pixel is written.
+  RenderStats render(const Settings& settings, Image& image, std::vector<std::uint8_t>* srgba = nullptr,
+                     bool buffersKept = false);
 
   // The point where the ray through image point (u, v) in [0,1]² first hits the slime, if it does.
   std::optional<glm::dvec3> pick(const Settings& settings, double u, double v) const;

@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -81,7 +82,7 @@ TEST(Invariant, FramesFromTheFloorCacheEqualFreshFrames) {
   renderer.render(settings, image, &bytes);
   auto expectFresh = [&](const Settings& s, const TriangleMesh& mesh, const char* what) {
     renderer.updateSlime(mesh.positions, mesh.triangles);
-    const RenderStats stats = renderer.render(s, image, &bytes);
+    const RenderStats stats = renderer.render(s, image, &bytes, /*buffersKept=*/true);
     std::vector<std::uint8_t> encoded;
     toSrgb8(image, 4, encoded);
     EXPECT_TRUE(bytes == encoded) << what << ": the tiles' bytes are not the image's";
@@ -111,6 +112,32 @@ TEST(Invariant, FramesFromTheFloorCacheEqualFreshFrames) {
   settings.render.depth = 3;
   settings.render.shadows = false;
   expectFresh(settings, moved, "shadows off");
+}
+
+// Without the promise that the buffers were kept, every pixel is written, even when a new zeroed
+// image lands where the last one was (as a loop's local image often does).
+TEST(Invariant, FreshBuffersAreWrittenWhole) {
+  const Settings settings = smallScene(160, 120);
+  const TriangleMesh mesh = restingMesh(settings);
+  const Image expected = renderMesh(settings, mesh);
+  Renderer renderer(settings);
+  renderer.updateSlime(mesh.positions, mesh.triangles);
+  Image image;
+  image.resize(settings.camera.width, settings.camera.height);
+  std::vector<std::uint8_t> bytes;
+  renderer.render(settings, image, &bytes, /*buffersKept=*/true);
+  for (int frame = 0; frame < 2; ++frame) {
+    std::fill(image.pixels.begin(), image.pixels.end(), glm::vec3(0.0f));  // same buffers, new contents
+    std::fill(bytes.begin(), bytes.end(), std::uint8_t{0});
+    const RenderStats stats = renderer.render(settings, image, &bytes);
+    EXPECT_GT(stats.reusedPixels, image.pixels.size() / 2) << "the floor is still copied from the cache";
+    std::vector<std::uint8_t> encoded;
+    toSrgb8(image, 4, encoded);
+    EXPECT_TRUE(bytes == encoded) << "frame " << frame << ": bytes left as they were";
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) differing += image.pixels[i] != expected.pixels[i];
+    EXPECT_EQ(differing, 0u) << "frame " << frame << ": pixels left as they were";
+  }
 }
 
 // The footprint (render/screen_footprint.h) must hold every pixel the slime changes: the difference
