@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <string>
 
 namespace slime::testing {
 namespace {
@@ -63,6 +64,19 @@ TEST(Invariant, CentreRayIsAttenuatedByBeerLambertOverTheDiameter) {
   expectCentreAttenuation("mesh", 5, 5e-3f);  // the inscribed mesh's chord is a little shorter
 }
 
+// A frame the renderer drew from its caches: the bytes must be the image's own encoding and the
+// image must be, bit for bit, the one a fresh renderer draws.
+void expectFrameEquals(const Image& image, const std::vector<std::uint8_t>& bytes, const Image& fresh,
+                       const std::string& what) {
+  std::vector<std::uint8_t> encoded;
+  toSrgb8(image, 4, encoded);
+  EXPECT_TRUE(bytes == encoded) << what << ": the tiles' bytes are not the image's";
+  ASSERT_EQ(image.pixels.size(), fresh.pixels.size()) << what;
+  std::size_t differing = 0;
+  for (std::size_t i = 0; i < image.pixels.size(); ++i) differing += image.pixels[i] != fresh.pixels[i];
+  EXPECT_EQ(differing, 0u) << what;
+}
+
 // The renderer keeps the floor its primary rays saw while the view stays still, and copies the pixels
 // outside the slime's footprint; a frame drawn from those caches must be exactly the frame a fresh
 // renderer draws, after the slime moved (uncovering floor the first frame never shaded, covering
@@ -83,15 +97,7 @@ TEST(Invariant, FramesFromTheFloorCacheEqualFreshFrames) {
   auto expectFresh = [&](const Settings& s, const TriangleMesh& mesh, const char* what) {
     renderer.updateSlime(mesh.positions, mesh.triangles);
     const RenderStats stats = renderer.render(s, image, &bytes, /*buffersKept=*/true);
-    std::vector<std::uint8_t> encoded;
-    toSrgb8(image, 4, encoded);
-    EXPECT_TRUE(bytes == encoded) << what << ": the tiles' bytes are not the image's";
-    const Image fresh = renderMesh(s, mesh);
-    EXPECT_EQ(image.pixels.size(), fresh.pixels.size()) << what;
-    if (image.pixels.size() != fresh.pixels.size()) return stats;
-    std::size_t differing = 0;
-    for (std::size_t i = 0; i < image.pixels.size(); ++i) differing += image.pixels[i] != fresh.pixels[i];
-    EXPECT_EQ(differing, 0u) << what;
+    expectFrameEquals(image, bytes, renderMesh(s, mesh), what);
     return stats;
   };
   const RenderStats movedStats = expectFresh(settings, moved, "slime moved");
@@ -131,12 +137,7 @@ TEST(Invariant, FreshBuffersAreWrittenWhole) {
     std::fill(bytes.begin(), bytes.end(), std::uint8_t{0});
     const RenderStats stats = renderer.render(settings, image, &bytes);
     EXPECT_GT(stats.reusedPixels, image.pixels.size() / 2) << "the floor is still copied from the cache";
-    std::vector<std::uint8_t> encoded;
-    toSrgb8(image, 4, encoded);
-    EXPECT_TRUE(bytes == encoded) << "frame " << frame << ": bytes left as they were";
-    std::size_t differing = 0;
-    for (std::size_t i = 0; i < image.pixels.size(); ++i) differing += image.pixels[i] != expected.pixels[i];
-    EXPECT_EQ(differing, 0u) << "frame " << frame << ": pixels left as they were";
+    expectFrameEquals(image, bytes, expected, "frame " + std::to_string(frame) + " on cleared buffers");
   }
 }
 
