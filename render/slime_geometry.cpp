@@ -54,16 +54,31 @@ bool SlimeGeometry::update(const std::vector<glm::dvec3>& newPositions, const st
   positions.back() = glm::vec3(0.0f);
 
   // Vertex normals: the sum of the faces' cross products, i.e. area-weighted face normals.
+  // The faces' own unit normals are kept too: a hit then costs a lookup, not three vertex loads.
   normals.assign(newPositions.size(), glm::vec3(0.0f));
-  for (const Triangle& t : triangles) {
-    const glm::vec3 faceNormal = glm::cross(positions[t.y] - positions[t.x], positions[t.z] - positions[t.x]);
-    normals[t.x] += faceNormal;
-    normals[t.y] += faceNormal;
-    normals[t.z] += faceNormal;
+  faceNormals.resize(triangles.size());
+  for (std::size_t i = 0; i < triangles.size(); ++i) {
+    const Triangle& t = triangles[i];
+    faceNormals[i] = glm::cross(positions[t.y] - positions[t.x], positions[t.z] - positions[t.x]);
+    normals[t.x] += faceNormals[i];
+    normals[t.y] += faceNormals[i];
+    normals[t.z] += faceNormals[i];
   }
   for (glm::vec3& n : normals) {
     const float length = glm::length(n);
     n = length > 0.0f && std::isfinite(length) ? n / length : glm::vec3(0.0f, 0.0f, 1.0f);
+  }
+  for (std::size_t i = 0; i < triangles.size(); ++i) {
+    const Triangle& t = triangles[i];
+    const float length = glm::length(faceNormals[i]);
+    if (length > 0.0f && std::isfinite(length)) {
+      faceNormals[i] /= length;
+    } else {
+      // A collapsed (zero-area) triangle has no normal of its own: fall back to its vertex normals.
+      const glm::vec3 average = normals[t.x] + normals[t.y] + normals[t.z];
+      const float averageLength = glm::length(average);
+      faceNormals[i] = averageLength > 0.0f ? average / averageLength : glm::vec3(0.0f, 0.0f, 1.0f);
+    }
   }
 
   boundCenter = newPositions.empty() ? glm::vec3(0.0f) : 0.5f * (low + high);
@@ -104,20 +119,6 @@ void SlimeGeometry::setAnalyticSphere(bool enabled, float radius) {
   sphereRadius = radius;
   boundCenter = analyticSphere ? sphereCenter : meshBoundCenter;
   boundRadius = analyticSphere ? sphereRadius : meshBoundRadius;
-}
-
-glm::vec3 SlimeGeometry::geometricNormal(const SlimeHit& hit, const glm::vec3& point) const {
-  if (analyticSphere) return glm::normalize(point - sphereCenter);
-  const Triangle& t = triangles[hit.primitive];
-  const glm::vec3 n = glm::cross(positions[t.y] - positions[t.x], positions[t.z] - positions[t.x]);
-  const float length = glm::length(n);
-  // A collapsed (zero-area) triangle has no normal of its own: fall back to its vertex normals.
-  if (!(length > 0.0f) || !std::isfinite(length)) {
-    const glm::vec3 average = normals[t.x] + normals[t.y] + normals[t.z];
-    const float averageLength = glm::length(average);
-    return averageLength > 0.0f ? average / averageLength : glm::vec3(0.0f, 0.0f, 1.0f);
-  }
-  return n / length;
 }
 
 glm::vec3 SlimeGeometry::shadingNormal(const SlimeHit& hit, const glm::vec3& point, bool smooth) const {

@@ -6,6 +6,7 @@
 #include "core/icosphere.h"
 #include "render/ray.h"
 
+#include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -17,6 +18,7 @@ namespace slime {
 struct SlimeGeometry {
   std::vector<glm::vec3> positions;  // one extra zero vertex at the end: Embree reads 16 bytes past the last
   std::vector<glm::vec3> normals;    // area-weighted vertex normals of the current (deformed) mesh
+  std::vector<glm::vec3> faceNormals;  // unit outward normal of each triangle (geometricNormal)
   std::vector<Triangle> triangles;
   glm::vec3 boundCenter{0.0f};       // a sphere that contains every vertex
   float boundRadius = 0.0f;
@@ -60,8 +62,10 @@ struct SlimeGeometry {
     return offset.x * offset.x + offset.y * offset.y + offset.z * offset.z <= radius * radius;
   }
 
-  // Unit geometric normal (outward) at a hit point.
-  glm::vec3 geometricNormal(const SlimeHit& hit, const glm::vec3& point) const;
+  // Unit geometric normal (outward) at a hit point: the triangle's, computed once per frame by update.
+  glm::vec3 geometricNormal(const SlimeHit& hit, const glm::vec3& point) const {
+    return analyticSphere ? glm::normalize(point - sphereCenter) : faceNormals[hit.primitive];
+  }
   // Unit shading normal: interpolated vertex normals when smooth, else the geometric normal.
   glm::vec3 shadingNormal(const SlimeHit& hit, const glm::vec3& point, bool smooth) const;
 };
