@@ -56,11 +56,6 @@ FloorCacheKey floorCacheKey(const Camera& camera, const ShadingParameters& p, in
           zenith.z,          static_cast<double>(p.depth), p.shadows ? 1.0 : 0.0};
 }
 
-// Whether the packet of `count` pixels from (x0, y) lies wholly outside `rect`.
-bool outsideRect(const PixelRect& rect, int x0, int count, int y) {
-  return y < rect.y0 || y >= rect.y1 || x0 + count <= rect.x0 || x0 >= rect.x1;
-}
-
 }  // namespace
 
 struct Renderer::Impl {
@@ -91,7 +86,7 @@ struct Renderer::Impl {
   // and bytes when the caller kept the same buffers (imageInPlace, bytesInPlace).
   const glm::vec3* lastPixels = nullptr;
   const std::uint8_t* lastBytes = nullptr;
-  PixelRect lastFootprint;
+  ScreenFootprint footprint, lastFootprint;  // this frame's and the last (swapped: no allocation per frame)
   bool lastKeptCaches = false;
   bool imageInPlace = false, bytesInPlace = false;
 
@@ -126,7 +121,7 @@ struct Renderer::Impl {
   // floor cache, packets outside `footprint` are copied from the last frame once they have been traced.
   void traceTile(const WhittedTracer& tracer, const SlimeIntersector& intersector, const Camera& camera,
                  int samplesPerAxis, int rowBegin, int rowEnd, int columnBegin, int columnEnd, Image& image,
-                 std::uint8_t* srgba, FloorShading* floorShadings, const PixelRect& footprint, TraceCounters& counts) {
+                 std::uint8_t* srgba, FloorShading* floorShadings, const ScreenFootprint* footprint, TraceCounters& counts) {
     FlushDenormals flush;
     const auto start = std::chrono::steady_clock::now();
     const float inverseSamples = 1.0f / static_cast<float>(samplesPerAxis * samplesPerAxis);
@@ -143,10 +138,10 @@ struct Renderer::Impl {
             reusable[first + i] = 0;
           }
         }
-        const bool outside = floorShadings && outsideRect(footprint, x0, count, y);
+        const bool outside = footprint && footprint->outside(x0, count, y);
         if (outside && std::all_of(&reusable[first], &reusable[first] + count, [](std::uint8_t r) { return r != 0; })) {
           // Outside the last frame's footprint too, the last frame copied or stored exactly these colours.
-          const bool inPlace = imageInPlace && outsideRect(lastFootprint, x0, count, y);
+          const bool inPlace = imageInPlace && lastFootprint.outside(x0, count, y);
           if (!inPlace)
             for (int i = 0; i < count; ++i) image.at(x0 + i, y) = reusableColors[first + i];
           if (srgba && !(inPlace && bytesInPlace))
@@ -232,7 +227,7 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
   const WhittedTracer tracer(impl.geometry, intersector, impl.floor, parameters);
 
   FloorShading* floorShadings = nullptr;
-  PixelRect footprint;
+  const ScreenFootprint* footprint = nullptr;  // with the floor cache only
   const bool lastKeptCaches = impl.lastKeptCaches;
   impl.lastKeptCaches = false;  // until this frame is finished
   impl.imageInPlace = impl.bytesInPlace = false;
@@ -247,7 +242,8 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
       impl.floorCacheValid = true;
     }
     floorShadings = impl.floorCache.data();
-    footprint = slimeFootprint(camera, impl.geometry, parameters, image.width, image.height);
+    slimeFootprint(camera, impl.geometry, parameters, image.width, image.height, impl.footprint);
+    footprint = &impl.footprint;
     impl.imageInPlace = buffersKept && lastKeptCaches && !impl.cachesStale && impl.lastPixels == image.pixels.data();
     impl.bytesInPlace = impl.imageInPlace && bytes && impl.lastBytes == bytes;
   }
@@ -286,7 +282,7 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
   }
   impl.lastPixels = image.pixels.data();
   impl.lastBytes = bytes;
-  impl.lastFootprint = footprint;
+  std::swap(impl.footprint, impl.lastFootprint);
   impl.lastKeptCaches = floorShadings != nullptr;
   stats.traceMs = millisecondsSince(start);
   return stats;

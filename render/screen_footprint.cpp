@@ -1,77 +1,127 @@
 #include "render/screen_footprint.h"
 
-#include <glm/common.hpp>
 #include <glm/geometric.hpp>
-#include <glm/vec2.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
-#include <limits>
 
 namespace slime {
 namespace {
 
-constexpr double kMarginPixels = 2.0;
+constexpr int kMarginPixels = 2;
 
-// Screen bounds of a set of world points, in pixel coordinates (pixel x's centre at x + 0.5).
-class ScreenBounds {
- public:
-  ScreenBounds(const Camera& camera, int width, int height) : camera_(camera), width_(width), height_(height) {}
-
-  // False when the point is not in front of the eye: no finite bounds then.
-  bool add(const glm::dvec3& point) {
-    const glm::dvec3 d = point - camera_.position;
-    const double depth = glm::dot(d, camera_.forward);
-    if (!(depth > 1e-9)) return false;
-    // Camera::rayDirection inverted: x = u W − 1/2 with 2u − 1 = (d·right) / (depth tan(fov/2) aspect).
-    const double sx = glm::dot(d, camera_.right) / (depth * camera_.tanHalfFov * camera_.aspect);
-    const double sy = glm::dot(d, camera_.up) / (depth * camera_.tanHalfFov);
-    const double x = 0.5 * (sx + 1.0) * width_, y = 0.5 * (1.0 - sy) * height_;
-    low_ = glm::min(low_, glm::dvec2(x, y));
-    high_ = glm::max(high_, glm::dvec2(x, y));
-    return true;
-  }
-
-  PixelRect rect() const {
-    if (low_.x > high_.x) return {};
-    const auto clampTo = [](double value, int limit) {
-      return static_cast<int>(std::clamp(value, 0.0, static_cast<double>(limit)));
-    };
-    return {clampTo(std::floor(low_.x - kMarginPixels), width_), clampTo(std::floor(low_.y - kMarginPixels), height_),
-            clampTo(std::ceil(high_.x + kMarginPixels), width_), clampTo(std::ceil(high_.y + kMarginPixels), height_)};
-  }
-
- private:
-  const Camera& camera_;
-  int width_, height_;
-  glm::dvec2 low_{std::numeric_limits<double>::infinity()}, high_{-std::numeric_limits<double>::infinity()};
+// Where along the line a + x s the direction lies in the cone k |d|² − (d·c)² ≤ 0 (both nappes; the
+// callers make sure the line meets only the one they mean): no x, an interval, or, when the line
+// runs along the cone (the quadratic's leading coefficient ≤ 0) or the numbers overflow, every x.
+struct LineInterval {
+  bool any = false;
+  double low = 0.0, high = 0.0;
 };
+
+LineInterval coneInterval(const glm::dvec3& a, const glm::dvec3& s, const glm::dvec3& c, double k) {
+  constexpr double kEverything = 1e300;
+  const double sc = glm::dot(s, c), ac = glm::dot(a, c);
+  const double quadratic = k * glm::dot(s, s) - sc * sc;
+  const double linear = k * glm::dot(a, s) - ac * sc;  // half the coefficient of x
+  const double constant = k * glm::dot(a, a) - ac * ac;
+  if (!(quadratic > 0.0) || !std::isfinite(linear) || !std::isfinite(constant)) return {true, -kEverything, kEverything};
+  const double discriminant = linear * linear - quadratic * constant;
+  if (discriminant < 0.0) return {};
+  const double root = std::sqrt(discriminant);
+  return {true, (-linear - root) / quadratic, (-linear + root) / quadratic};
+}
+
+// The pixels whose sample x + 0.5 lies in [low, high], clamped to the image.
+ScreenFootprint::Span pixelsOf(const LineInterval& interval, int width) {
+  if (!interval.any) return {};
+  const auto column = [width](double x) { return static_cast<int>(std::clamp(x, 0.0, static_cast<double>(width))); };
+  return {column(std::floor(interval.low - 0.5)), column(std::floor(interval.high - 0.5) + 1.0)};
+}
+
+ScreenFootprint::Span hull(const ScreenFootprint::Span& a, const ScreenFootprint::Span& b) {
+  if (a.x0 >= a.x1) return b;
+  if (b.x0 >= b.x1) return a;
+  return {std::min(a.x0, b.x0), std::max(a.x1, b.x1)};
+}
 
 }  // namespace
 
-PixelRect slimeFootprint(const Camera& camera, const SlimeGeometry& geometry, const ShadingParameters& parameters,
-                         int width, int height) {
-  const PixelRect whole{0, 0, width, height};
-  if (geometry.boundRadius <= 0.0f && !geometry.analyticSphere) return {};  // no slime
-  // The bounding sphere's box, with the same slack as SlimeGeometry::mayHit.
+long long ScreenFootprint::area() const {
+  long long sum = 0;
+  for (const Span& span : rows) sum += std::max(0, span.x1 - span.x0);
+  return sum;
+}
+
+void slimeFootprint(const Camera& camera, const SlimeGeometry& geometry, const ShadingParameters& parameters,
+                    int width, int height, ScreenFootprint& footprint) {
+  footprint.rows.assign(static_cast<std::size_t>(std::max(0, height)), ScreenFootprint::Span{});
+  if (width <= 0 || height <= 0) return;
+  if (geometry.boundRadius <= 0.0f && !geometry.analyticSphere) return;  // no slime
+  const ScreenFootprint::Span whole{0, width};
+
+  // The bounding sphere, with the same slack as SlimeGeometry::mayHit.
   const glm::dvec3 center(geometry.boundCenter);
   const double radius = geometry.boundRadius * 1.0001 + 1e-6;
-  const glm::dvec3 light(parameters.lightPosition);
-  ScreenBounds bounds(camera, width, height);
-  for (int corner = 0; corner < 8; ++corner) {
-    const glm::dvec3 point = center + radius * glm::dvec3(corner & 1 ? 1.0 : -1.0, corner & 2 ? 1.0 : -1.0,
-                                                          corner & 4 ? 1.0 : -1.0);
-    if (!bounds.add(point)) return whole;
-    // A varnished floor mirrors the slime: its image below z = 0 is seen there.
-    if (parameters.floorSpecular > 0.0f && !bounds.add({point.x, point.y, -point.z})) return whole;
-    if (!parameters.shadows || light.z <= 0.0) continue;  // no shadows, or the floor is unlit
-    if (point.z >= light.z) return whole;
-    // Projected from the light onto z = 0: L + (p − L) · L_z / (L_z − p_z) (a projective map, so for
-    // points below the light it keeps the box's shadow inside the hull of its corners' shadows).
-    const glm::dvec3 shadow = light + (point - light) * (light.z / (light.z - point.z));
-    if (!bounds.add({shadow.x, shadow.y, 0.0})) return whole;
+  const glm::dvec3 eye = camera.position, light(parameters.lightPosition);
+  const glm::dvec3 toCenter = center - eye, toMirror = glm::dvec3(center.x, center.y, -center.z) - eye;
+  const bool mirror = parameters.floorSpecular > 0.0f;
+  // Only a sphere wholly in front of the eye has a bounded image.
+  const double margin = 1e-6 * radius;
+  if (glm::dot(toCenter, camera.forward) <= radius + margin ||
+      (mirror && glm::dot(toMirror, camera.forward) <= radius + margin)) {
+    footprint.rows.assign(footprint.rows.size(), whole);
+    return;
   }
-  return bounds.rect();
+  const bool shadows = parameters.shadows && light.z > 0.0;
+  const glm::dvec3 fromLight = center - light;
+  // The shadow needs the eye above the floor (a row's floor points on a line), a camera without roll
+  // and the light above the sphere (its shadow then an ellipse); otherwise every floor pixel may be in it.
+  const glm::dvec3 right = camera.right * (camera.tanHalfFov * camera.aspect), up = camera.up * camera.tanHalfFov;
+  const bool boundedShadow = eye.z > 0.0 && right.z == 0.0 && light.z > center.z + radius + margin;
+
+  // Camera::rayDirection for the sample at (x, v): a + x s with x in pixels.
+  const glm::dvec3 step = right * (2.0 / width);
+  for (int y = 0; y < height; ++y) {
+    const double v = (y + 0.5) / height;
+    const glm::dvec3 base = camera.forward - right + (1.0 - 2.0 * v) * up;
+    ScreenFootprint::Span span = pixelsOf(coneInterval(base, step, toCenter, glm::dot(toCenter, toCenter) - radius * radius), width);
+    if (mirror)
+      span = hull(span, pixelsOf(coneInterval(base, step, toMirror, glm::dot(toMirror, toMirror) - radius * radius), width));
+    if (shadows && base.z < 0.0) {  // this row sees the floor
+      if (!boundedShadow) {
+        span = whole;
+      } else {
+        // The row's floor points eye + t (a + x s), t = −eye_z / a_z, seen from the light.
+        const double t = -eye.z / base.z;
+        const LineInterval shadow =
+            coneInterval(eye + t * base - light, t * step, fromLight, glm::dot(fromLight, fromLight) - radius * radius);
+        span = hull(span, pixelsOf(shadow, width));
+      }
+    }
+    footprint.rows[y] = span;
+  }
+
+  // Widen each span by kMarginPixels columns each way and to the kMarginPixels rows either side.
+  std::array<ScreenFootprint::Span, kMarginPixels> above{};  // the unwidened spans of the rows just above
+  for (int y = 0; y < height; ++y) {
+    const ScreenFootprint::Span own = footprint.rows[y];
+    ScreenFootprint::Span widened = own;
+    for (const ScreenFootprint::Span& span : above) widened = hull(widened, span);
+    for (int below = y + 1; below <= std::min(height - 1, y + kMarginPixels); ++below)
+      widened = hull(widened, footprint.rows[below]);
+    if (widened.x0 < widened.x1) widened = {std::max(0, widened.x0 - kMarginPixels), std::min(width, widened.x1 + kMarginPixels)};
+    std::rotate(above.begin(), above.begin() + 1, above.end());
+    above.back() = own;
+    footprint.rows[y] = widened;
+  }
+}
+
+ScreenFootprint slimeFootprint(const Camera& camera, const SlimeGeometry& geometry, const ShadingParameters& parameters,
+                               int width, int height) {
+  ScreenFootprint footprint;
+  slimeFootprint(camera, geometry, parameters, width, height, footprint);
+  return footprint;
 }
 
 }  // namespace slime

@@ -8,20 +8,38 @@
 #include "render/shading_parameters.h"
 #include "render/slime_geometry.h"
 
+#include <vector>
+
 namespace slime {
 
-// Pixels [x0, x1) × [y0, y1); empty when x0 >= x1 or y0 >= y1.
-struct PixelRect {
-  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-  bool contains(int x, int y) const { return x >= x0 && x < x1 && y >= y0 && y < y1; }
+// Row by row, the columns the slime can affect: row y's pixels [rows[y].x0, rows[y].x1).
+struct ScreenFootprint {
+  struct Span {
+    int x0 = 0, x1 = 0;  // empty when x0 >= x1
+  };
+  std::vector<Span> rows;
+
+  bool contains(int x, int y) const { return x >= rows[y].x0 && x < rows[y].x1; }
+  // Whether the pixels [x0, x0 + count) of row y all lie outside.
+  bool outside(int x0, int count, int y) const { return x0 + count <= rows[y].x0 || x0 >= rows[y].x1; }
+  long long area() const;
 };
 
-// A rectangle holding every pixel the slime can affect in a width × height image: the screen bounds
-// of the sphere's bounding box, and of the box's shadow on the floor z = 0 cast from the point light
-// (the shadow of a box below the light lies inside the hull of its corners projected from the light),
-// widened by two pixels for rounding. Conservative: the whole image when a corner lies behind the eye
-// or a shadow reaches to infinity (the light no higher than the box's top).
-PixelRect slimeFootprint(const Camera& camera, const SlimeGeometry& geometry, const ShadingParameters& parameters,
-                         int width, int height);
+// Every pixel the slime can affect in a width × height image, into `footprint` (its storage is
+// reused from frame to frame). Each row's span is exact for the three regions, then widened by two
+// pixels each way and to the two rows above and below, for rounding:
+//  - the pixels whose ray meets the bounding sphere (its image is an ellipse: along a row of the
+//    image the ray directions a + x s form a line, and a line cuts the sphere's cone of directions
+//    k |d|² − (d·c)² ≤ 0, c the centre seen from the eye and k = |c|² − r², in one interval);
+//  - with a varnished floor, the same for the sphere's mirror image below z = 0;
+//  - the pixels whose floor point lies in the sphere's shadow: a row's floor points lie on a line
+//    (the camera has no roll), which cuts the cone from the light through the sphere in one interval.
+// Whole rows when an interval cannot be bounded: the sphere not wholly in front of the eye, the eye
+// not above the floor, or the light not above the sphere.
+void slimeFootprint(const Camera& camera, const SlimeGeometry& geometry, const ShadingParameters& parameters,
+                    int width, int height, ScreenFootprint& footprint);
+
+ScreenFootprint slimeFootprint(const Camera& camera, const SlimeGeometry& geometry, const ShadingParameters& parameters,
+                               int width, int height);
 
 }  // namespace slime
