@@ -1,9 +1,11 @@
 // Micro-benchmarks of the renderer: one 32×8 tile's worth of the default frame (a 32×8 image looking
 // at the slime's centre) and one whole frame at a small size (160×120), level 4, one thread, and the
-// refit of the slime's BVH after its vertices move.
+// refit of the slime's BVH after its vertices move; and the floor's pattern alone, looked up where
+// the default view sees it (under and around the slime, pixel footprints of about half a millimetre).
 #include "core/camera.h"
 #include "core/icosphere.h"
 #include "core/settings_io.h"
+#include "render/floor_texture.h"
 #include "render/renderer.h"
 
 #include <benchmark/benchmark.h>
@@ -58,6 +60,24 @@ void refitSlime(benchmark::State& state) {
   }
 }
 BENCHMARK(refitSlime)->Arg(4)->Arg(6)->Unit(benchmark::kMicrosecond);
+
+void floorAlbedo(benchmark::State& state) {
+  FloorSettings floorSettings = defaultSettings().floor;
+  const char* patterns[] = {"planks", "tiles", "checker"};
+  floorSettings.pattern = patterns[state.range(0)];
+  const FloorTexture floor(floorSettings);
+  constexpr int kSide = 64;  // a 64 × 64 grid over 0.3 m × 0.3 m around the slime
+  glm::vec3 sum(0.0f);
+  for (auto _ : state) {
+    for (int j = 0; j < kSide; ++j)
+      for (int i = 0; i < kSide; ++i)
+        sum += floor.albedo({-0.15f + 0.3f * i / kSide, -0.12f + 0.3f * j / kSide}, {4e-4f, 2.5e-4f});
+  }
+  benchmark::DoNotOptimize(sum);
+  state.SetItemsProcessed(state.iterations() * kSide * kSide);
+  state.SetLabel(patterns[state.range(0)]);
+}
+BENCHMARK(floorAlbedo)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace slime
