@@ -29,7 +29,9 @@ LineInterval coneInterval(const glm::dvec3& a, const glm::dvec3& s, const glm::d
   const double discriminant = linear * linear - quadratic * constant;
   if (discriminant < 0.0) return {};
   const double root = std::sqrt(discriminant);
-  return {true, (-linear - root) / quadratic, (-linear + root) / quadratic};
+  const LineInterval interval{true, (-linear - root) / quadratic, (-linear + root) / quadratic};
+  if (!std::isfinite(interval.low) || !std::isfinite(interval.high)) return {true, -kEverything, kEverything};
+  return interval;
 }
 
 // The pixels whose sample x + 0.5 lies in [low, high], clamped to the image.

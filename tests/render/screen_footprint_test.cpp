@@ -1,0 +1,149 @@
+// The footprint (render/screen_footprint.h) against a per-pixel oracle: a pixel may change with the
+// slime when its primary ray, its floor point's shadow ray or its floor point's mirror ray can reach
+// the bounding sphere (SlimeGeometry::mayHit, the renderer's own test). Every such pixel must be in
+// the footprint, and the footprint must not be much larger than the set of such pixels.
+#include "core/camera.h"
+#include "core/icosphere.h"
+#include "core/settings_io.h"
+#include "render/optics.h"
+#include "render/screen_footprint.h"
+
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+
+#include <string>
+
+namespace slime {
+namespace {
+
+struct View {
+  std::string what;
+  glm::dvec3 eye;
+  glm::dvec3 target;
+  glm::dvec3 slimeCenter;
+  glm::dvec3 light;
+  double floorSpecular = 0.0;
+};
+
+struct Coverage {
+  long long reachable = 0;  // pixels the oracle says the slime can change
+  long long missed = 0;     // of those, outside the footprint
+};
+
+// The renderer's primary ray through pixel (x, y) (Renderer::Impl::traceTile, one sample per pixel).
+Ray primaryRay(const Camera& camera, int x, int y, int width, int height) {
+  const glm::vec3 right(camera.right * (camera.tanHalfFov * camera.aspect)), up(camera.up * camera.tanHalfFov);
+  const float u = (x + 0.5f) / width, v = (y + 0.5f) / height;
+  const glm::vec3 direction = glm::vec3(camera.forward) + (2.0f * u - 1.0f) * right + (1.0f - 2.0f * v) * up;
+  return Ray{glm::vec3(camera.position), glm::normalize(direction), 0.0f, kInfinity};
+}
+
+bool slimeCanChange(const Ray& ray, const SlimeGeometry& geometry, const ShadingParameters& parameters) {
+  if (geometry.mayHit(ray)) return true;
+  if (ray.direction.z >= 0.0f) return false;  // the sky
+  const float t = std::max(0.0f, ray.origin.z) / -ray.direction.z;
+  glm::vec3 point = ray.origin + t * ray.direction;
+  point.z = 0.0f;
+  const glm::vec3 origin = point + glm::vec3(0.0f, 0.0f, kRayOffset);
+  if (parameters.shadows && parameters.lightPosition.z > 0.0f) {
+    const glm::vec3 toLight = parameters.lightPosition - origin;
+    const float distance = glm::length(toLight);
+    if (geometry.mayHit(Ray{origin, toLight / distance, 0.0f, distance})) return true;
+  }
+  if (parameters.floorSpecular > 0.0f) {
+    const Ray mirror{origin, {ray.direction.x, ray.direction.y, -ray.direction.z}, 0.0f, kInfinity};
+    if (geometry.mayHit(mirror)) return true;
+  }
+  return false;
+}
+
+Settings settingsFor(const View& view) {
+  Settings settings = defaultSettings();
+  lookAt(settings.camera, view.eye, view.target);
+  settings.light.position = view.light;
+  settings.floor.specular = view.floorSpecular;
+  return settings;
+}
+
+Coverage check(const View& view, int width, int height, ScreenFootprint& footprint) {
+  const Settings settings = settingsFor(view);
+  const TriangleMesh mesh = makeIcosphere(3, settings.slime.radius, view.slimeCenter);
+  SlimeGeometry geometry;
+  geometry.update(mesh.positions, mesh.triangles);
+  const Camera camera = makeCamera(settings.camera, width, height);
+  const ShadingParameters parameters = makeShadingParameters(settings, height);
+  slimeFootprint(camera, geometry, parameters, width, height, footprint);
+  Coverage coverage;
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      if (!slimeCanChange(primaryRay(camera, x, y, width, height), geometry, parameters)) continue;
+      ++coverage.reachable;
+      coverage.missed += !footprint.contains(x, y);
+    }
+  }
+  return coverage;
+}
+
+TEST(ScreenFootprint, HoldsEveryPixelTheSlimeCanReachAndLittleElse) {
+  const double r = 0.04;
+  const View views[] = {
+      {"default view, resting", {0.0, -0.22, 0.1}, {0.0, 0.0, r}, {0.0, 0.0, r}, {0.3, -0.05, 0.35}},
+      {"from the side, in the air", {0.25, 0.1, 0.12}, {0.0, 0.0, 0.05}, {0.01, -0.02, 0.09}, {0.3, -0.05, 0.35}},
+      {"off centre, low light", {0.0, -0.3, 0.15}, {0.05, 0.0, 0.0}, {-0.06, 0.03, r}, {-0.2, 0.1, 0.13}},
+      {"looking down", {0.02, -0.01, 0.4}, {0.0, 0.0, 0.0}, {0.0, 0.0, r}, {0.3, -0.05, 0.35}},
+      {"varnished floor", {0.0, -0.22, 0.1}, {0.0, 0.0, r}, {0.0, 0.02, 0.07}, {0.3, -0.05, 0.35}, 0.2},
+      {"at the image's edge", {0.0, -0.22, 0.1}, {0.09, 0.0, r}, {0.0, 0.0, r}, {0.3, -0.05, 0.35}},
+  };
+  ScreenFootprint footprint;
+  for (const View& view : views) {
+    for (const glm::ivec2 size : {glm::ivec2(160, 120), glm::ivec2(97, 131)}) {
+      const Coverage coverage = check(view, size.x, size.y, footprint);
+      const std::string what = view.what + " at " + std::to_string(size.x) + "x" + std::to_string(size.y);
+      EXPECT_GT(coverage.reachable, 0) << what;
+      EXPECT_EQ(coverage.missed, 0) << what << ": " << coverage.missed << " of " << coverage.reachable << " pixels missed";
+      // Two pixels of margin around shapes a few dozen pixels across: at most about half as many again.
+      EXPECT_LE(footprint.area(), 1.6 * coverage.reachable + 4 * (size.x + size.y)) << what;
+    }
+  }
+}
+
+TEST(ScreenFootprint, WholeRowsWhereNoBoundCanBeGiven) {
+  const double r = 0.04;
+  ScreenFootprint footprint;
+  const int width = 80, height = 60;
+  // The eye inside the bounding sphere, and the sphere behind the eye: every pixel.
+  for (const View& view : {View{"eye inside", {0.0, 0.0, r}, {0.0, 1.0, r}, {0.0, 0.0, r}, {0.3, -0.05, 0.35}},
+                           View{"behind the eye", {0.0, 0.2, 0.05}, {0.0, 1.0, 0.05}, {0.0, 0.0, r}, {0.3, -0.05, 0.35}}}) {
+    const Coverage coverage = check(view, width, height, footprint);
+    EXPECT_EQ(coverage.missed, 0) << view.what;
+    EXPECT_EQ(footprint.area(), static_cast<long long>(width) * height) << view.what;
+  }
+  // The light below the sphere's top: its shadow has no bound, so every row that sees the floor.
+  const View low{"light below the top", {0.0, -0.22, 0.1}, {0.0, 0.0, r}, {0.0, 0.0, r}, {0.3, -0.05, 0.05}};
+  const Coverage coverage = check(low, width, height, footprint);
+  EXPECT_EQ(coverage.missed, 0);
+  const Camera camera = makeCamera(settingsFor(low).camera, width, height);
+  for (int y = 0; y < height; ++y) {
+    if (primaryRay(camera, width / 2, y, width, height).direction.z < -1e-3f) {
+      EXPECT_EQ(footprint.rows[y].x0, 0) << "row " << y;
+      EXPECT_EQ(footprint.rows[y].x1, width) << "row " << y;
+    }
+  }
+}
+
+TEST(ScreenFootprint, EmptyWithoutASlimeAndForAnEmptyImage) {
+  const Settings settings = defaultSettings();
+  const Camera camera = makeCamera(settings.camera, 40, 30);
+  const ShadingParameters parameters = makeShadingParameters(settings, 30);
+  const SlimeGeometry none;
+  EXPECT_EQ(slimeFootprint(camera, none, parameters, 40, 30).area(), 0);
+  const TriangleMesh mesh = makeIcosphere(2, 0.04, {0.0, 0.0, 0.04});
+  SlimeGeometry geometry;
+  geometry.update(mesh.positions, mesh.triangles);
+  EXPECT_TRUE(slimeFootprint(camera, geometry, parameters, 0, 0).rows.empty());
+}
+
+}  // namespace
+}  // namespace slime
