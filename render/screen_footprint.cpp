@@ -1,10 +1,9 @@
 #include "render/screen_footprint.h"
 
-#include <glm/geometric.hpp>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <glm/geometric.hpp>
 
 namespace slime {
 namespace {
@@ -25,7 +24,8 @@ LineInterval coneInterval(const glm::dvec3& a, const glm::dvec3& s, const glm::d
   const double quadratic = k * glm::dot(s, s) - sc * sc;
   const double linear = k * glm::dot(a, s) - ac * sc;  // half the coefficient of x
   const double constant = k * glm::dot(a, a) - ac * ac;
-  if (!(quadratic > 0.0) || !std::isfinite(linear) || !std::isfinite(constant)) return {true, -kEverything, kEverything};
+  if (!(quadratic > 0.0) || !std::isfinite(linear) || !std::isfinite(constant))
+    return {true, -kEverything, kEverything};
   const double discriminant = linear * linear - quadratic * constant;
   if (discriminant < 0.0) return {};
   const double root = std::sqrt(discriminant);
@@ -37,7 +37,9 @@ LineInterval coneInterval(const glm::dvec3& a, const glm::dvec3& s, const glm::d
 // The pixels whose sample x + 0.5 lies in [low, high], clamped to the image.
 ScreenFootprint::Span pixelsOf(const LineInterval& interval, int width) {
   if (!interval.any) return {};
-  const auto column = [width](double x) { return static_cast<int>(std::clamp(x, 0.0, static_cast<double>(width))); };
+  const auto column = [width](double x) {
+    return static_cast<int>(std::clamp(x, 0.0, static_cast<double>(width)));
+  };
   return {column(std::floor(interval.low - 0.5)), column(std::floor(interval.high - 0.5) + 1.0)};
 }
 
@@ -79,7 +81,8 @@ void slimeFootprint(const Camera& camera, const SlimeGeometry& geometry, const S
   const glm::dvec3 fromLight = center - light;
   // The shadow needs the eye above the floor (a row's floor points on a line), a camera without roll
   // and the light above the sphere (its shadow then an ellipse); otherwise every floor pixel may be in it.
-  const glm::dvec3 right = camera.right * (camera.tanHalfFov * camera.aspect), up = camera.up * camera.tanHalfFov;
+  const glm::dvec3 right = camera.right * (camera.tanHalfFov * camera.aspect),
+                   up = camera.up * camera.tanHalfFov;
   const bool boundedShadow = eye.z > 0.0 && right.z == 0.0 && light.z > center.z + radius + margin;
 
   // Camera::rayDirection for the sample at (x, v): a + x s with x in pixels.
@@ -87,17 +90,20 @@ void slimeFootprint(const Camera& camera, const SlimeGeometry& geometry, const S
   for (int y = 0; y < height; ++y) {
     const double v = (y + 0.5) / height;
     const glm::dvec3 base = camera.forward - right + (1.0 - 2.0 * v) * up;
-    ScreenFootprint::Span span = pixelsOf(coneInterval(base, step, toCenter, glm::dot(toCenter, toCenter) - radius * radius), width);
+    ScreenFootprint::Span span =
+        pixelsOf(coneInterval(base, step, toCenter, glm::dot(toCenter, toCenter) - radius * radius), width);
     if (mirror)
-      span = hull(span, pixelsOf(coneInterval(base, step, toMirror, glm::dot(toMirror, toMirror) - radius * radius), width));
+      span = hull(span,
+                  pixelsOf(coneInterval(base, step, toMirror, glm::dot(toMirror, toMirror) - radius * radius),
+                           width));
     if (shadows && base.z < 0.0) {  // this row sees the floor
       if (!boundedShadow) {
         span = whole;
       } else {
         // The row's floor points eye + t (a + x s), t = −eye_z / a_z, seen from the light.
         const double t = -eye.z / base.z;
-        const LineInterval shadow =
-            coneInterval(eye + t * base - light, t * step, fromLight, glm::dot(fromLight, fromLight) - radius * radius);
+        const LineInterval shadow = coneInterval(eye + t * base - light, t * step, fromLight,
+                                                 glm::dot(fromLight, fromLight) - radius * radius);
         span = hull(span, pixelsOf(shadow, width));
       }
     }
@@ -112,15 +118,16 @@ void slimeFootprint(const Camera& camera, const SlimeGeometry& geometry, const S
     for (const ScreenFootprint::Span& span : above) widened = hull(widened, span);
     for (int below = y + 1; below <= std::min(height - 1, y + kMarginPixels); ++below)
       widened = hull(widened, footprint.rows[below]);
-    if (widened.x0 < widened.x1) widened = {std::max(0, widened.x0 - kMarginPixels), std::min(width, widened.x1 + kMarginPixels)};
+    if (widened.x0 < widened.x1)
+      widened = {std::max(0, widened.x0 - kMarginPixels), std::min(width, widened.x1 + kMarginPixels)};
     std::rotate(above.begin(), above.begin() + 1, above.end());
     above.back() = own;
     footprint.rows[y] = widened;
   }
 }
 
-ScreenFootprint slimeFootprint(const Camera& camera, const SlimeGeometry& geometry, const ShadingParameters& parameters,
-                               int width, int height) {
+ScreenFootprint slimeFootprint(const Camera& camera, const SlimeGeometry& geometry,
+                               const ShadingParameters& parameters, int width, int height) {
   ScreenFootprint footprint;
   slimeFootprint(camera, geometry, parameters, width, height, footprint);
   return footprint;

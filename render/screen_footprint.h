@@ -4,11 +4,11 @@
 // renderer copies it instead of tracing it again.
 #pragma once
 
+#include <vector>
+
 #include "core/camera.h"
 #include "render/shading_parameters.h"
 #include "render/slime_geometry.h"
-
-#include <vector>
 
 namespace slime {
 
@@ -39,7 +39,7 @@ struct ScreenFootprint {
 void slimeFootprint(const Camera& camera, const SlimeGeometry& geometry, const ShadingParameters& parameters,
                     int width, int height, ScreenFootprint& footprint);
 
-ScreenFootprint slimeFootprint(const Camera& camera, const SlimeGeometry& geometry, const ShadingParameters& parameters,
-                               int width, int height);
+ScreenFootprint slimeFootprint(const Camera& camera, const SlimeGeometry& geometry,
+                               const ShadingParameters& parameters, int width, int height);
 
 }  // namespace slime

@@ -34,7 +34,8 @@ struct Coverage {
 
 // The renderer's primary ray through pixel (x, y) (Renderer::Impl::traceTile, one sample per pixel).
 Ray primaryRay(const Camera& camera, int x, int y, int width, int height) {
-  const glm::vec3 right(camera.right * (camera.tanHalfFov * camera.aspect)), up(camera.up * camera.tanHalfFov);
+  const glm::vec3 right(camera.right * (camera.tanHalfFov * camera.aspect));
+  const glm::vec3 up(camera.up * camera.tanHalfFov);
   const float u = (x + 0.5f) / width, v = (y + 0.5f) / height;
   const glm::vec3 direction = glm::vec3(camera.forward) + (2.0f * u - 1.0f) * right + (1.0f - 2.0f * v) * up;
   return Ray{glm::vec3(camera.position), glm::normalize(direction), 0.0f, kInfinity};
@@ -90,7 +91,7 @@ TEST(ScreenFootprint, HoldsEveryPixelTheSlimeCanReachAndLittleElse) {
   const double r = 0.04;
   const View views[] = {
       {"default view, resting", {0.0, -0.22, 0.1}, {0.0, 0.0, r}, {0.0, 0.0, r}, {0.3, -0.05, 0.35}},
-      {"from the side, in the air", {0.25, 0.1, 0.12}, {0.0, 0.0, 0.05}, {0.01, -0.02, 0.09}, {0.3, -0.05, 0.35}},
+      {"in the air, from the side", {0.25, 0.1, 0.12}, {0, 0, 0.05}, {0.01, -0.02, 0.09}, {0.3, -0.05, 0.35}},
       {"off centre, low light", {0.0, -0.3, 0.15}, {0.05, 0.0, 0.0}, {-0.06, 0.03, r}, {-0.2, 0.1, 0.13}},
       {"looking down", {0.02, -0.01, 0.4}, {0.0, 0.0, 0.0}, {0.0, 0.0, r}, {0.3, -0.05, 0.35}},
       {"varnished floor", {0.0, -0.22, 0.1}, {0.0, 0.0, r}, {0.0, 0.02, 0.07}, {0.3, -0.05, 0.35}, 0.2},
@@ -102,7 +103,8 @@ TEST(ScreenFootprint, HoldsEveryPixelTheSlimeCanReachAndLittleElse) {
       const Coverage coverage = check(view, size.x, size.y, footprint);
       const std::string what = view.what + " at " + std::to_string(size.x) + "x" + std::to_string(size.y);
       EXPECT_GT(coverage.reachable, 0) << what;
-      EXPECT_EQ(coverage.missed, 0) << what << ": " << coverage.missed << " of " << coverage.reachable << " pixels missed";
+      EXPECT_EQ(coverage.missed, 0) << what << ": " << coverage.missed << " of " << coverage.reachable
+                                    << " pixels missed";
       // Two pixels of margin around shapes a few dozen pixels across: at most about half as many again.
       EXPECT_LE(footprint.area(), 1.6 * coverage.reachable + 4 * (size.x + size.y)) << what;
     }
@@ -114,8 +116,10 @@ TEST(ScreenFootprint, WholeRowsWhereNoBoundCanBeGiven) {
   ScreenFootprint footprint;
   const int width = 80, height = 60;
   // The eye inside the bounding sphere, and the sphere behind the eye: every pixel.
-  for (const View& view : {View{"eye inside", {0.0, 0.0, r}, {0.0, 1.0, r}, {0.0, 0.0, r}, {0.3, -0.05, 0.35}},
-                           View{"behind the eye", {0.0, 0.2, 0.05}, {0.0, 1.0, 0.05}, {0.0, 0.0, r}, {0.3, -0.05, 0.35}}}) {
+  const glm::dvec3 light{0.3, -0.05, 0.35};
+  const View unbounded[] = {{"eye inside", {0.0, 0.0, r}, {0.0, 1.0, r}, {0.0, 0.0, r}, light},
+                            {"behind the eye", {0.0, 0.2, 0.05}, {0.0, 1.0, 0.05}, {0.0, 0.0, r}, light}};
+  for (const View& view : unbounded) {
     const Coverage coverage = check(view, width, height, footprint);
     EXPECT_EQ(coverage.missed, 0) << view.what;
     EXPECT_EQ(footprint.area(), static_cast<long long>(width) * height) << view.what;
