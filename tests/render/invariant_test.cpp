@@ -143,7 +143,7 @@ TEST(Invariant, FreshBuffersAreWrittenWhole) {
 
 // The footprint (render/screen_footprint.h) must hold every pixel the slime changes: the difference
 // between the scene with the slime and without it, for slimes on the floor, in the air, stretched,
-// under a low light and on a varnished floor.
+// under a low light, on a varnished floor, near the eye and under a light below the slime's top.
 TEST(Invariant, FootprintHoldsEveryPixelTheSlimeChanges) {
   struct Case {
     const char* what;
