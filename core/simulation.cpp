@@ -17,7 +17,6 @@ namespace {
 
 constexpr int kGoodStateInterval = 8;   // steps between saved good states
 constexpr int kMaxRefinement = 64;      // the guard doubles substeps after a rollback, up to this
-constexpr double kGrabSpeed = 1.5;      // m/s: how fast grabbed points follow a jumping target
 constexpr int kRollingInterval = 4;     // steps between applications of the rolling resistance
 
 }  // namespace
