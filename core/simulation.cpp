@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace slime {
 namespace {
@@ -23,10 +24,21 @@ constexpr int kRollingInterval = 4;     // steps between applications of the rol
 
 Simulation::Simulation(const Settings& settings) { reload(settings); }
 
+Simulation::Simulation(const Settings& settings, SlimeBody body) {
+  settings_ = settings;
+  settings_.slime.level = effectiveLevel(settings);
+  body_ = std::move(body);
+  start();
+}
+
 void Simulation::reload(const Settings& settings) {
   settings_ = settings;
   settings_.slime.level = effectiveLevel(settings);  // slime.level=auto resolved once, here
   body_ = buildSlimeBody(settings_.slime);
+  start();
+}
+
+void Simulation::start() {
   time_ = 0.0;
   stepCount_ = 0;
   refinement_ = 1;
