@@ -11,23 +11,34 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace slime {
 namespace {
 
 constexpr int kGoodStateInterval = 8;   // steps between saved good states
 constexpr int kMaxRefinement = 64;      // the guard doubles substeps after a rollback, up to this
-constexpr double kGrabSpeed = 1.5;      // m/s: how fast grabbed points follow a jumping target
 constexpr int kRollingInterval = 4;     // steps between applications of the rolling resistance
 
 }  // namespace
 
 Simulation::Simulation(const Settings& settings) { reload(settings); }
 
+Simulation::Simulation(const Settings& settings, SlimeBody body) {
+  settings_ = settings;
+  settings_.slime.level = effectiveLevel(settings);
+  body_ = std::move(body);
+  start();
+}
+
 void Simulation::reload(const Settings& settings) {
   settings_ = settings;
   settings_.slime.level = effectiveLevel(settings);  // slime.level=auto resolved once, here
   body_ = buildSlimeBody(settings_.slime);
+  start();
+}
+
+void Simulation::start() {
   time_ = 0.0;
   stepCount_ = 0;
   refinement_ = 1;
