@@ -1,5 +1,8 @@
-# Frame time against the slime's face count, log-log: our renderer and the Embree-only limit on all
-# cores, the seed's algorithm (brute force, 1 thread) measured in the same run, and the seed's own figures.
+# Frame time against the slime's face count, log-log: our renderer's moving-camera frame (every pixel
+# traced) and still-camera frame and the Embree-only limit on all cores, the seed's algorithm (brute
+# force, 1 thread) on the same moving-camera frame in the same run, and the seed's own figures.
+# render.csv columns: 2 faces, 3 threads, 4 still_camera_frame_ms, 7 moving_camera_frame_ms,
+# 12 limit_ms_per_frame, 16 brute_force_frame_ms.
 load "scripts/plots/_style.gp"
 set output dir."/render_throughput.png"
 stats dir."/render.csv" using 3 nooutput
@@ -12,9 +15,10 @@ set format y "10^{%L}"
 set xrange [12:130000]
 full = rows(dir."/render.csv", 3, sprintf("%d", threads))
 single = rows(dir."/render.csv", 3, "1")
-plot full using 2:4 with linespoints pt 7 lc rgb "#1b9e77" title sprintf("Slime renderer (Embree + shading), %d threads", threads), \
-     full using 2:9 with linespoints pt 5 dt 2 lc rgb "#7570b3" title sprintf("Embree-only limit (same rays, no shading), %d threads", threads), \
-     single using 2:12 with linespoints pt 9 lc rgb "#d95f02" title "seed's algorithm (brute force), 1 thread, measured here", \
+plot full using 2:7 with linespoints pt 7 lc rgb "#1b9e77" title sprintf("Slime renderer, moving camera (every pixel traced), %d threads", threads), \
+     full using 2:4 with linespoints pt 6 dt 4 lc rgb "#66a61e" title sprintf("Slime renderer, still camera (reuses what the slime cannot change), %d threads", threads), \
+     full using 2:12 with linespoints pt 5 dt 2 lc rgb "#7570b3" title sprintf("Embree-only limit (the moving frame's queries, no shading), %d threads", threads), \
+     single using 2:16 with linespoints pt 9 lc rgb "#d95f02" title "seed's algorithm (brute force), same moving frame, 1 thread, measured here", \
      rows(dir."/render_seed.csv", 4, "published") using 1:2 with points pt 6 ps 1.5 lc rgb "#e7298a" title "seed's report: 8 threads, i7-10510U", \
      rows(dir."/render_seed.csv", 4, "published") using 1:3 with points pt 4 ps 1.5 lc rgb "#e7298a" title "seed's report: serial", \
      rows(dir."/render_seed.csv", 4, "built_here") using 1:2 with points pt 3 ps 2 lc rgb "#666666" title "seed's program built on this kind of machine, 2 threads"
