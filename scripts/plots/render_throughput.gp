@@ -4,6 +4,9 @@
 # render.csv columns: 2 faces, 3 threads, 4 still_camera_frame_ms, 7 moving_camera_frame_ms,
 # 12 limit_ms_per_frame, 16 brute_force_frame_ms.
 load "scripts/plots/_style.gp"
+if (strstrt(GPVAL_TERMINALS, "pngcairo") > 0) {
+  set terminal pngcairo size 1150,820 enhanced font "DejaVu Sans,11" linewidth 1.5
+}
 set output dir."/render_throughput.png"
 stats dir."/render.csv" using 3 nooutput
 threads = int(STATS_max)
@@ -13,6 +16,10 @@ set ylabel "time per frame (ms)"
 set logscale xy
 set format y "10^{%L}"
 set xrange [12:130000]
+# Seven long entries: below the plot (on a taller canvas), so the plot keeps the width.
+set bmargin 13
+set key at screen 0.5, 0.2 center top box opaque spacing 1.2
+set yrange [1:1e6]
 full = rows(dir."/render.csv", 3, sprintf("%d", threads))
 single = rows(dir."/render.csv", 3, "1")
 plot full using 2:7 with linespoints pt 7 lc rgb "#1b9e77" title sprintf("Slime renderer, moving camera (every pixel traced), %d threads", threads), \
