@@ -26,6 +26,8 @@ slime=$bin/app/slime
 if [ "$quick" = 1 ]; then
   out=build/bench-quick
   mkdir -p "$out"
+  # The brute force keeps its 3 samples after a warm-up (cheap at 160×120, level 2); with --brute-samples
+  # below 3 the JSON's headline would say "quick".
   "$slime" bench render --levels 2 --threads 1 --frames 2 --warmup 1 --size 160x120 --brute-max-level 2 --bvh-levels 4 \
     --json "$out/render.json" --csv "$out/render.csv"
   "$slime" bench physics --levels 2 --integrators symplectic_euler,implicit_euler --seconds 0.05 --stability-level 2 \

@@ -25,6 +25,8 @@ struct RenderBenchOptions {
   int height = 564;
   int depth = 3;
   int bruteMaxLevel = 4;           // the seed's algorithm at levels 0..this (-1: none)
+  int bruteSamples = 3;            // timed brute-force frames at least (after one warm-up); below 3 the
+                                   // headline is labelled a quick, indicative figure
   std::vector<int> bvhLevels{4, 6};  // levels of the refit-vs-rebuild measurement (empty: none)
   std::string jsonFile;
   std::string csvFile;

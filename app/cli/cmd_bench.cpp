@@ -60,6 +60,9 @@ void registerRender(CLI::App& bench, int& exitCode) {
   command->add_option("--depth", options->bench.depth, "Whitted recursion depth")->check(CLI::Range(1, 16))->capture_default_str();
   command->add_option("--brute-max-level", options->bench.bruteMaxLevel, "Run the seed's brute-force tracer up to this level (-1: never)")
       ->check(CLI::Range(-1, 7))->capture_default_str();
+  command->add_option("--brute-samples", options->bench.bruteSamples,
+                      "Timed brute-force frames at least, after one warm-up (below 3: the headline is labelled quick)")
+      ->check(CLI::Range(1, 1000))->capture_default_str();
   command->add_option("--bvh-levels", options->bvhLevels, "Levels of the refit-vs-rebuild measurement ('none' to skip)")->capture_default_str();
   command->add_option("--json", options->bench.jsonFile, "Write every figure as JSON");
   command->add_option("--csv", options->bench.csvFile, "Write the tables as CSV (FILE and FILE_bvh, FILE_seed)");

@@ -162,7 +162,8 @@ void statsWindow(const PanelView& view) {
     ImGui::Text("upload  %6.1f ms", stats.stages.upload);
     ImGui::Text("UI      %6.1f ms", stats.stages.ui);
     ImGui::Text("rays    %.2f M/frame", static_cast<double>(stats.rays) / 1e6);
-    ImGui::Text("        %.1f Mrays/s", stats.megaraysPerSecond);
+    ImGui::Text("        %.1f M/s all rays,", stats.megaraysPerSecond);
+    ImGui::Text("        incl. floor and sky");
     ImGui::Text("reused  %.0f%% of pixels", 100.0 * stats.reusedFraction);
     ImGui::Text("threads %d, %.0f%% busy", stats.traceThreads, 100.0 * stats.threadUse);
     ImGui::Text("sim     x%.2f real time", stats.simulationSpeed);

@@ -1,5 +1,6 @@
 // The benchmarks run end to end at a tiny size so their code cannot rot: every JSON field the charts
-// and the README read is there and sane. Nothing about timing is asserted beyond "positive".
+// and the README read is there and sane. Nothing about timing is asserted beyond "positive" and the
+// ratios being the quotients of the times they name.
 #include "app/bench/bench_accuracy.h"
 #include "app/bench/bench_physics.h"
 #include "app/bench/bench_render.h"
@@ -47,17 +48,62 @@ TEST(BenchRender, OneTinyLevelHasEveryField) {
   EXPECT_EQ(c["height"], 48);
   EXPECT_EQ(c["depth"], 3);
   EXPECT_EQ(c["threads"], 1);
-  EXPECT_GT(c["ms_per_frame"].get<double>(), 0.0);
-  EXPECT_GT(c["mrays_per_s"].get<double>(), 0.0);
-  EXPECT_EQ(c["rays"]["primary"], 64 * 48);
-  for (const char* kind : {"shadow", "reflection", "refraction", "total", "slime_queries"}) EXPECT_TRUE(c["rays"].contains(kind)) << kind;
+  for (const char* frame : {"still_camera", "moving_camera"}) {
+    EXPECT_GT(c[std::string(frame) + "_frame_ms"].get<double>(), 0.0) << frame;
+    EXPECT_EQ(c[std::string(frame) + "_frame_ms"], c[frame]["ms"]["median"]) << frame;
+    EXPECT_GT(c[frame]["all_mrays_per_s"].get<double>(), 0.0) << frame;
+    for (const char* kind : {"primary", "shadow", "reflection", "refraction", "total", "slime_queries"})
+      EXPECT_TRUE(c[frame]["rays"].contains(kind)) << frame << " " << kind;
+  }
+  // The moving-camera frame and the brute force's frame trace every pixel: nothing reused or cached.
+  EXPECT_EQ(c["moving_camera"]["rays"]["primary"], 64 * 48);
+  EXPECT_EQ(c["moving_camera"]["reused_pixels"], 0);
+  EXPECT_EQ(c["moving_camera"]["cached_floor_pixels"], 0);
+  EXPECT_EQ(c["brute_force"]["rays"]["primary"], 64 * 48);
+  EXPECT_EQ(c["brute_force"]["reused_pixels"], 0);
+  EXPECT_EQ(c["brute_force"]["cached_floor_pixels"], 0);
+  // The still camera's first (here its only) frame traces every pixel too; later ones reuse.
+  EXPECT_EQ(c["still_camera"]["rays"]["primary"], 64 * 48);
   EXPECT_GT(c["limit_ms_per_frame"].get<double>(), 0.0);
-  EXPECT_GT(c["brute_ms_per_frame"].get<double>(), 0.0);
+  EXPECT_GT(c["brute_force_frame_ms"].get<double>(), 0.0);
+  // Throughput under names that cannot be mixed up: queries that reach Embree, and all rays.
+  EXPECT_FALSE(c.contains("mrays_per_s"));
+  EXPECT_FALSE(c.contains("ms_per_frame"));
+  EXPECT_FALSE(c.contains("speedup_over_brute"));
+  const double queries = c["limit"]["queries"]["total"].get<double>();
+  EXPECT_NEAR(c["embree_mqueries_per_s"].get<double>(), queries / (c["limit_ms_per_frame"].get<double>() * 1e3),
+              1e-9 * queries);
+  EXPECT_NEAR(c["all_mrays_per_s"].get<double>(), c["moving_camera"]["all_mrays_per_s"].get<double>(), 1e-12);
+  EXPECT_LT(queries, c["moving_camera"]["rays"]["total"].get<double>());  // floor and sky rays never query Embree
   // The replayed queries are the frame's own: the limit sees as many as the renderer made.
-  const json& queries = c["limit"]["queries"];
-  EXPECT_EQ(queries["primary"].get<std::uint64_t>() + queries["secondary"].get<std::uint64_t>() +
-                queries["shadow"].get<std::uint64_t>(),
-            c["rays"]["slime_queries"].get<std::uint64_t>());
+  const json& kinds = c["limit"]["queries"];
+  EXPECT_EQ(kinds["primary"].get<std::uint64_t>() + kinds["secondary"].get<std::uint64_t>() +
+                kinds["shadow"].get<std::uint64_t>(),
+            c["still_camera"]["rays"]["slime_queries"].get<std::uint64_t>());
+  EXPECT_EQ(kinds["total"].get<std::uint64_t>(), c["still_camera"]["rays"]["slime_queries"].get<std::uint64_t>());
+
+  // The headline: brute force over the same full frame, medians, at least 3 brute samples after a warm-up.
+  ASSERT_TRUE(report.contains("headline"));
+  const json& headline = report["headline"];
+  EXPECT_EQ(headline["level"], 1);
+  EXPECT_EQ(headline["embree_mqueries_per_s"], c["embree_mqueries_per_s"]);
+  EXPECT_EQ(headline["all_mrays_per_s"], c["all_mrays_per_s"]);
+  EXPECT_EQ(headline["still_camera_frame_ms"], c["still_camera_frame_ms"]);
+  EXPECT_EQ(headline["moving_camera_frame_ms"], c["moving_camera_frame_ms"]);
+  EXPECT_TRUE(headline["all_mrays_per_s_counts"].is_string());
+  const json& speedup = headline["speedup_over_brute_full_frame"];
+  const double bruteMs = speedup["brute_force_frame_ms"].get<double>();
+  const double embreeMs = speedup["embree_frame_ms"].get<double>();
+  EXPECT_GT(bruteMs, 0.0);
+  EXPECT_EQ(embreeMs, c["moving_camera_frame_ms"].get<double>());
+  EXPECT_EQ(bruteMs, c["brute_force"]["ms"]["median"].get<double>());
+  EXPECT_NEAR(speedup["ratio"].get<double>(), bruteMs / embreeMs, 1e-9 * bruteMs / embreeMs);
+  EXPECT_EQ(speedup["ratio"], c["full_frame_speedup_over_brute"]);
+  EXPECT_GE(speedup["brute_force_samples"].get<int>(), 3);
+  EXPECT_EQ(speedup["brute_force_samples"], c["brute_force"]["ms"]["samples"]);
+  EXPECT_GE(speedup["brute_force_warmup_frames"].get<int>(), 1);
+  EXPECT_EQ(speedup["embree_frame_samples"], 1);
+  EXPECT_EQ(speedup["mode"], "full");
   ASSERT_EQ(report["bvh"].size(), 4u);
   for (const json& b : report["bvh"]) {
     EXPECT_GT(b["update_ms"].get<double>(), 0.0);
@@ -66,6 +112,24 @@ TEST(BenchRender, OneTinyLevelHasEveryField) {
   EXPECT_GT(report["seed"].size(), 0u);
   EXPECT_TRUE(std::ifstream(outputPath("bench_render_bvh.csv")).good());
   EXPECT_TRUE(std::ifstream(outputPath("bench_render_seed.csv")).good());
+}
+
+// Fewer brute-force samples than 3 are allowed (a quick run) but the headline says so.
+TEST(BenchRender, QuickBruteForceIsLabelled) {
+  RenderBenchOptions options;
+  options.levels = {0};
+  options.threads = {1};
+  options.frames = 1;
+  options.warmup = 0;
+  options.width = 32;
+  options.height = 24;
+  options.bruteMaxLevel = 0;
+  options.bruteSamples = 1;
+  options.bvhLevels = {};
+  const json report = runRenderBench(defaultSettings(), options);
+  const json& speedup = report["headline"]["speedup_over_brute_full_frame"];
+  EXPECT_EQ(speedup["brute_force_samples"], 1);
+  EXPECT_NE(speedup["mode"].get<std::string>().find("quick"), std::string::npos);
 }
 
 TEST(BenchPhysics, OneTinyLevelHasEveryField) {

@@ -46,7 +46,7 @@ TEST(RenderBench, DISABLED_LevelsZeroToSixAt734x564) {
     std::printf("level %d: cpu %.2f ms per frame over all threads (%.2f ms per thread)\n", level,
                 cpuTimes[cpuTimes.size() / 2], cpuTimes[cpuTimes.size() / 2] / settings.render.threads);
     const RayCounts& r = stats.rays;
-    std::printf("level %d (%6zu faces): %7.2f ms/frame median of %d, %5.1f Mrays/s; rays %.3f M: primary %.3f, "
+    std::printf("level %d (%6zu faces): %7.2f ms/frame median of %d, all rays (floor and sky included) %5.1f M/s; rays %.3f M: primary %.3f, "
                 "shadow %.3f, reflection %.3f, refraction %.3f; slime queries %.3f M; refit %.3f ms\n",
                 level, mesh.triangles.size(), median, frames, static_cast<double>(r.total()) / median / 1e3,
                 r.total() / 1e6, r.primary / 1e6, r.shadow / 1e6, r.reflection / 1e6, r.refraction / 1e6,
