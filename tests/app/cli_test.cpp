@@ -1,6 +1,9 @@
 // The command line as a user meets it: every bad input gives a clear message naming what is wrong and
 // what is allowed, exit code 2, and no output file left behind.
+#include "core/settings_io.h"
+
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <array>
 #include <cstdio>
@@ -80,7 +83,7 @@ TEST(Cli, RejectedSnapshotLeavesNoFileBehind) {
 TEST(Cli, HelpNamesEverySubcommandAndExitsZero) {
   const CommandResult run = runSlime("--help");
   EXPECT_EQ(run.exitCode, 0);
-  for (const char* name : {"view", "snapshot", "sim", "bench"}) EXPECT_NE(run.output.find(name), std::string::npos) << name;
+  for (const char* name : {"view", "snapshot", "sim", "bench", "settings"}) EXPECT_NE(run.output.find(name), std::string::npos) << name;
 }
 
 TEST(Cli, SimHelpNamesEveryIntegrator) {
@@ -88,6 +91,34 @@ TEST(Cli, SimHelpNamesEveryIntegrator) {
   EXPECT_EQ(run.exitCode, 0);
   for (const char* name : {"explicit_euler", "symplectic_euler", "rk4", "implicit_euler", "xpbd"})
     EXPECT_NE(run.output.find(name), std::string::npos) << name << "\n" << run.output;
+}
+
+// `slime settings` lists every key of the table with its meaning; the JSON form parses and says the same.
+TEST(Cli, SettingsListsEveryKey) {
+  const CommandResult run = runSlime("settings");
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  for (const std::string& key : slime::settingKeys())
+    EXPECT_NE(run.output.find("\n" + key + " "), std::string::npos) << key << " missing from `slime settings`";
+  EXPECT_NE(run.output.find("1, 4, 9, 16, 25, 36, 49, 64"), std::string::npos) << "render.spp's values";
+  EXPECT_NE(run.output.find("icosphere subdivision level"), std::string::npos) << "slime.level's meaning";
+}
+
+TEST(Cli, SettingsJsonParsesAndHasEveryKeyWithItsMeaning) {
+  const std::string path = outputPath("settings.json");
+  const CommandResult run = runSlime("settings --json > " + path);
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  std::FILE* file = std::fopen(path.c_str(), "r");
+  ASSERT_NE(file, nullptr);
+  nlohmann::json list;
+  EXPECT_NO_THROW(list = nlohmann::json::parse(file)) << "slime settings --json is not JSON";
+  std::fclose(file);
+  std::vector<std::string> keys;
+  for (const auto& entry : list) {
+    keys.push_back(entry.at("key").get<std::string>());
+    EXPECT_FALSE(entry.at("help").get<std::string>().empty()) << entry.at("key");
+    EXPECT_TRUE(entry.contains("default")) << entry.at("key");
+  }
+  EXPECT_EQ(keys, slime::settingKeys());
 }
 
 }  // namespace
