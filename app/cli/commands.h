@@ -31,5 +31,6 @@ void registerSnapshotCommand(CLI::App& root, int& exitCode);
 void registerViewCommand(CLI::App& root, int& exitCode);   // also what `slime` alone runs
 void registerBenchCommand(CLI::App& root, int& exitCode);
 void registerSettingsCommand(CLI::App& root, int& exitCode);
+void registerRecordCommand(CLI::App& root, int& exitCode);
 
 }  // namespace slime

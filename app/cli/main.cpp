@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   slime::registerSimCommand(app, exitCode);
   slime::registerBenchCommand(app, exitCode);
   slime::registerSettingsCommand(app, exitCode);
+  slime::registerRecordCommand(app, exitCode);
   try {
     app.parse(argc, argv);
     if (app.get_subcommands().empty()) app.get_subcommand("view")->parse(std::vector<std::string>{});
