@@ -5,6 +5,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -108,6 +109,10 @@ VideoEncoder::VideoEncoder(const ClipSpec& spec) : spec_(spec) {
   const int temporaryFile = mkstemp(temporary.data());
   if (temporaryFile < 0)
     throw SettingsError("-o " + spec.path + ": cannot write in " + directory.string() + ": " + std::strerror(errno));
+  // mkstemp makes the file private (0600); the clip gets the permissions any new file would.
+  const mode_t mask = umask(0);
+  umask(mask);
+  fchmod(temporaryFile, 0666 & ~mask);
   close(temporaryFile);
   temporaryPath_ = temporary;
   std::string log = (fs::temp_directory_path() / "slime-ffmpeg-XXXXXX").string();
