@@ -8,6 +8,8 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <sys/wait.h>
 
@@ -68,7 +70,24 @@ INSTANTIATE_TEST_SUITE_P(
                  "--set floor.image=" SLIME_SOURCE_DIR "/CMakeLists.txt", "floor.image"},
         BadInput{"snapshot -o " SLIME_TEST_OUTPUT_DIR "/bad.png --set floor.pattern=image "
                  "--set floor.image=/nonexistent.png", "floor.image"},
+        BadInput{"snapshot -o " SLIME_TEST_OUTPUT_DIR "/bad.png --eye 0 0 0.1 --look-at 0 0 0.1", "--look-at"},
         BadInput{"frobnicate", "frobnicate"}));
+
+// --eye and --look-at are readable names of --vp and --vi: the same picture.
+TEST(Cli, EyeAndLookAtAreVpAndVi) {
+  const std::string named = outputPath("eye.png"), seed = outputPath("vp.png");
+  const std::string common = " --size 64x48 --settle 0 ";
+  ASSERT_EQ(runSlime("snapshot -o " + named + common + "--eye 0.15 -0.15 0.08 --look-at 0 0 0.03").exitCode, 0);
+  ASSERT_EQ(runSlime("snapshot -o " + seed + common + "--vp 0.15 -0.15 0.08 --vi 0 0 0.03").exitCode, 0);
+  ASSERT_EQ(runSlime("snapshot -o " + outputPath("default_view.png") + common).exitCode, 0);
+  const auto bytes = [](const std::string& path) {
+    std::ifstream file(path, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  };
+  EXPECT_FALSE(bytes(named).empty());
+  EXPECT_TRUE(bytes(named) == bytes(seed)) << "--eye/--look-at and --vp/--vi drew different pictures";
+  EXPECT_FALSE(bytes(named) == bytes(outputPath("default_view.png"))) << "--eye/--look-at did not move the camera";
+}
 
 TEST(Cli, RejectedSnapshotLeavesNoFileBehind) {
   const std::string path = outputPath("bad.png");
