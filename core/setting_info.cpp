@@ -1,10 +1,10 @@
 #include "core/setting_info.h"
 
-#include "core/settings_fields.h"
-#include "core/settings_io.h"
-
 #include <sstream>
 #include <type_traits>
+
+#include "core/settings_fields.h"
+#include "core/settings_io.h"
 
 namespace slime {
 namespace {
@@ -17,8 +17,10 @@ constexpr double kWidestCheckedRange = 64.0;
 
 template <class Field>
 json toJson(const Field& field) {
-  if constexpr (std::is_same_v<Field, glm::dvec3>) return json::array({field.x, field.y, field.z});
-  else return json(field);
+  if constexpr (std::is_same_v<Field, glm::dvec3>)
+    return json::array({field.x, field.y, field.z});
+  else
+    return json(field);
 }
 
 // The values of an integer setting that validation accepts, when it refuses some of [min, max].
@@ -79,12 +81,18 @@ std::vector<SettingInfo> describeSettings(const Settings& settings) {
 
 const char* typeName(SettingType type) {
   switch (type) {
-    case SettingType::Number: return "number";
-    case SettingType::Integer: return "integer";
-    case SettingType::Vector: return "vector";
-    case SettingType::Text: return "text";
-    case SettingType::Choice: return "choice";
-    case SettingType::Boolean: return "boolean";
+    case SettingType::Number:
+      return "number";
+    case SettingType::Integer:
+      return "integer";
+    case SettingType::Vector:
+      return "vector";
+    case SettingType::Text:
+      return "text";
+    case SettingType::Choice:
+      return "choice";
+    case SettingType::Boolean:
+      return "boolean";
   }
   return "?";
 }
@@ -95,13 +103,17 @@ std::string allowedText(const SettingInfo& info) {
     case SettingType::Number:
     case SettingType::Integer:
       if (!info.onlyValues.empty()) {
-        for (std::size_t i = 0; i < info.onlyValues.size(); ++i) text += (i ? ", " : "") + std::to_string(info.onlyValues[i]);
+        for (std::size_t i = 0; i < info.onlyValues.size(); ++i)
+          text += (i ? ", " : "") + std::to_string(info.onlyValues[i]);
         return text;
       }
       return formatNumber(info.min) + " to " + formatNumber(info.max);
-    case SettingType::Vector: return "x,y,z each " + formatNumber(info.min) + " to " + formatNumber(info.max);
-    case SettingType::Text: return "any text";
-    case SettingType::Boolean: return "true or false";
+    case SettingType::Vector:
+      return "x,y,z each " + formatNumber(info.min) + " to " + formatNumber(info.max);
+    case SettingType::Text:
+      return "any text";
+    case SettingType::Boolean:
+      return "true or false";
     case SettingType::Choice:
       for (std::size_t i = 0; i < info.choices.size(); ++i) text += (i ? ", " : "") + info.choices[i];
       return text;

@@ -3,21 +3,20 @@
 // settings` prints it; the viewer builds its panels from it.
 #pragma once
 
-#include "core/settings.h"
-
 #include <nlohmann/json.hpp>
-
 #include <string>
 #include <vector>
+
+#include "core/settings.h"
 
 namespace slime {
 
 enum class SettingType { Number, Integer, Vector, Text, Choice, Boolean };
 
 struct SettingInfo {
-  std::string key;                   // dotted key, e.g. "slime.level"
+  std::string key;  // dotted key, e.g. "slime.level"
   SettingType type = SettingType::Number;
-  double min = 0.0;                  // Number, Integer and each component of a Vector
+  double min = 0.0;  // Number, Integer and each component of a Vector
   double max = 0.0;
   std::string unit;                  // may be empty (a dimensionless coefficient)
   std::vector<std::string> choices;  // Choice: the allowed words

@@ -2,6 +2,15 @@
 // scenario headless and encodes it (video_encoder.h). Frames are taken on the simulation clock:
 // frame k shows the slime at t = k / fps, however long the machine takes to compute it, so the same
 // inputs always give the same clip.
+#include <unistd.h>
+
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+
 #include "app/cli/commands.h"
 #include "app/cli/snapshot.h"
 #include "app/cli/video_encoder.h"
@@ -11,15 +20,6 @@
 #include "core/simulation.h"
 #include "render/image_io.h"
 #include "render/renderer.h"
-
-#include <unistd.h>
-
-#include <cmath>
-#include <csignal>
-#include <cstdio>
-#include <memory>
-#include <optional>
-#include <stdexcept>
 
 namespace slime {
 namespace {
@@ -58,19 +58,20 @@ class TracedFrames {
 
 void checkOptions(const RecordOptions& options) {
   if (!std::isfinite(options.seconds) || options.seconds <= 0.0 || options.seconds > kLongestClipSeconds)
-    throw SettingsError("--seconds " + std::to_string(options.seconds) + ": expected a duration above 0 and at most " +
+    throw SettingsError("--seconds " + std::to_string(options.seconds) +
+                        ": expected a duration above 0 and at most " +
                         std::to_string(static_cast<int>(kLongestClipSeconds)) + " s");
   if (options.fps < 1 || options.fps > kFastestFps)
-    throw SettingsError("--fps " + std::to_string(options.fps) + ": expected 1 to " + std::to_string(kFastestFps) +
-                        " frames per second");
+    throw SettingsError("--fps " + std::to_string(options.fps) + ": expected 1 to " +
+                        std::to_string(kFastestFps) + " frames per second");
   clipFormatOf(options.output);
 }
 
 void showProgress(int done, int total) {
   constexpr int kBarWidth = 40;
   const int filled = total > 0 ? done * kBarWidth / total : kBarWidth;
-  std::fprintf(stderr, "\rrecording [%.*s%*s] %d/%d frames", filled, "########################################",
-               kBarWidth - filled, "", done, total);
+  std::fprintf(stderr, "\rrecording [%.*s%*s] %d/%d frames", filled,
+               "########################################", kBarWidth - filled, "", done, total);
   if (done == total) std::fprintf(stderr, "\n");
 }
 
@@ -85,8 +86,10 @@ void runRecord(const RecordOptions& options) {
   VideoEncoder encoder({options.output, settings.camera.width, settings.camera.height, options.fps});
   std::unique_ptr<TracedFrames> traced;
   std::unique_ptr<UiFrames> ui;
-  if (options.ui) ui = std::make_unique<UiFrames>(settings);
-  else traced = std::make_unique<TracedFrames>(settings);
+  if (options.ui)
+    ui = std::make_unique<UiFrames>(settings);
+  else
+    traced = std::make_unique<TracedFrames>(settings);
   Simulation& simulation = ui ? ui->simulation() : traced->simulation();
 
   interrupted = 0;
@@ -121,12 +124,17 @@ void runRecord(const RecordOptions& options) {
 void registerRecordCommand(CLI::App& root, int& exitCode) {
   auto options = std::make_shared<RecordOptions>();
   auto* command = root.add_subcommand(
-      "record", "Replay a scenario headless and encode it with ffmpeg: .mp4, .gif or .webp, frame k at t = k/fps");
-  command->add_option("-o,--output", options->output, "Clip to write: .mp4 (H.264), .gif or .webp")->required();
-  command->add_option("--seconds", options->seconds, "Simulated seconds to record (above 0, at most 600)")->required();
+      "record",
+      "Replay a scenario headless and encode it with ffmpeg: .mp4, .gif or .webp, frame k at t = k/fps");
+  command->add_option("-o,--output", options->output, "Clip to write: .mp4 (H.264), .gif or .webp")
+      ->required();
+  command->add_option("--seconds", options->seconds, "Simulated seconds to record (above 0, at most 600)")
+      ->required();
   command->add_option("--fps", options->fps, "Frames per simulated second (1..120, default 30)");
-  command->add_option("--size", options->size, "Frame size WxH in pixels, default camera.width x camera.height");
-  command->add_flag("--ui", options->ui, "Record the whole viewer (image and panels), drawn headless through EGL");
+  command->add_option("--size", options->size,
+                      "Frame size WxH in pixels, default camera.width x camera.height");
+  command->add_flag("--ui", options->ui,
+                    "Record the whole viewer (image and panels), drawn headless through EGL");
   addSceneOptions(*command, options->scene);
   command->callback([options, &exitCode] {
     runRecord(*options);

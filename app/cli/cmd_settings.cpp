@@ -1,14 +1,13 @@
 // `slime settings`: every setting with its unit, allowed values, default and one-line meaning, read
 // from the one table of settings (core/settings_fields.h), as a table or as JSON (--json).
+#include <algorithm>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <string>
+
 #include "app/cli/commands.h"
 #include "core/setting_info.h"
 #include "core/settings_io.h"
-
-#include <nlohmann/json.hpp>
-
-#include <algorithm>
-#include <cstdio>
-#include <string>
 
 namespace slime {
 namespace {
@@ -16,9 +15,13 @@ namespace {
 nlohmann::json asJson(const std::vector<SettingInfo>& settings) {
   nlohmann::json list = nlohmann::json::array();
   for (const SettingInfo& info : settings) {
-    nlohmann::json entry = {{"key", info.key}, {"type", typeName(info.type)}, {"default", info.value},
-                            {"help", info.help}, {"allowed", allowedText(info)}};
-    if (info.type == SettingType::Number || info.type == SettingType::Integer || info.type == SettingType::Vector) {
+    nlohmann::json entry = {{"key", info.key},
+                            {"type", typeName(info.type)},
+                            {"default", info.value},
+                            {"help", info.help},
+                            {"allowed", allowedText(info)}};
+    if (info.type == SettingType::Number || info.type == SettingType::Integer ||
+        info.type == SettingType::Vector) {
       entry["min"] = info.min;
       entry["max"] = info.max;
       entry["unit"] = info.unit;
@@ -61,11 +64,12 @@ void printTable(const std::vector<SettingInfo>& settings) {
     group = info.group();
     // Units such as N·s/m hold multi-byte characters: pad by what a terminal shows, not by bytes.
     const auto shownWidth = [](const std::string& text) {
-      return static_cast<int>(std::count_if(text.begin(), text.end(), [](char c) { return (c & 0xC0) != 0x80; }));
+      return static_cast<int>(
+          std::count_if(text.begin(), text.end(), [](char c) { return (c & 0xC0) != 0x80; }));
     };
     const int allowedPad = int(allowedWidth) + int(allowed[i].size()) - shownWidth(allowed[i]);
-    std::printf("%-*s  %-*s  %-*s  %s\n", int(keyWidth), info.key.c_str(), int(valueWidth), shownValue(info.value).c_str(),
-                allowedPad, allowed[i].c_str(), info.help.c_str());
+    std::printf("%-*s  %-*s  %-*s  %s\n", int(keyWidth), info.key.c_str(), int(valueWidth),
+                shownValue(info.value).c_str(), allowedPad, allowed[i].c_str(), info.help.c_str());
   }
   std::printf("\nSet them in a scene file (--scene FILE, JSON nested by group) or with --set key=value.\n");
 }
@@ -74,12 +78,15 @@ void printTable(const std::vector<SettingInfo>& settings) {
 
 void registerSettingsCommand(CLI::App& root, int& exitCode) {
   auto json = std::make_shared<bool>(false);
-  auto* command = root.add_subcommand("settings", "List every setting: its default, allowed values, unit and meaning");
+  auto* command =
+      root.add_subcommand("settings", "List every setting: its default, allowed values, unit and meaning");
   command->add_flag("--json", *json, "Print the list as JSON");
   command->callback([json, &exitCode] {
     const std::vector<SettingInfo> settings = describeSettings(defaultSettings());
-    if (*json) std::printf("%s\n", asJson(settings).dump(2).c_str());
-    else printTable(settings);
+    if (*json)
+      std::printf("%s\n", asJson(settings).dump(2).c_str());
+    else
+      printTable(settings);
     exitCode = 0;
   });
 }

@@ -1,7 +1,5 @@
 #include "app/cli/video_encoder.h"
 
-#include "core/settings_io.h"
-
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
@@ -19,6 +17,8 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+
+#include "core/settings_io.h"
 
 extern char** environ;
 
@@ -53,20 +53,22 @@ ClipFormat clipFormatOf(const std::string& path) {
 std::vector<std::string> ffmpegArguments(const ClipSpec& spec, ClipFormat format, const std::string& output) {
   std::vector<std::string> arguments = {
       "-hide_banner", "-loglevel", "error", "-y", "-filter_threads", "1", "-filter_complex_threads", "1",
-      "-f", "rawvideo", "-pix_fmt", "rgb24", "-s", std::to_string(spec.width) + "x" + std::to_string(spec.height),
-      "-r", std::to_string(spec.fps), "-i", "pipe:0",
+      "-f", "rawvideo", "-pix_fmt", "rgb24", "-s",
+      std::to_string(spec.width) + "x" + std::to_string(spec.height), "-r", std::to_string(spec.fps), "-i",
+      "pipe:0",
       // Same frames, same bytes: no encoder version or time stamps in the file, one thread.
       "-threads", "1", "-fflags", "+bitexact", "-flags", "+bitexact", "-map_metadata", "-1"};
   const auto add = [&](std::initializer_list<std::string> more) { arguments.insert(arguments.end(), more); };
   switch (format) {
     case ClipFormat::Mp4:
-      add({"-c:v", "libx264", "-preset", "medium", "-crf", "20", "-pix_fmt", "yuv420p", "-movflags", "+faststart",
-           "-f", "mp4"});
+      add({"-c:v", "libx264", "-preset", "medium", "-crf", "20", "-pix_fmt", "yuv420p", "-movflags",
+           "+faststart", "-f", "mp4"});
       break;
     case ClipFormat::Gif:
       // One palette for the whole clip, then ordered dithering: stable colours, small files.
-      add({"-filter_complex", "split[frames][copy];[copy]palettegen=stats_mode=full[palette];"
-                              "[frames][palette]paletteuse=dither=bayer:bayer_scale=4",
+      add({"-filter_complex",
+           "split[frames][copy];[copy]palettegen=stats_mode=full[palette];"
+           "[frames][palette]paletteuse=dither=bayer:bayer_scale=4",
            "-loop", "0", "-f", "gif"});
       break;
     case ClipFormat::Webp:
@@ -96,19 +98,23 @@ VideoEncoder::VideoEncoder(const ClipSpec& spec) : spec_(spec) {
                         ": an .mp4 (H.264, yuv420p) needs an even width and height");
   const std::string ffmpeg = findOnPath("ffmpeg");
   if (ffmpeg.empty())
-    throw SettingsError("-o " + spec.path + ": the ffmpeg program is not on PATH; install it (Debian: apt install "
+    throw SettingsError("-o " + spec.path +
+                        ": the ffmpeg program is not on PATH; install it (Debian: apt install "
                         "ffmpeg, or scripts/setup.sh)");
   const fs::path directory = directoryOf(spec.path);
   if (!fs::is_directory(directory))
     throw SettingsError("-o " + spec.path + ": the directory " + directory.string() + " does not exist");
-  if (fs::is_directory(spec.path)) throw SettingsError("-o " + spec.path + ": is a directory; expected a file name");
+  if (fs::is_directory(spec.path))
+    throw SettingsError("-o " + spec.path + ": is a directory; expected a file name");
 
   // The temporary clip beside the target (so the rename stays on one file system); ffmpeg's messages
   // go to a temporary log, read if it fails.
-  std::string temporary = (directory / ("." + fs::path(spec.path).filename().string() + ".partial-XXXXXX")).string();
+  std::string temporary =
+      (directory / ("." + fs::path(spec.path).filename().string() + ".partial-XXXXXX")).string();
   const int temporaryFile = mkstemp(temporary.data());
   if (temporaryFile < 0)
-    throw SettingsError("-o " + spec.path + ": cannot write in " + directory.string() + ": " + std::strerror(errno));
+    throw SettingsError("-o " + spec.path + ": cannot write in " + directory.string() + ": " +
+                        std::strerror(errno));
   // mkstemp makes the file private (0600); the clip gets the permissions any new file would.
   const mode_t mask = umask(0);
   umask(mask);

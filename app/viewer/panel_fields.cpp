@@ -1,22 +1,24 @@
 #include "app/viewer/panel_fields.h"
 
-#include "core/settings_fields.h"
-#include "core/settings_io.h"
-
 #include <algorithm>
 #include <type_traits>
+
+#include "core/settings_fields.h"
+#include "core/settings_io.h"
 
 namespace slime {
 namespace {
 
 // Rebuild-type settings. Keys that a build does not have are simply never met.
-constexpr std::string_view kReloadKeys[] = {"slime.shape",  "slime.model",     "slime.radius",  "slime.level",
-                                            "slime.resolution", "slime.autoLevel", "slime.position"};
+constexpr std::string_view kReloadKeys[] = {"slime.shape",   "slime.model",      "slime.radius",
+                                            "slime.level",   "slime.resolution", "slime.autoLevel",
+                                            "slime.position"};
 
 // The address of every field of `settings`, in the table's order.
 std::vector<const void*> fieldAddresses(const Settings& settings) {
   std::vector<const void*> addresses;
-  forEachField(settings, [&](std::string_view, const auto& field, const auto&) { addresses.push_back(&field); });
+  forEachField(settings,
+               [&](std::string_view, const auto& field, const auto&) { addresses.push_back(&field); });
   return addresses;
 }
 
@@ -25,9 +27,12 @@ constexpr double kLogarithmicSpan = 100.0;
 
 Widget widgetFor(const SettingInfo& info) {
   switch (info.type) {
-    case SettingType::Boolean: return Widget::Checkbox;
-    case SettingType::Choice: return Widget::Combo;
-    case SettingType::Text: return Widget::Text;
+    case SettingType::Boolean:
+      return Widget::Checkbox;
+    case SettingType::Choice:
+      return Widget::Combo;
+    case SettingType::Text:
+      return Widget::Text;
     case SettingType::Vector:
       return info.unit.find("RGB") != std::string::npos && info.max <= 1.0 ? Widget::Color : Widget::Drag3;
     case SettingType::Integer:
@@ -57,8 +62,9 @@ std::vector<PanelField> generateFields() {
 }  // namespace
 
 const std::vector<PanelGroup>& panelGroups() {
-  static const std::vector<PanelGroup> groups = {{"camera", "Camera"}, {"light", "Light"},   {"floor", "Floor"},
-                                                 {"slime", "Slime"},   {"render", "Render"}, {"sim", "Simulation"}};
+  static const std::vector<PanelGroup> groups = {{"camera", "Camera"}, {"light", "Light"},
+                                                 {"floor", "Floor"},   {"slime", "Slime"},
+                                                 {"render", "Render"}, {"sim", "Simulation"}};
   return groups;
 }
 

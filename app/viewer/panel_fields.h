@@ -3,29 +3,29 @@
 // unit and range and none can drift. No ImGui here: tests check the list without a GL context.
 #pragma once
 
-#include "core/setting_info.h"
-
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "core/setting_info.h"
 
 namespace slime {
 
 // How one setting is edited.
 enum class Widget {
-  Slider,        // a number or integer over [min, max]
-  LogSlider,     // a number over [min, max] spanning orders of magnitude
-  Drag3,         // a vector (positions): dragged, clamped to [min, max] per component
-  Color,         // a linear RGB colour in [0, 1]
-  Combo,         // a choice among words
-  ValueCombo,    // an integer among the only values validation accepts (render.spp: 1, 4, 9, ...)
-  Checkbox,      // a boolean
-  Text,          // free text (a file path)
-  WindowSize,    // camera.width/height: the viewer's window sets them; shown, not edited
+  Slider,      // a number or integer over [min, max]
+  LogSlider,   // a number over [min, max] spanning orders of magnitude
+  Drag3,       // a vector (positions): dragged, clamped to [min, max] per component
+  Color,       // a linear RGB colour in [0, 1]
+  Combo,       // a choice among words
+  ValueCombo,  // an integer among the only values validation accepts (render.spp: 1, 4, 9, ...)
+  Checkbox,    // a boolean
+  Text,        // free text (a file path)
+  WindowSize,  // camera.width/height: the viewer's window sets them; shown, not edited
 };
 
 struct PanelField {
-  SettingInfo setting;           // key, range, unit, choices, meaning: the table's
+  SettingInfo setting;  // key, range, unit, choices, meaning: the table's
   Widget widget = Widget::Slider;
   bool appliesOnReload = false;  // rebuilds the slime: held until "Reload slime"
 };

@@ -1,8 +1,5 @@
 #include "app/viewer/panels.h"
 
-#include "app/viewer/panel_fields.h"
-#include "core/settings_fields.h"
-
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
@@ -11,6 +8,9 @@
 #include <cstring>
 #include <string>
 #include <string_view>
+
+#include "app/viewer/panel_fields.h"
+#include "core/settings_fields.h"
 
 namespace slime {
 namespace {
@@ -50,8 +50,10 @@ std::string labelOf(const PanelField& field) {
 bool edit(const PanelField& field, double& value) {
   const SettingInfo& info = field.setting;
   const std::string label = labelOf(field), format = numberFormat(info, "%.4g");
-  const ImGuiSliderFlags flags = field.widget == Widget::LogSlider ? ImGuiSliderFlags_Logarithmic : ImGuiSliderFlags_None;
-  return ImGui::SliderScalar(label.c_str(), ImGuiDataType_Double, &value, &info.min, &info.max, format.c_str(), flags);
+  const ImGuiSliderFlags flags =
+      field.widget == Widget::LogSlider ? ImGuiSliderFlags_Logarithmic : ImGuiSliderFlags_None;
+  return ImGui::SliderScalar(label.c_str(), ImGuiDataType_Double, &value, &info.min, &info.max,
+                             format.c_str(), flags);
 }
 
 bool edit(const PanelField& field, int& value) {
@@ -90,8 +92,8 @@ bool edit(const PanelField& field, glm::dvec3& value) {
   }
   // Positions: a millimetre per pixel dragged; intensities a hundredth.
   const float speed = info.unit == "m" ? 0.001f : 0.01f;
-  return ImGui::DragScalarN(label.c_str(), ImGuiDataType_Double, &value.x, 3, speed, &info.min, &info.max, "%.3f",
-                            ImGuiSliderFlags_AlwaysClamp);
+  return ImGui::DragScalarN(label.c_str(), ImGuiDataType_Double, &value.x, 3, speed, &info.min, &info.max,
+                            "%.3f", ImGuiSliderFlags_AlwaysClamp);
 }
 
 bool edit(const PanelField& field, std::string& value) {
@@ -162,7 +164,8 @@ void slimeExtras(const PanelView& view, PanelRequests& requests) {
     return;
   }
   std::string pending;
-  for (const std::string& key : view.reloadPending) pending += (pending.empty() ? "" : ", ") + key.substr(key.find('.') + 1);
+  for (const std::string& key : view.reloadPending)
+    pending += (pending.empty() ? "" : ", ") + key.substr(key.find('.') + 1);
   ImGui::PushStyleColor(ImGuiCol_Text, kDoneColor);
   ImGui::TextWrapped("Reload to apply %s", pending.c_str());
   ImGui::PopStyleColor();
@@ -212,7 +215,8 @@ PanelRequests drawPanels(Settings& draft, std::string& scenePath, const PanelVie
   ImGui::SetNextWindowPos(ImVec2(0.0f, 0.0f), ImGuiCond_Always);
   ImGui::SetNextWindowSize(ImVec2(width, display.y), ImGuiCond_Always);
   ImGui::SetNextWindowBgAlpha(0.9f);
-  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoSavedSettings;
+  const ImGuiWindowFlags flags =
+      ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoSavedSettings;
   if (ImGui::Begin("Controls (F1: help)", nullptr, flags)) {
     requests.columnWidth = width;
     ImGui::PushItemWidth(width * 0.55f);
@@ -252,8 +256,8 @@ void drawHelpOverlay(float columnWidth) {
       {"Esc", "quit"},
   };
   const ImVec2 display = ImGui::GetIO().DisplaySize;
-  ImGui::SetNextWindowPos(ImVec2(columnWidth + (display.x - columnWidth) * 0.5f, display.y * 0.5f), ImGuiCond_Always,
-                          ImVec2(0.5f, 0.5f));
+  ImGui::SetNextWindowPos(ImVec2(columnWidth + (display.x - columnWidth) * 0.5f, display.y * 0.5f),
+                          ImGuiCond_Always, ImVec2(0.5f, 0.5f));
   ImGui::SetNextWindowBgAlpha(0.85f);
   const ImGuiWindowFlags flags = ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove |
                                  ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoCollapse;

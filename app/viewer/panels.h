@@ -6,34 +6,34 @@
 // Nothing here owns simulation state: the panels only read the stats and metrics they display.
 #pragma once
 
+#include <string>
+#include <vector>
+
 #include "app/viewer/frame_stats.h"
 #include "core/settings.h"
 #include "core/simulation.h"
-
-#include <string>
-#include <vector>
 
 namespace slime {
 
 // What the user asked for this frame.
 struct PanelRequests {
-  std::string editedGroup;    // a setting of this group changed (the draft holds the new value)
-  bool reloadSlime = false;   // "Reload slime": rebuild the slime from the settings (level, radius, ...)
-  bool singleStep = false;    // "Step": one physics step while paused
-  bool save = false;          // "Save": write the scene to the path field
-  bool load = false;          // "Load": read the scene at the path field
-  float columnWidth = 0.0f;   // window pixels the column covers at the left (0 when collapsed)
+  std::string editedGroup;   // a setting of this group changed (the draft holds the new value)
+  bool reloadSlime = false;  // "Reload slime": rebuild the slime from the settings (level, radius, ...)
+  bool singleStep = false;   // "Step": one physics step while paused
+  bool save = false;         // "Save": write the scene to the path field
+  bool load = false;         // "Load": read the scene at the path field
+  float columnWidth = 0.0f;  // window pixels the column covers at the left (0 when collapsed)
 };
 
 // Read-only facts the panels display.
 struct PanelView {
   const FrameStats& stats;
   const SlimeMetrics& metrics;
-  const std::string& editError;               // why the last edit was not applied; empty if it was
-  std::string errorGroup;                     // the group whose edit it was
-  std::vector<std::string> reloadPending;     // rebuild-type keys changed since the slime was built
-  const std::string& fileMessage;             // the outcome of the last save or load
-  bool fileFailed = false;                    // ... and whether it failed (shown in red)
+  const std::string& editError;            // why the last edit was not applied; empty if it was
+  std::string errorGroup;                  // the group whose edit it was
+  std::vector<std::string> reloadPending;  // rebuild-type keys changed since the slime was built
+  const std::string& fileMessage;          // the outcome of the last save or load
+  bool fileFailed = false;                 // ... and whether it failed (shown in red)
 };
 
 // Width of the column for a display of this width, in window pixels.

@@ -2,14 +2,15 @@
 // and unit, so a slider cannot offer what validation refuses (the stiffness slider once went to
 // 2000 N/m while 1000 was the limit).
 #include "app/viewer/panel_fields.h"
-#include "core/settings_fields.h"
-#include "core/settings_io.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <set>
 #include <type_traits>
+
+#include "core/settings_fields.h"
+#include "core/settings_io.h"
 
 namespace slime {
 namespace {
@@ -42,7 +43,8 @@ TEST(PanelFields, RangesAndUnitsAreTheTables) {
 TEST(PanelFields, EveryGroupHasAPanelSection) {
   std::set<std::string> groups;
   for (const PanelGroup& group : panelGroups()) groups.insert(group.name);
-  for (const PanelField& field : panelFields()) EXPECT_TRUE(groups.count(field.setting.group())) << field.setting.key;
+  for (const PanelField& field : panelFields())
+    EXPECT_TRUE(groups.count(field.setting.group())) << field.setting.key;
 }
 
 TEST(PanelFields, SamplesPerPixelOffersOnlyWhatItCanHonour) {
