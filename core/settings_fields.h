@@ -10,6 +10,7 @@
 #include <initializer_list>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 namespace slime {
@@ -24,70 +25,104 @@ struct Limits {
 // The allowed words of a string setting; empty means any text (e.g. a file path).
 using Choices = std::vector<std::string_view>;
 
-// Calls visit(key, field, limits-or-choices) for every setting of `settings`, in a fixed order.
+// Calls visit(key, field, limits-or-choices, help) for every setting of `settings`, in a fixed order.
 // field is a double&, int&, bool&, std::string& or glm::dvec3&; ints and numbers get Limits,
-// strings get Choices, bools get nothing (std::monostate-like `Choices{}`).
+// strings get Choices, bools get nothing (std::monostate-like `Choices{}`). help is the setting's
+// one-line meaning (`slime settings`, the viewer's tooltips); visitors that take three arguments get
+// no help, and a line of the table without one passes an empty help (settings_test flags it).
 template <class Visitor, class S>
-void forEachField(S& s, Visitor&& visit) {
+void forEachField(S& s, Visitor&& visitor) {
+  const auto visit = [&visitor](std::string_view key, auto& field, const auto& allowed, std::string_view help = {}) {
+    if constexpr (std::is_invocable_v<Visitor&, std::string_view, decltype(field), decltype(allowed), std::string_view>)
+      visitor(key, field, allowed, help);
+    else
+      visitor(key, field, allowed);
+  };
   // Camera
-  visit("camera.position", s.camera.position, Limits{-100.0, 100.0, "m"});
-  visit("camera.yaw", s.camera.yaw, Limits{-360.0, 360.0, "degrees"});
-  visit("camera.pitch", s.camera.pitch, Limits{-89.0, 89.0, "degrees"});
-  visit("camera.fov", s.camera.fov, Limits{1.0, 170.0, "degrees"});
-  visit("camera.width", s.camera.width, Limits{1, 8192, "pixels"});
-  visit("camera.height", s.camera.height, Limits{1, 8192, "pixels"});
+  visit("camera.position", s.camera.position, Limits{-100.0, 100.0, "m"}, "eye position");
+  visit("camera.yaw", s.camera.yaw, Limits{-360.0, 360.0, "degrees"},
+        "heading: 0 looks along +x, 90 along +y");
+  visit("camera.pitch", s.camera.pitch, Limits{-89.0, 89.0, "degrees"}, "elevation: positive looks up");
+  visit("camera.fov", s.camera.fov, Limits{1.0, 170.0, "degrees"}, "vertical field of view");
+  visit("camera.width", s.camera.width, Limits{1, 8192, "pixels"}, "image width (the viewer: its window's)");
+  visit("camera.height", s.camera.height, Limits{1, 8192, "pixels"},
+        "image height (the viewer: its window's)");
   // Light
-  visit("light.position", s.light.position, Limits{-100.0, 100.0, "m"});
-  visit("light.color", s.light.color, Limits{0.0, 100.0, "linear RGB intensity"});
-  visit("light.ambient", s.light.ambient, Limits{0.0, 10.0, "linear RGB intensity"});
+  visit("light.position", s.light.position, Limits{-100.0, 100.0, "m"}, "position of the point light");
+  visit("light.color", s.light.color, Limits{0.0, 100.0, "linear RGB intensity"},
+        "intensity I_l of the point light per channel");
+  visit("light.ambient", s.light.ambient, Limits{0.0, 10.0, "linear RGB intensity"},
+        "ambient intensity I_a per channel");
   // Floor
-  visit("floor.pattern", s.floor.pattern, Choices{"planks", "tiles", "checker", "image"});
-  visit("floor.scale", s.floor.scale, Limits{0.001, 100.0, "m"});
-  visit("floor.colorA", s.floor.colorA, Limits{0.0, 1.0, "linear RGB"});
-  visit("floor.colorB", s.floor.colorB, Limits{0.0, 1.0, "linear RGB"});
-  visit("floor.image", s.floor.image, Choices{});
-  visit("floor.diffuse", s.floor.diffuse, Limits{0.0, 1.0, ""});
-  visit("floor.specular", s.floor.specular, Limits{0.0, 1.0, ""});
+  visit("floor.pattern", s.floor.pattern, Choices{"planks", "tiles", "checker", "image"},
+        "the floor's texture");
+  visit("floor.scale", s.floor.scale, Limits{0.001, 100.0, "m"},
+        "size of one tile, plank width or checker cell");
+  visit("floor.colorA", s.floor.colorA, Limits{0.0, 1.0, "linear RGB"}, "first colour of the pattern");
+  visit("floor.colorB", s.floor.colorB, Limits{0.0, 1.0, "linear RGB"}, "second colour of the pattern");
+  visit("floor.image", s.floor.image, Choices{}, "PNG file used when floor.pattern is image");
+  visit("floor.diffuse", s.floor.diffuse, Limits{0.0, 1.0, ""}, "k_d of the floor");
+  visit("floor.specular", s.floor.specular, Limits{0.0, 1.0, ""},
+        "k_s of the floor: highlight and mirror image (0 = matte)");
   // Slime: shape and physics
-  visit("slime.shape", s.slime.shape, Choices{"mesh", "sphere"});
-  visit("slime.radius", s.slime.radius, Limits{0.005, 1.0, "m"});
-  visit("slime.level", s.slime.level, Limits{0, 7, "subdivision level"});
-  visit("slime.autoLevel", s.slime.autoLevel, Choices{});
+  visit("slime.shape", s.slime.shape, Choices{"mesh", "sphere"},
+        "mesh (the simulated icosphere) or sphere (analytic reference)");
+  visit("slime.radius", s.slime.radius, Limits{0.005, 1.0, "m"}, "rest radius of the ball");
+  visit("slime.level", s.slime.level, Limits{0, 7, "subdivision level"},
+        "icosphere subdivision level: 20*4^level faces (or auto)");
+  visit("slime.autoLevel", s.slime.autoLevel, Choices{},
+        "pick the smallest level whose image error is invisible");
   // Mass and stiffness are bounded so that the stiffest, lightest slime still keeps its volume within
   // 1 % and costs at most ~100 substeps per 10 ms step (the step count grows as sqrt(k/m)).
-  visit("slime.mass", s.slime.mass, Limits{0.01, 100.0, "kg"});
-  visit("slime.stiffness", s.slime.stiffness, Limits{1.0, 1000.0, "N/m"});
-  visit("slime.damping", s.slime.damping, Limits{0.0, 100.0, "N·s/m"});
-  visit("slime.pressure", s.slime.pressure, Limits{0.0, 100.0, "relative"});
-  visit("slime.friction", s.slime.friction, Limits{0.0, 10.0, "Coulomb coefficient"});
-  visit("slime.rolling", s.slime.rolling, Limits{0.0, 1000.0, "1/s"});
-  visit("slime.position", s.slime.position, Limits{-100.0, 100.0, "m"});
+  visit("slime.mass", s.slime.mass, Limits{0.01, 100.0, "kg"}, "total mass");
+  visit("slime.stiffness", s.slime.stiffness, Limits{1.0, 1000.0, "N/m"},
+        "elementary spring stiffness k_e (longer springs are softer)");
+  visit("slime.damping", s.slime.damping, Limits{0.0, 100.0, "N·s/m"},
+        "damper coefficient k_d along each spring");
+  visit("slime.pressure", s.slime.pressure, Limits{0.0, 100.0, "relative"},
+        "volume preservation strength (0 = none)");
+  visit("slime.friction", s.slime.friction, Limits{0.0, 10.0, "Coulomb coefficient"},
+        "Coulomb friction coefficient against the floor");
+  visit("slime.rolling", s.slime.rolling, Limits{0.0, 1000.0, "1/s"},
+        "rate at which the slime's rolling decays on the floor");
+  visit("slime.position", s.slime.position, Limits{-100.0, 100.0, "m"}, "start position of the centre");
   // Slime: optics
-  visit("slime.color", s.slime.color, Limits{0.0, 1.0, "linear RGB"});
-  visit("slime.transmission", s.slime.transmission, Limits{0.0, 1.0, ""});
-  visit("slime.absorption", s.slime.absorption, Limits{0.0, 10000.0, "1/m"});
-  visit("slime.ior", s.slime.ior, Limits{1.0, 3.0, ""});
-  visit("slime.specular", s.slime.specular, Limits{0.0, 1.0, ""});
-  visit("slime.diffuse", s.slime.diffuse, Limits{0.0, 1.0, ""});
-  visit("slime.ambient", s.slime.ambient, Limits{0.0, 1.0, ""});
-  visit("slime.shininess", s.slime.shininess, Limits{1.0, 10000.0, "Phong exponent"});
+  visit("slime.color", s.slime.color, Limits{0.0, 1.0, "linear RGB"},
+        "surface tint and per-channel transmittance");
+  visit("slime.transmission", s.slime.transmission, Limits{0.0, 1.0, ""}, "k_t: weight of the refracted ray");
+  visit("slime.absorption", s.slime.absorption, Limits{0.0, 10000.0, "1/m"},
+        "Beer-Lambert k: a path of 1/k transmits exactly slime.color");
+  visit("slime.ior", s.slime.ior, Limits{1.0, 3.0, ""}, "index of refraction");
+  visit("slime.specular", s.slime.specular, Limits{0.0, 1.0, ""},
+        "k_s: Phong highlight and reflected-ray weight");
+  visit("slime.diffuse", s.slime.diffuse, Limits{0.0, 1.0, ""}, "k_d: diffuse reflection");
+  visit("slime.ambient", s.slime.ambient, Limits{0.0, 1.0, ""}, "k_a: ambient reflection");
+  visit("slime.shininess", s.slime.shininess, Limits{1.0, 10000.0, "Phong exponent"}, "Phong exponent n");
   // Render
-  visit("render.depth", s.render.depth, Limits{1, 16, "bounces"});
-  visit("render.spp", s.render.spp, Limits{1, 64, "samples per pixel"});
-  visit("render.threads", s.render.threads, Limits{0, 256, "threads (0 = all cores)"});
-  visit("render.normals", s.render.normals, Choices{"smooth", "flat"});
-  visit("render.optics", s.render.optics, Choices{"fresnel", "seed"});
-  visit("render.backend", s.render.backend, Choices{"embree", "brute"});
-  visit("render.scale", s.render.scale, Limits{0.1, 1.0, "of the window size"});
-  visit("render.shadows", s.render.shadows, Choices{});
+  visit("render.depth", s.render.depth, Limits{1, 16, "bounces"},
+        "Whitted recursion depth (1 = primary rays only)");
+  visit("render.spp", s.render.spp, Limits{1, 64, "samples per pixel"},
+        "samples per pixel: a stratified n x n grid (1, 4, 9, ..., 64)");
+  visit("render.threads", s.render.threads, Limits{0, 256, "threads (0 = all cores)"},
+        "worker threads for TBB and Embree");
+  visit("render.normals", s.render.normals, Choices{"smooth", "flat"}, "shading normals");
+  visit("render.optics", s.render.optics, Choices{"fresnel", "seed"},
+        "fresnel (dielectric) or seed (constant k_s, k_t weights)");
+  visit("render.backend", s.render.backend, Choices{"embree", "brute"},
+        "embree, or brute (the seed's algorithm, the oracle)");
+  visit("render.scale", s.render.scale, Limits{0.1, 1.0, "of the window size"},
+        "resolution of the viewer's traced image");
+  visit("render.shadows", s.render.shadows, Choices{}, "trace shadow rays to the point light");
   // Simulation
-  visit("sim.dt", s.sim.dt, Limits{1e-6, 0.01, "s"});
+  visit("sim.dt", s.sim.dt, Limits{1e-6, 0.01, "s"}, "fixed time step");
   visit("sim.integrator", s.sim.integrator,
-        Choices{"explicit_euler", "symplectic_euler", "rk4", "implicit_euler", "xpbd"});
-  visit("sim.substeps", s.sim.substeps, Limits{1, 1000, "substeps"});
-  visit("sim.gravity", s.sim.gravity, Limits{0.0, 100.0, "m/s^2"});
-  visit("sim.timeScale", s.sim.timeScale, Limits{0.01, 10.0, "simulated s per wall s"});
-  visit("sim.paused", s.sim.paused, Choices{});
+        Choices{"explicit_euler", "symplectic_euler", "rk4", "implicit_euler", "xpbd"},
+        "time integrator");
+  visit("sim.substeps", s.sim.substeps, Limits{1, 1000, "substeps"}, "substeps per step (xpbd)");
+  visit("sim.gravity", s.sim.gravity, Limits{0.0, 100.0, "m/s^2"}, "|g|, pointing along -z");
+  visit("sim.timeScale", s.sim.timeScale, Limits{0.01, 10.0, "simulated s per wall s"},
+        "viewer: simulated seconds per wall-clock second");
+  visit("sim.paused", s.sim.paused, Choices{}, "viewer: physics paused");
 }
 
 }  // namespace slime

@@ -199,6 +199,9 @@ void applySceneJson(Settings& settings, const json& scene, std::string_view orig
     throw SettingsError(std::string(origin) + ": a scene must be a JSON object such as {\"slime\": {\"level\": 4}}");
   std::vector<std::pair<std::string, json>> entries;
   flatten(scene, "", entries);
+  // slime.level switches slime.autoLevel off, so a saved autoLevel = true is applied after it (JSON
+  // objects come back sorted by name: autoLevel first).
+  std::stable_partition(entries.begin(), entries.end(), [](const auto& entry) { return entry.first != "slime.autoLevel"; });
   for (const auto& [key, value] : entries) {
     try {
       setSetting(settings, key, value);

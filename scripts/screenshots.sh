@@ -1,6 +1,6 @@
 #!/bin/bash
 # Redraws the README's viewer screenshots (docs/viewer.png, docs/viewer-drag.png): the real window at
-# the default 734x564 under Xvfb, driven by xdotool like the window tests. Needs a built slime:
+# the default 1280x720 under Xvfb, driven by xdotool like the window tests. Needs a built slime:
 #   scripts/screenshots.sh [path/to/slime]   (default build/release/app/slime)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -13,21 +13,21 @@ cat > "$work/drive.sh" <<'DRIVE'
 #!/bin/bash
 set -euo pipefail
 source tests/scripts/viewer_lib.sh "$1" "$2"
-start_viewer --size 734x564
+start_viewer   # 1280x720: the panel column takes the left 333 pixels, the slime is centred right of it
 sleep 5                                   # the slime falls and settles
 screenshot 1
-xdotool mousemove --window "$WINDOW" 400 190 mousedown 1   # on the slime's upper right
-for y in 175 160 145 130 115 100 85 70; do
-  xdotool mousemove --window "$WINDOW" 430 "$y"
+xdotool mousemove --window "$WINDOW" 845 243 mousedown 1   # on the slime's upper right
+for y in 225 205 185 165 145 125 105 85; do
+  xdotool mousemove --window "$WINDOW" 880 "$y"
   sleep 0.15
 done
 sleep 2
 screenshot 2
 xdotool mouseup 1
 quit_viewer
-[ "$(report '.grabs')" -ge 1 ] || fail "the press at (400, 190) did not grab the slime"
+[ "$(report '.grabs')" -ge 1 ] || fail "the press at (845, 243) did not grab the slime"
 DRIVE
-xvfb-run -a -s "-screen 0 1024x768x24" bash "$work/drive.sh" "$slime" "$work/out"
+xvfb-run -a -s "-screen 0 1400x900x24" bash "$work/drive.sh" "$slime" "$work/out"
 cp "$work/out/shot-1.png" docs/viewer.png
 cp "$work/out/shot-2.png" docs/viewer-drag.png
 echo "wrote docs/viewer.png and docs/viewer-drag.png"

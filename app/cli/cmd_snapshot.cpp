@@ -34,7 +34,7 @@ void runSnapshot(const SnapshotOptions& options) {
   if (!options.viewPoint.empty()) settings.camera.position = {options.viewPoint[0], options.viewPoint[1], options.viewPoint[2]};
   if (!options.viewTarget.empty()) {
     const glm::dvec3 target{options.viewTarget[0], options.viewTarget[1], options.viewTarget[2]};
-    if (target == settings.camera.position) throw SettingsError("--vi must differ from the eye position");
+    if (target == settings.camera.position) throw SettingsError("--look-at (--vi) must differ from the eye position");
     lookAt(settings.camera, settings.camera.position, target);
   }
   validateSettings(settings);
@@ -72,8 +72,8 @@ void registerSnapshotCommand(CLI::App& root, int& exitCode) {
   command->add_option("--size", options->size, "Image size WxH in pixels (each 1..8192), default camera.width x camera.height");
   command->add_option("--settle", options->settle, "Seconds to simulate before the frame (default: until the slime rests, at most 3 s)")
       ->check(CLI::Range(0.0, 600.0));
-  command->add_option("--vp", options->viewPoint, "Eye position x y z, m")->expected(3);
-  command->add_option("--vi", options->viewTarget, "Point to look at x y z, m (sets yaw and pitch)")->expected(3);
+  command->add_option("--eye,--vp", options->viewPoint, "Eye position x y z, m")->expected(3);
+  command->add_option("--look-at,--vi", options->viewTarget, "Point to look at x y z, m (sets yaw and pitch)")->expected(3);
   command->add_option("--fov", options->fov, "Vertical field of view, degrees");
   command->add_flag("--ui", options->ui, "Draw the whole viewer (image and panels) headless, through EGL");
   addSceneOptions(*command, options->scene);

@@ -8,6 +8,9 @@
 #include "core/scenario.h"
 #include "core/settings_io.h"
 
+#include <nlohmann/json.hpp>
+
+#include <fstream>
 
 namespace slime {
 namespace {
@@ -21,14 +24,29 @@ struct ViewCommandOptions {
   ViewerOptions viewer;
 };
 
-// --size, --vp, --vi and --fov on top of the scene; validated again afterwards.
+// The window opens at 1280x720 unless --size, the scene file or a --set says otherwise.
+constexpr int kDefaultWindowWidth = 1280, kDefaultWindowHeight = 720;
+
+bool imageSizeGiven(const SceneOptions& scene) {
+  for (const std::string& assignment : scene.overrides)
+    if (assignment.rfind("camera.width=", 0) == 0 || assignment.rfind("camera.height=", 0) == 0) return true;
+  if (scene.sceneFile.empty()) return false;
+  std::ifstream file(scene.sceneFile);
+  const nlohmann::json document = nlohmann::json::parse(file, nullptr, /*allow_exceptions=*/false);
+  return document.is_object() && document.contains("camera") && document["camera"].is_object() &&
+         (document["camera"].contains("width") || document["camera"].contains("height"));
+}
+
+// --size, --eye, --look-at and --fov on top of the scene; validated again afterwards.
 void applyCameraOptions(const ViewCommandOptions& options, Settings& settings) {
   if (!options.size.empty()) applyImageSize(settings, options.size);  // the window size, as snapshot --size
+  else if (!imageSizeGiven(options.scene))
+    settings.camera.width = kDefaultWindowWidth, settings.camera.height = kDefaultWindowHeight;
   if (!options.viewPoint.empty())
     settings.camera.position = {options.viewPoint[0], options.viewPoint[1], options.viewPoint[2]};
   if (!options.viewInterest.empty()) {
     const glm::dvec3 target{options.viewInterest[0], options.viewInterest[1], options.viewInterest[2]};
-    if (target == settings.camera.position) throw SettingsError("--vi must differ from the eye position");
+    if (target == settings.camera.position) throw SettingsError("--look-at (--vi) must differ from the eye position");
     lookAt(settings.camera, settings.camera.position, target);
   }
   if (options.fov != 0.0) settings.camera.fov = options.fov;
@@ -41,9 +59,11 @@ void registerViewCommand(CLI::App& root, int& exitCode) {
   auto options = std::make_shared<ViewCommandOptions>();
   auto* command = root.add_subcommand("view", "Open the interactive viewer (what `slime` alone does)");
   addSceneOptions(*command, options->scene);
-  command->add_option("--size", options->size, "Window size WIDTHxHEIGHT (default: camera.width x camera.height)");
-  command->add_option("--vp", options->viewPoint, "Eye position x y z, m")->expected(3);
-  command->add_option("--vi", options->viewInterest, "Point to look at x y z, m")->expected(3);
+  command->add_option("--size", options->size,
+                      "Window size WIDTHxHEIGHT (default: 1280x720, or the scene's camera.width x camera.height "
+                      "when the scene file or --set gives them)");
+  command->add_option("--eye,--vp", options->viewPoint, "Eye position x y z, m")->expected(3);
+  command->add_option("--look-at,--vi", options->viewInterest, "Point to look at x y z, m (sets yaw and pitch)")->expected(3);
   command->add_option("--fov", options->fov, "Vertical field of view, degrees");
   command->add_option("--frames", options->viewer.maxFrames, "Quit after N frames (for scripts and tests)")
       ->check(CLI::NonNegativeNumber);

@@ -30,5 +30,7 @@ void registerSimCommand(CLI::App& root, int& exitCode);
 void registerSnapshotCommand(CLI::App& root, int& exitCode);
 void registerViewCommand(CLI::App& root, int& exitCode);   // also what `slime` alone runs
 void registerBenchCommand(CLI::App& root, int& exitCode);
+void registerSettingsCommand(CLI::App& root, int& exitCode);
+void registerRecordCommand(CLI::App& root, int& exitCode);
 
 }  // namespace slime

@@ -13,6 +13,8 @@ int main(int argc, char** argv) {
   slime::registerSnapshotCommand(app, exitCode);
   slime::registerSimCommand(app, exitCode);
   slime::registerBenchCommand(app, exitCode);
+  slime::registerSettingsCommand(app, exitCode);
+  slime::registerRecordCommand(app, exitCode);
   try {
     app.parse(argc, argv);
     if (app.get_subcommands().empty()) app.get_subcommand("view")->parse(std::vector<std::string>{});

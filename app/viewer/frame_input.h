@@ -16,6 +16,9 @@ inline constexpr int kCameraKeyCount = static_cast<int>(CameraKey::Count);
 
 enum class MouseButton { Left, Right, Middle };
 
+// The keys that show and hide the help overlay. H is a letter a panel's text field may want.
+enum class HelpKey { None, F1, H };
+
 // One press or release, with where the cursor was and which modifiers were held at that moment.
 struct MouseButtonEvent {
   MouseButton button = MouseButton::Left;
@@ -36,6 +39,9 @@ struct FrameInput {
   std::array<bool, kCameraKeyCount> cameraKeys{};  // held now, or tapped since the last frame
   bool screenshotRequested = false;         // F12 pressed
   bool escapePressed = false;               // Esc: quits unless a panel's text field has the keyboard
+  HelpKey helpKey = HelpKey::None;          // F1 or H pressed: show or hide the help overlay
+  bool saveRequested = false;               // Ctrl+S: save the scene to the panel's path
+  bool loadRequested = false;               // Ctrl+O: load the scene at the panel's path
   bool closeRequested = false;              // the window's close button
   bool mouseCapturedByUi = false;           // ImGui wants the mouse: hide it from the app
   bool keyboardCapturedByUi = false;        // ImGui wants the keyboard: hide it from the app

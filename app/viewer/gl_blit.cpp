@@ -2,6 +2,7 @@
 
 #include "app/viewer/gl.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -81,15 +82,18 @@ void GlBlit::upload(const std::vector<std::uint8_t>& rgba, int width, int height
   }
 }
 
-void GlBlit::draw(glm::ivec2 viewportSize) const {
-  glViewport(0, 0, viewportSize.x, viewportSize.y);
+void GlBlit::draw(glm::ivec2 framebufferSize, int left) const {
   glDisable(GL_BLEND);
   glDisable(GL_DEPTH_TEST);
-  if (textureSize_.x == 0) {  // nothing traced yet; otherwise the triangle covers every pixel
+  // Nothing traced yet, or a strip left of the image (under the panel column): background.
+  if (textureSize_.x == 0 || left > 0) {
+    glViewport(0, 0, framebufferSize.x, framebufferSize.y);
     glClearColor(0.08f, 0.08f, 0.09f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT);
-    return;
+    if (textureSize_.x == 0) return;
   }
+  const glm::ivec2 viewportSize{std::max(1, framebufferSize.x - left), framebufferSize.y};
+  glViewport(left, 0, viewportSize.x, viewportSize.y);
   glUseProgram(program_);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, texture_);

@@ -23,9 +23,9 @@ class GlBlit {
   // Copies width × height sRGB pixels, 4 bytes each (RGBA, top row first), into the texture.
   void upload(const std::vector<std::uint8_t>& rgba, int width, int height);
 
-  // Draws the texture over a viewport of the given size: texel for pixel when the sizes agree,
-  // stretched bilinearly when the image is smaller.
-  void draw(glm::ivec2 viewportSize) const;
+  // Draws the texture over the framebuffer right of `left` pixels (the strip left of it is cleared):
+  // texel for pixel when the sizes agree, stretched bilinearly when the image is smaller.
+  void draw(glm::ivec2 framebufferSize, int left = 0) const;
 
  private:
   unsigned program_ = 0;

@@ -1,73 +1,114 @@
 #include "app/viewer/panels.h"
 
-#include "core/settings_fields.h"
-
 #include <imgui.h>
+#include <imgui_stdlib.h>
 
 #include <algorithm>
 #include <cfloat>
+#include <cstring>
 #include <string>
 #include <string_view>
-#include <thread>
-#include <type_traits>
+
+#include "app/viewer/panel_fields.h"
+#include "core/settings_fields.h"
 
 namespace slime {
 namespace {
 
-constexpr float kControlsWidth = 250.0f;
 constexpr float kStatsWidth = 214.0f;
-// Below this display height the sections start closed so that the slime stays in view.
-constexpr float kRoomForOpenSections = 500.0f;
 constexpr float kMargin = 6.0f;
 const ImVec4 kErrorColor{1.0f, 0.45f, 0.35f, 1.0f};
+const ImVec4 kDoneColor{0.55f, 0.9f, 0.55f, 1.0f};
 
-// The allowed interval and words of a setting, from the one table of settings (settings_fields.h).
-Limits fieldLimits(std::string_view wanted) {
-  Settings scratch;
-  Limits found{0.0, 0.0, ""};
-  forEachField(scratch, [&](std::string_view key, auto&, const auto& allowed) {
-    if constexpr (std::is_same_v<std::decay_t<decltype(allowed)>, Limits>)
-      if (key == wanted) found = allowed;
-  });
-  return found;
+// The unit goes into the slider's number when it is short ("m", "N/m"); longer ones only into the
+// tooltip, with the meaning and the range.
+std::string numberFormat(const SettingInfo& info, const char* number) {
+  std::string format = number;
+  if (!info.unit.empty() && info.unit.size() <= 8 && info.unit.find(' ') == std::string::npos)
+    format += " " + info.unit;
+  return format;
 }
 
-Choices fieldChoices(std::string_view wanted) {
-  Settings scratch;
-  Choices found;
-  forEachField(scratch, [&](std::string_view key, auto&, const auto& allowed) {
-    if constexpr (std::is_same_v<std::decay_t<decltype(allowed)>, Choices>)
-      if (key == wanted) found = allowed;
-  });
-  return found;
+void tooltip(const PanelField& field) {
+  if (!ImGui::IsItemHovered()) return;
+  const SettingInfo& info = field.setting;
+  ImGui::BeginTooltip();
+  ImGui::TextUnformatted(info.key.c_str());
+  ImGui::TextUnformatted(info.help.c_str());
+  std::string allowed = "allowed: " + allowedText(info);
+  if (!info.unit.empty()) allowed += " " + info.unit;
+  ImGui::TextDisabled("%s", allowed.c_str());
+  if (field.appliesOnReload) ImGui::TextDisabled("applies on Reload slime");
+  ImGui::EndTooltip();
 }
 
-// A slider over a useful part of the setting's allowed range; Ctrl+click types any value, which the
-// viewer then validates against the full range.
-bool slider(const char* label, double& value, std::string_view key, double low, double high,
-            const char* format = "%.3f", bool logarithmic = false) {
-  const Limits limits = fieldLimits(key);
-  low = std::max(low, limits.min);
-  high = std::min(high, limits.max);
-  return ImGui::SliderScalar(label, ImGuiDataType_Double, &value, &low, &high, format,
-                             logarithmic ? ImGuiSliderFlags_Logarithmic : ImGuiSliderFlags_None);
+std::string labelOf(const PanelField& field) {
+  return field.setting.name() + (field.appliesOnReload ? " *" : "") + "##" + field.setting.key;
 }
 
-bool slider(const char* label, int& value, std::string_view key, int low, int high) {
-  const Limits limits = fieldLimits(key);
-  low = std::max(low, static_cast<int>(limits.min));
-  high = std::min(high, static_cast<int>(limits.max));
-  return ImGui::SliderInt(label, &value, low, high);
+// One widget per field type; each returns whether the user changed the value this frame.
+bool edit(const PanelField& field, double& value) {
+  const SettingInfo& info = field.setting;
+  const std::string label = labelOf(field), format = numberFormat(info, "%.4g");
+  const ImGuiSliderFlags flags =
+      field.widget == Widget::LogSlider ? ImGuiSliderFlags_Logarithmic : ImGuiSliderFlags_None;
+  return ImGui::SliderScalar(label.c_str(), ImGuiDataType_Double, &value, &info.min, &info.max,
+                             format.c_str(), flags);
 }
 
-bool combo(const char* label, std::string& value, std::string_view key) {
+bool edit(const PanelField& field, int& value) {
+  const SettingInfo& info = field.setting;
+  const std::string label = labelOf(field);
+  if (field.widget == Widget::WindowSize) {
+    ImGui::BeginDisabled();
+    ImGui::InputInt(label.c_str(), &value, 0, 0, ImGuiInputTextFlags_ReadOnly);
+    ImGui::EndDisabled();
+    return false;
+  }
+  if (field.widget == Widget::ValueCombo) {
+    bool changed = false;
+    if (ImGui::BeginCombo(label.c_str(), std::to_string(value).c_str())) {
+      for (int choice : info.onlyValues)
+        if (ImGui::Selectable(std::to_string(choice).c_str(), value == choice)) {
+          changed = value != choice;
+          value = choice;
+        }
+      ImGui::EndCombo();
+    }
+    return changed;
+  }
+  const int low = static_cast<int>(info.min), high = static_cast<int>(info.max);
+  return ImGui::SliderInt(label.c_str(), &value, low, high, numberFormat(info, "%d").c_str());
+}
+
+bool edit(const PanelField& field, glm::dvec3& value) {
+  const SettingInfo& info = field.setting;
+  const std::string label = labelOf(field);
+  if (field.widget == Widget::Color) {
+    float rgb[3] = {static_cast<float>(value.r), static_cast<float>(value.g), static_cast<float>(value.b)};
+    if (!ImGui::ColorEdit3(label.c_str(), rgb, ImGuiColorEditFlags_Float)) return false;
+    value = {rgb[0], rgb[1], rgb[2]};
+    return true;
+  }
+  // Positions: a millimetre per pixel dragged; intensities a hundredth.
+  const float speed = info.unit == "m" ? 0.001f : 0.01f;
+  return ImGui::DragScalarN(label.c_str(), ImGuiDataType_Double, &value.x, 3, speed, &info.min, &info.max,
+                            "%.3f", ImGuiSliderFlags_AlwaysClamp);
+}
+
+bool edit(const PanelField& field, std::string& value) {
+  const std::string label = labelOf(field);
+  if (field.widget == Widget::Text) {
+    ImGui::InputText(label.c_str(), &value);
+    return ImGui::IsItemDeactivatedAfterEdit();  // applied when the user leaves the field, not per letter
+  }
   bool changed = false;
-  if (ImGui::BeginCombo(label, value.c_str())) {
-    for (std::string_view choice : fieldChoices(key)) {
+  if (ImGui::BeginCombo(label.c_str(), value.c_str())) {
+    for (const std::string& choice : field.setting.choices) {
       const bool selected = value == choice;
-      if (ImGui::Selectable(std::string(choice).c_str(), selected)) {
+      if (ImGui::Selectable(choice.c_str(), selected)) {
         changed = value != choice;
-        value = std::string(choice);
+        value = choice;
       }
       if (selected) ImGui::SetItemDefaultFocus();
     }
@@ -76,75 +117,66 @@ bool combo(const char* label, std::string& value, std::string_view key) {
   return changed;
 }
 
-bool colorPicker(const char* label, glm::dvec3& color) {
-  float rgb[3] = {static_cast<float>(color.r), static_cast<float>(color.g), static_cast<float>(color.b)};
-  if (!ImGui::ColorEdit3(label, rgb, ImGuiColorEditFlags_Float)) return false;
-  color = {rgb[0], rgb[1], rgb[2]};
-  return true;
-}
+bool edit(const PanelField& field, bool& value) { return ImGui::Checkbox(labelOf(field).c_str(), &value); }
 
-void showError(const PanelView& view, Panel panel) {
-  if (view.errorPanel != panel || view.editError.empty()) return;
+void showError(const std::string& error) {
   ImGui::PushStyleColor(ImGuiCol_Text, kErrorColor);
-  ImGui::TextWrapped("Not applied: %s", view.editError.c_str());
+  ImGui::TextWrapped("Not applied: %s", error.c_str());
   ImGui::PopStyleColor();
 }
 
-bool slimeSection(SlimeSettings& slime, const PanelView& view, PanelRequests& requests) {
-  bool edited = colorPicker("colour", slime.color);
-  edited |= slider("transmission", slime.transmission, "slime.transmission", 0.0, 1.0, "%.2f");
-  edited |= slider("absorption", slime.absorption, "slime.absorption", 0.0, 500.0, "%.1f /m", true);
-  edited |= slider("IOR", slime.ior, "slime.ior", 1.0, 3.0, "%.3f");
-  edited |= slider("mass", slime.mass, "slime.mass", 0.01, 5.0, "%.3f kg", true);
-  edited |= slider("stiffness", slime.stiffness, "slime.stiffness", 1.0, 2000.0, "%.1f N/m", true);
-  edited |= slider("damping", slime.damping, "slime.damping", 0.0, 2.0, "%.3f N.s/m", true);
-  edited |= slider("pressure", slime.pressure, "slime.pressure", 0.0, 20.0, "%.2f", true);
-  edited |= slider("friction", slime.friction, "slime.friction", 0.0, 2.0, "%.2f");
-  edited |= slider("rolling", slime.rolling, "slime.rolling", 0.0, 100.0, "%.1f /s", true);
-  edited |= slider("level", slime.level, "slime.level", 0, 7);
-  edited |= slider("radius", slime.radius, "slime.radius", 0.01, 0.1, "%.3f m");
-  if (ImGui::Button("Reload slime")) requests.reloadSlime = true;
-  if (view.reloadPending) {
-    ImGui::SameLine();
-    ImGui::TextDisabled("level/radius: reload");
-  }
-  showError(view, Panel::Slime);
+// Every setting of one group, in the table's order; true when one changed. The field an error names
+// ("slime.mass: 0 is not allowed ...") is drawn red with the message under it.
+bool groupFields(Settings& draft, const std::string& group, const PanelView& view) {
+  const std::vector<PanelField>& fields = panelFields();
+  std::size_t index = 0;
+  bool edited = false, errorShown = false;
+  forEachField(draft, [&](std::string_view key, auto& value, const auto&) {
+    const PanelField& field = fields[index++];
+    if (field.setting.group() != group || field.setting.key != key) return;
+    const bool invalid = !view.editError.empty() && view.editError.rfind(field.setting.key + ":", 0) == 0;
+    if (invalid) ImGui::PushStyleColor(ImGuiCol_FrameBg, ImVec4(0.55f, 0.12f, 0.1f, 1.0f));
+    edited |= edit(field, value);
+    if (invalid) ImGui::PopStyleColor();
+    tooltip(field);
+    if (invalid) showError(view.editError), errorShown = true;
+  });
+  if (!errorShown && view.errorGroup == group && !view.editError.empty()) showError(view.editError);
   return edited;
 }
 
-bool renderSection(RenderSettings& render, const PanelView& view) {
-  bool edited = slider("depth", render.depth, "render.depth", 1, 16);
-  edited |= combo("normals", render.normals, "render.normals");
-  edited |= combo("optics", render.optics, "render.optics");
-  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  edited |= slider("threads", render.threads, "render.threads", 0, cores);
-  edited |= slider("scale", render.scale, "render.scale", 0.1, 1.0, "%.2f");
-  static constexpr int kSampleCounts[] = {1, 4, 9, 16};
-  if (ImGui::BeginCombo("samples", std::to_string(render.spp).c_str())) {
-    for (int samples : kSampleCounts)
-      if (ImGui::Selectable(std::to_string(samples).c_str(), render.spp == samples)) {
-        edited |= render.spp != samples;
-        render.spp = samples;
-      }
-    ImGui::EndCombo();
-  }
-  edited |= ImGui::Checkbox("shadows", &render.shadows);
-  showError(view, Panel::Render);
-  return edited;
-}
-
-bool simulationSection(SimSettings& sim, const PanelView& view, PanelRequests& requests) {
-  bool edited = combo("integrator", sim.integrator, "sim.integrator");
-  edited |= slider("dt", sim.dt, "sim.dt", 1e-5, 0.01, "%.5f s", true);
-  edited |= slider("time scale", sim.timeScale, "sim.timeScale", 0.01, 10.0, "%.2f", true);
-  edited |= ImGui::Checkbox("pause", &sim.paused);
+void sceneSection(std::string& scenePath, const PanelView& view, PanelRequests& requests) {
+  ImGui::InputText("path##scene", &scenePath);
+  if (ImGui::Button("Save (Ctrl+S)")) requests.save = true;
   ImGui::SameLine();
-  ImGui::BeginDisabled(!sim.paused);
+  if (ImGui::Button("Load (Ctrl+O)")) requests.load = true;
+  if (view.fileMessage.empty()) return;
+  ImGui::PushStyleColor(ImGuiCol_Text, view.fileFailed ? kErrorColor : kDoneColor);
+  ImGui::TextWrapped("%s", view.fileMessage.c_str());
+  ImGui::PopStyleColor();
+}
+
+void slimeExtras(const PanelView& view, PanelRequests& requests) {
+  if (ImGui::Button("Reload slime")) requests.reloadSlime = true;
+  ImGui::SameLine();
+  if (view.reloadPending.empty()) {
+    ImGui::TextDisabled("* apply on Reload");
+    return;
+  }
+  std::string pending;
+  for (const std::string& key : view.reloadPending)
+    pending += (pending.empty() ? "" : ", ") + key.substr(key.find('.') + 1);
+  ImGui::PushStyleColor(ImGuiCol_Text, kDoneColor);
+  ImGui::TextWrapped("Reload to apply %s", pending.c_str());
+  ImGui::PopStyleColor();
+}
+
+void simulationExtras(const Settings& draft, const PanelView& view, PanelRequests& requests) {
+  ImGui::BeginDisabled(!draft.sim.paused);
   if (ImGui::Button("step")) requests.singleStep = true;
   ImGui::EndDisabled();
+  ImGui::SameLine();
   ImGui::Text("volume %.3f  height %.1f mm", view.metrics.volumeRatio, view.metrics.height * 1000.0);
-  showError(view, Panel::Simulation);
-  return edited;
 }
 
 void statsWindow(const PanelView& view) {
@@ -153,7 +185,7 @@ void statsWindow(const PanelView& view) {
   ImGui::SetNextWindowPos(ImVec2(display.x - kStatsWidth - kMargin, kMargin), ImGuiCond_Always);
   ImGui::SetNextWindowSize(ImVec2(kStatsWidth, 0.0f), ImGuiCond_Always);
   ImGui::SetNextWindowBgAlpha(0.75f);
-  ImGui::SetNextWindowCollapsed(display.y < kRoomForOpenSections, ImGuiCond_Once);
+  ImGui::SetNextWindowCollapsed(true, ImGuiCond_Once);  // the slime first; one click opens it
   if (ImGui::Begin("Stats")) {
     ImGui::Text("%.1f fps   %.1f ms/frame", stats.fps, stats.frameMs);
     ImGui::Text("physics %6.1f ms  %d steps", stats.stages.physics, stats.physicsSteps);
@@ -175,28 +207,75 @@ void statsWindow(const PanelView& view) {
 
 }  // namespace
 
-PanelRequests drawPanels(Settings& draft, const PanelView& view) {
+float panelColumnWidth(float displayWidth) { return std::clamp(displayWidth * 0.26f, 250.0f, 340.0f); }
+
+PanelRequests drawPanels(Settings& draft, std::string& scenePath, const PanelView& view) {
   PanelRequests requests;
   const ImVec2 display = ImGui::GetIO().DisplaySize;
-  ImGui::SetNextWindowPos(ImVec2(kMargin, kMargin), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSizeConstraints(ImVec2(kControlsWidth, 0.0f),
-                                      ImVec2(kControlsWidth, std::max(display.y - 2.0f * kMargin, 60.0f)));
-  ImGui::SetNextWindowBgAlpha(0.75f);
-  if (ImGui::Begin("Controls", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
-    ImGui::PushItemWidth(kControlsWidth * 0.52f);
-    const bool roomy = display.y >= kRoomForOpenSections;
-    ImGui::SetNextItemOpen(roomy, ImGuiCond_Once);
-    if (ImGui::CollapsingHeader("Slime") && slimeSection(draft.slime, view, requests)) requests.edited = Panel::Slime;
-    ImGui::SetNextItemOpen(false, ImGuiCond_Once);
-    if (ImGui::CollapsingHeader("Render") && renderSection(draft.render, view)) requests.edited = Panel::Render;
-    ImGui::SetNextItemOpen(roomy, ImGuiCond_Once);
-    if (ImGui::CollapsingHeader("Simulation") && simulationSection(draft.sim, view, requests))
-      requests.edited = Panel::Simulation;
+  const float width = panelColumnWidth(display.x);
+  ImGui::SetNextWindowPos(ImVec2(0.0f, 0.0f), ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(width, display.y), ImGuiCond_Always);
+  ImGui::SetNextWindowBgAlpha(0.9f);
+  const ImGuiWindowFlags flags =
+      ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoSavedSettings;
+  if (ImGui::Begin("Controls (F1: help)", nullptr, flags)) {
+    requests.columnWidth = width;
+    ImGui::PushItemWidth(width * 0.55f);
+    ImGui::SetNextItemOpen(true, ImGuiCond_Once);
+    if (ImGui::CollapsingHeader("Scene file")) sceneSection(scenePath, view, requests);
+    for (const PanelGroup& group : panelGroups()) {
+      ImGui::SetNextItemOpen(group.name == "slime" || group.name == "sim", ImGuiCond_Once);
+      if (!ImGui::CollapsingHeader(group.title.c_str())) continue;
+      ImGui::PushID(group.name.c_str());
+      if (groupFields(draft, group.name, view)) requests.editedGroup = group.name;
+      if (group.name == "slime") slimeExtras(view, requests);
+      if (group.name == "sim") simulationExtras(draft, view, requests);
+      ImGui::PopID();
+    }
     ImGui::PopItemWidth();
   }
   ImGui::End();
   statsWindow(view);
   return requests;
+}
+
+void drawHelpOverlay(float columnWidth) {
+  static constexpr const char* kControls[][2] = {
+      {"left drag", "grab and stretch the slime"},
+      {"Shift + drag, or wheel, while grabbing", "press the grab point into the body"},
+      {"right drag", "orbit around the slime"},
+      {"middle drag", "pan"},
+      {"wheel", "zoom towards the slime"},
+      {"W / S", "camera forward / back"},
+      {"A / D", "camera left / right"},
+      {"Q / E", "turn left / right"},
+      {"R / F", "tilt up / down"},
+      {"Ctrl+S", "save the scene to the path in Scene file"},
+      {"Ctrl+O", "load the scene at that path"},
+      {"F12", "screenshot"},
+      {"F1 or H", "show / hide this help"},
+      {"Esc", "quit"},
+  };
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(columnWidth + (display.x - columnWidth) * 0.5f, display.y * 0.5f),
+                          ImGuiCond_Always, ImVec2(0.5f, 0.5f));
+  ImGui::SetNextWindowBgAlpha(0.85f);
+  const ImGuiWindowFlags flags = ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove |
+                                 ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoCollapse;
+  if (ImGui::Begin("Help (F1 or H closes)", nullptr, flags)) {
+    if (ImGui::BeginTable("controls", 2)) {
+      for (const auto& [keys, action] : kControls) {
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(keys);
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(action);
+      }
+      ImGui::EndTable();
+    }
+    ImGui::TextDisabled("Settings marked * apply when you press Reload slime.");
+  }
+  ImGui::End();
 }
 
 }  // namespace slime

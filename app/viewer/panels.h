@@ -1,35 +1,48 @@
-// The viewer's Dear ImGui panels. They edit a draft copy of the Settings; the viewer validates the
-// draft (validateSettings) and applies it only if it is valid, otherwise the panel shows the error.
+// The viewer's Dear ImGui panels: one column at the left side of the window with a section per group
+// of the scene file (camera, light, floor, slime, render, sim), each setting generated from the table
+// of settings (panel_fields.h), a Scene section that saves and loads, the Stats window, and the help
+// overlay. The panels edit a draft copy of the Settings; the viewer validates the draft
+// (validateSettings) and applies it only if it is valid, otherwise the section shows the error.
 // Nothing here owns simulation state: the panels only read the stats and metrics they display.
 #pragma once
+
+#include <string>
+#include <vector>
 
 #include "app/viewer/frame_stats.h"
 #include "core/settings.h"
 #include "core/simulation.h"
 
-#include <string>
-
 namespace slime {
-
-enum class Panel { None, Slime, Render, Simulation };
 
 // What the user asked for this frame.
 struct PanelRequests {
-  Panel edited = Panel::None;  // a setting in this panel changed (the draft holds the new value)
-  bool reloadSlime = false;    // "Reload slime": rebuild the slime from the settings (level, radius, ...)
-  bool singleStep = false;     // "Step": one physics step while paused
+  std::string editedGroup;   // a setting of this group changed (the draft holds the new value)
+  bool reloadSlime = false;  // "Reload slime": rebuild the slime from the settings (level, radius, ...)
+  bool singleStep = false;   // "Step": one physics step while paused
+  bool save = false;         // "Save": write the scene to the path field
+  bool load = false;         // "Load": read the scene at the path field
+  float columnWidth = 0.0f;  // window pixels the column covers at the left (0 when collapsed)
 };
 
 // Read-only facts the panels display.
 struct PanelView {
   const FrameStats& stats;
   const SlimeMetrics& metrics;
-  const std::string& editError;  // why the last edit was not applied; empty if it was
-  Panel errorPanel = Panel::None;
-  bool reloadPending = false;    // level or radius changed since the slime was built
+  const std::string& editError;            // why the last edit was not applied; empty if it was
+  std::string errorGroup;                  // the group whose edit it was
+  std::vector<std::string> reloadPending;  // rebuild-type keys changed since the slime was built
+  const std::string& fileMessage;          // the outcome of the last save or load
+  bool fileFailed = false;                 // ... and whether it failed (shown in red)
 };
 
-// Draws the Controls window (Slime, Render, Simulation sections) and the Stats window.
-PanelRequests drawPanels(Settings& draft, const PanelView& view);
+// Width of the column for a display of this width, in window pixels.
+float panelColumnWidth(float displayWidth);
+
+// Draws the column and the Stats window. `scenePath` is the Scene section's path field.
+PanelRequests drawPanels(Settings& draft, std::string& scenePath, const PanelView& view);
+
+// Draws the controls (keys, mouse) over the middle of the free part of the window.
+void drawHelpOverlay(float columnWidth);
 
 }  // namespace slime

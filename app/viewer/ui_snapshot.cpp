@@ -1,6 +1,7 @@
 #include "app/viewer/ui_snapshot.h"
 
 #include "app/viewer/headless_gl.h"
+#include "app/viewer/screenshot.h"
 #include "app/viewer/viewer.h"
 
 namespace slime {
@@ -22,6 +23,28 @@ void writeUiSnapshot(const Settings& settings, const std::string& path,
   }
   while (viewer.frame()) {
   }
+}
+
+struct UiFrames::State {
+  explicit State(const Settings& settings) : backend(settings.camera.width, settings.camera.height),
+                                             viewer(backend, settings) {}
+  HeadlessGl backend;
+  Viewer viewer;
+  int frames = 0;
+};
+
+UiFrames::UiFrames(const Settings& settings) : state_(std::make_unique<State>(settings)) {}
+UiFrames::~UiFrames() = default;
+
+Simulation& UiFrames::simulation() { return state_->viewer.simulation(); }
+
+std::vector<std::uint8_t> UiFrames::draw() {
+  state_->viewer.simulationAdvanced();
+  // The first picture waits for the panels' layout, as writeUiSnapshot does.
+  const int frames = state_->frames == 0 ? kFramesForLayout : 1;
+  for (int i = 0; i < frames; ++i) state_->viewer.frame();
+  ++state_->frames;
+  return readFramebufferRgb(state_->backend.framebufferSize());
 }
 
 }  // namespace slime

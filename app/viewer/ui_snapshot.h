@@ -5,8 +5,11 @@
 #include "core/settings.h"
 #include "core/simulation.h"
 
+#include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
+#include <vector>
 
 namespace slime {
 
@@ -15,5 +18,22 @@ namespace slime {
 // the file cannot be written.
 void writeUiSnapshot(const Settings& settings, const std::string& path,
                      const std::function<void(Simulation&)>& settle = nullptr);
+
+// The whole viewer drawn headless frame after frame (`slime record --ui`): the caller advances the
+// simulation, then draw() returns the picture as 8-bit RGB, top row first.
+class UiFrames {
+ public:
+  explicit UiFrames(const Settings& settings);  // throws std::runtime_error when there is no EGL/GL
+  ~UiFrames();
+  UiFrames(const UiFrames&) = delete;
+  UiFrames& operator=(const UiFrames&) = delete;
+
+  Simulation& simulation();
+  std::vector<std::uint8_t> draw();
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 }  // namespace slime

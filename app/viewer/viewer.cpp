@@ -1,10 +1,12 @@
 #include "app/viewer/viewer.h"
 
 #include "app/viewer/gl.h"
+#include "app/viewer/panel_fields.h"
 #include "app/viewer/screenshot.h"
 #include "core/camera.h"
 #include "core/level_of_detail.h"
 #include "core/settings_io.h"
+#include "render/image_io.h"
 
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
@@ -14,6 +16,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <thread>
 
@@ -37,7 +40,9 @@ Viewer::Viewer(ViewerBackend& backend, const Settings& settings, ViewerOptions o
       options_(std::move(options)),
       settings_(settings),
       draft_(settings),
-      builtSlime_(settings.slime),
+      wanted_(settings),
+      built_(settings),
+      scenePath_(options_.scenePath),
       simulation_(settings),
       renderer_(settings) {
   if (options_.scenario) scenario_.emplace(*options_.scenario);
@@ -48,6 +53,7 @@ Viewer::Viewer(ViewerBackend& backend, const Settings& settings, ViewerOptions o
   backend_.initImGuiPlatform();
   ImGui_ImplOpenGL3_Init("#version 330 core");
   metrics_ = simulation_.metrics();
+  columnWidth_ = panelColumnWidth(static_cast<float>(backend_.windowSize().x));
 }
 
 Viewer::~Viewer() {
@@ -112,6 +118,7 @@ int Viewer::run() {
 
 FrameInput Viewer::readInput() {
   FrameInput input = backend_.pollInput();
+  toViewCoordinates(input);
   backend_.newImGuiPlatformFrame();
   ImGui_ImplOpenGL3_NewFrame();
   ImGui::NewFrame();
@@ -126,6 +133,9 @@ void Viewer::handleInput(const FrameInput& input) {
   if (input.closeRequested || (input.escapePressed && !input.keyboardCapturedByUi)) quit_ = true;
   if (input.screenshotRequested)
     requestScreenshot(options_.screenshotPrefix + "-" + std::to_string(++screenshotCount_) + ".png");
+  if (input.helpKey == HelpKey::F1 || (input.helpKey == HelpKey::H && !input.keyboardCapturedByUi)) showHelp_ = !showHelp_;
+  if (input.saveRequested) saveScene();
+  if (input.loadRequested) loadScene();
   if (!input.keyboardCapturedByUi && cameraController_.applyKeys(input, settings_.camera)) {
     sceneChanged_ = true;
     lastInteraction_ = wallClock_;
@@ -184,7 +194,7 @@ void Viewer::simulationAdvanced() {
 }
 
 glm::dvec3 Viewer::grabTargetFor() const {
-  const glm::ivec2 size = backend_.windowSize();
+  const glm::ivec2 size = viewSize();
   return grab_.active() && size.x > 0 && size.y > 0 ? grab_.target(makeCamera(settings_.camera, size.x, size.y), size)
                                                     : grabTargetDrawn_;
 }
@@ -260,8 +270,10 @@ bool Viewer::motionWouldShow() const {
 }
 
 glm::ivec2 Viewer::tracedImageSize() const {
-  const glm::ivec2 framebuffer = backend_.framebufferSize();
-  if (framebuffer.x <= 0 || framebuffer.y <= 0) return {0, 0};  // minimised: nothing to show
+  const glm::ivec2 view = viewSize(), window = backend_.windowSize();
+  const glm::ivec2 full = backend_.framebufferSize();
+  if (full.x <= 0 || full.y <= 0 || view.x <= 0 || window.x <= 0) return {0, 0};  // minimised: nothing to show
+  const glm::ivec2 framebuffer{full.x * view.x / window.x, full.y};
   // A coarser image while the user moves things keeps the window responsive; the full one when still.
   const double scale = settings_.render.scale * (interacting() ? kInteractiveScale : 1.0);
   return {std::max(1, static_cast<int>(std::lround(framebuffer.x * scale))),
@@ -301,25 +313,32 @@ PanelRequests Viewer::drawPanelsAndOverlay(const glm::dvec3& heldCentre) {
   const Stopwatch uiTime;
   // The panels edit a draft; while an invalid edit is shown the draft keeps it, but the camera is
   // always the live one.
-  if (editError_.empty()) draft_ = settings_;
-  else draft_.camera = settings_.camera;
-  const bool reloadPending = builtSlime_.level != settings_.slime.level || builtSlime_.radius != settings_.slime.radius;
-  const PanelRequests requests =
-      drawPanels(draft_, PanelView{stats_, metrics_, editError_, errorPanel_, reloadPending});
+  if (editError_.empty()) {
+    draft_ = settings_;
+    copyReloadFields(wanted_, draft_);
+  } else {
+    draft_.camera = settings_.camera;
+  }
+  const PanelView view{stats_,       metrics_, editError_, errorGroup_, differingReloadFields(draft_, built_),
+                       fileMessage_, fileFailed_};
+  const PanelRequests requests = drawPanels(draft_, scenePath_, view);
+  if (showHelp_) drawHelpOverlay(requests.columnWidth);
 
   // The grab spot: a ring at the grab target, a line from where the grabbed points are.
-  const glm::ivec2 size = backend_.windowSize();
+  const glm::ivec2 size = viewSize();
   if (grab_.active() && size.x > 0 && size.y > 0) {
     const Camera camera = makeCamera(settings_.camera, size.x, size.y);
     ImDrawList* overlay = ImGui::GetForegroundDrawList();
     const auto target = projectToWindow(camera, grab_.target(camera, size), size);
     const auto held = projectToWindow(camera, heldCentre, size);
+    const float left = columnWidth_;
     if (target && held)
-      overlay->AddLine(ImVec2(float(held->x), float(held->y)), ImVec2(float(target->x), float(target->y)),
+      overlay->AddLine(ImVec2(left + float(held->x), float(held->y)), ImVec2(left + float(target->x), float(target->y)),
                        IM_COL32(255, 255, 255, 160), 1.5f);
     if (target) {
-      overlay->AddCircle(ImVec2(float(target->x), float(target->y)), 9.0f, IM_COL32(255, 230, 80, 255), 24, 2.0f);
-      overlay->AddCircleFilled(ImVec2(float(target->x), float(target->y)), 2.5f, IM_COL32(255, 230, 80, 255));
+      const ImVec2 centre(left + float(target->x), float(target->y));
+      overlay->AddCircle(centre, 9.0f, IM_COL32(255, 230, 80, 255), 24, 2.0f);
+      overlay->AddCircleFilled(centre, 2.5f, IM_COL32(255, 230, 80, 255));
     }
   }
   ImGui::Render();
@@ -328,30 +347,57 @@ PanelRequests Viewer::drawPanelsAndOverlay(const glm::dvec3& heldCentre) {
 }
 
 void Viewer::applyPanelRequests(const PanelRequests& requests) {
-  if (requests.edited != Panel::None) applyEdit(requests.edited);
+  if (!requests.editedGroup.empty()) applyEdit(requests.editedGroup);
   if (requests.reloadSlime) reloadSlime();
   if (requests.singleStep) singleStepPending_ = true;
+  if (requests.save) saveScene();
+  if (requests.load) loadScene();
+  if (requests.columnWidth != columnWidth_) {  // the column opened or closed: the image takes the rest
+    columnWidth_ = requests.columnWidth;
+    sceneChanged_ = true;
+  }
 }
 
-void Viewer::applyEdit(Panel panel) {
+namespace {
+
+// validateSettings, and what only the renderer finds out: that a floor image can be read.
+void checkSettings(const Settings& settings, const Settings& current) {
+  validateSettings(settings);
+  if (settings.floor.pattern != "image" || settings.floor.image == current.floor.image) return;
   try {
-    validateSettings(draft_);
+    readPng(settings.floor.image);
+  } catch (const std::exception& error) {
+    throw SettingsError("floor.image: " + std::string(error.what()));
+  }
+}
+
+}  // namespace
+
+// A valid edit applies at once, except the rebuild-type settings (level, radius, ...): they wait in
+// wanted_ for Reload, so dragging the level slider does not rebuild the slime every frame.
+void Viewer::applyEdit(const std::string& group) {
+  try {
+    checkSettings(draft_, settings_);
   } catch (const SettingsError& error) {
     editError_ = error.what();  // shown in the panel; the settings keep their last valid value
-    errorPanel_ = panel;
+    errorGroup_ = group;
     return;
   }
   editError_.clear();
-  errorPanel_ = Panel::None;
+  errorGroup_.clear();
+  wanted_ = draft_;
   settings_ = draft_;
+  copyReloadFields(built_, settings_);
   simulation_.applySettings(settings_);
   sceneChanged_ = true;
 }
 
 void Viewer::reloadSlime() {
   if (grab_.active()) grab_.end();
+  copyReloadFields(wanted_, settings_);
+  built_ = settings_;
   simulation_.reload(settings_);
-  builtSlime_ = settings_.slime;
+  sceneChanged_ = true;
   clock_.reset();
   slimeMoved_ = true;
   drawnPositions_.clear();  // a new mesh: draw it whatever it moved
@@ -364,7 +410,9 @@ void Viewer::present() {
   const Stopwatch presentTime;
   const glm::ivec2 framebuffer = backend_.framebufferSize();
   if (framebuffer.x > 0 && framebuffer.y > 0) {
-    blit_.draw(framebuffer);
+    const glm::ivec2 window = backend_.windowSize();
+    const int left = window.x > 0 ? static_cast<int>(std::lround(columnWidth_ * framebuffer.x / window.x)) : 0;
+    blit_.draw(framebuffer, left);
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     for (const std::string& path : screenshotPaths_) {
       writeFramebufferPng(framebuffer, path);
@@ -378,6 +426,77 @@ void Viewer::present() {
 }
 
 // --- helpers ---------------------------------------------------------------------------------------
+
+glm::ivec2 Viewer::viewSize() const {
+  const glm::ivec2 window = backend_.windowSize();
+  return {std::max(0, window.x - static_cast<int>(std::lround(columnWidth_))), window.y};
+}
+
+void Viewer::toViewCoordinates(FrameInput& input) const {
+  const double left = std::lround(columnWidth_);
+  input.cursor.x -= left;
+  for (MouseButtonEvent& event : input.buttons) event.position.x -= left;
+  input.windowSize = viewSize();
+}
+
+Settings Viewer::sceneToSave() const {
+  Settings scene = settings_;
+  copyReloadFields(wanted_, scene);
+  const glm::ivec2 window = backend_.windowSize();
+  if (window.x > 0 && window.y > 0) scene.camera.width = window.x, scene.camera.height = window.y;
+  return scene;
+}
+
+// Written to a temporary file beside the target and renamed, so a failed save leaves no half file.
+void Viewer::saveScene() {
+  const std::string temporary = scenePath_ + ".partial";
+  {
+    std::ofstream file(temporary);
+    file << settingsToJson(sceneToSave()).dump(2) << '\n';
+    if (!file) {
+      std::filesystem::remove(temporary);
+      fileMessage_ = "Not saved: cannot write " + scenePath_;
+      fileFailed_ = true;
+      return;
+    }
+  }
+  std::error_code error;
+  std::filesystem::rename(temporary, scenePath_, error);
+  fileFailed_ = static_cast<bool>(error);
+  fileMessage_ = error ? "Not saved: " + scenePath_ + ": " + error.message() : "Saved " + scenePath_;
+  if (error) std::filesystem::remove(temporary);
+  std::printf("slime: %s\n", fileMessage_.c_str());
+}
+
+// A scene file is applied over the default scene, as `--scene` does; anything wrong leaves the
+// running scene as it was. The window keeps its size.
+void Viewer::loadScene() {
+  Settings loaded = defaultSettings();
+  try {
+    applySceneFile(loaded, scenePath_);
+    loaded.camera.width = settings_.camera.width;
+    loaded.camera.height = settings_.camera.height;
+    checkSettings(loaded, Settings{});
+  } catch (const SettingsError& error) {
+    fileMessage_ = std::string("Not loaded: ") + error.what();
+    fileFailed_ = true;
+    std::printf("slime: %s\n", fileMessage_.c_str());
+    return;
+  }
+  settings_ = wanted_ = built_ = draft_ = loaded;
+  editError_.clear();
+  errorGroup_.clear();
+  fileMessage_ = "Loaded " + scenePath_;
+  fileFailed_ = false;
+  if (grab_.active()) grab_.end();
+  simulation_.reload(settings_);
+  clock_.reset();
+  slimeMoved_ = true;
+  sceneChanged_ = true;
+  drawnPositions_.clear();
+  metrics_ = simulation_.metrics();
+  std::printf("slime: %s\n", fileMessage_.c_str());
+}
 
 Settings Viewer::frameSettings(glm::ivec2 imageSize) const {
   Settings frame = settings_;
@@ -428,6 +547,8 @@ void Viewer::writeReport() const {
        {{"volume_ratio", metrics_.volumeRatio}, {"height", metrics_.height}, {"width", metrics_.width},
         {"aspect", metrics_.aspect}, {"min_z", metrics_.minZ}}},
       {"edit_error", editError_},
+      {"file_message", fileMessage_},
+      {"reload_pending", differingReloadFields(wanted_, built_)},
       {"screenshots", screenshotsWritten_},
       {"settings", settingsToJson(settings_)}};
   std::ofstream file(options_.reportPath);

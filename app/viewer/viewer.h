@@ -34,6 +34,7 @@ struct ViewerOptions {
   std::string reportPath;                           // JSON summary written at exit, if set
   std::string screenshotPrefix = "slime-screenshot";  // F12 writes <prefix>-<n>.png
   std::optional<Scenario> scenario;                 // timed grab/drag/press/set events to replay
+  std::string scenePath = "slime-scene.json";       // where Ctrl+S saves and Ctrl+O loads (panel field)
 };
 
 class Viewer {
@@ -64,6 +65,10 @@ class Viewer {
   const Settings& settings() const { return settings_; }
   const FrameStats& stats() const { return stats_; }
 
+  // The scene as the panels show it (rebuild-type values waiting for Reload included), with the
+  // window's size as the image size: what Ctrl+S saves.
+  Settings sceneToSave() const;
+
  private:
   // The frame's steps, in order.
   FrameInput readInput();
@@ -90,8 +95,13 @@ class Viewer {
 
   // Helpers of the steps.
   void handleButton(const MouseButtonEvent& event, const FrameInput& input);
-  void applyEdit(Panel panel);
+  void applyEdit(const std::string& group);
   void reloadSlime();
+  void saveScene();
+  void loadScene();
+  // The part of the window the traced image fills: right of the panel column.
+  glm::ivec2 viewSize() const;
+  void toViewCoordinates(FrameInput& input) const;
   Settings frameSettings(glm::ivec2 imageSize) const;
   glm::dvec3 slimeCentre() const;
   glm::dvec3 grabbedCentre() const;  // where the grabbed points are now
@@ -102,9 +112,15 @@ class Viewer {
   ViewerOptions options_;
   Settings settings_;              // applied: what the simulation and renderer use
   Settings draft_;                 // what the panels edit; becomes settings_ when valid
-  SlimeSettings builtSlime_;       // the slime settings the simulation was last built from
+  Settings wanted_;                // its rebuild-type values (panel_fields.h) wait here for Reload
+  Settings built_;                 // ... and settings_ keeps those the slime was last built from
   std::string editError_;
-  Panel errorPanel_ = Panel::None;
+  std::string errorGroup_;
+  std::string scenePath_;
+  std::string fileMessage_;        // the outcome of the last save or load, shown in the panel
+  bool fileFailed_ = false;
+  bool showHelp_ = false;          // the F1/H overlay
+  float columnWidth_ = 0.0f;       // window pixels the panel column covers (last frame's)
   Simulation simulation_;
   Renderer renderer_;
   Image image_;

@@ -64,11 +64,17 @@ void Window::onMouseButton(GLFWwindow* window, int button, int action, int mods)
 
 void Window::onScroll(GLFWwindow* window, double, double y) { owner(window).pending_.wheel += y; }
 
-void Window::onKey(GLFWwindow* window, int key, int, int action, int) {
+void Window::onKey(GLFWwindow* window, int key, int, int action, int mods) {
   if (action != GLFW_PRESS) return;
   FrameInput& pending = owner(window).pending_;
   if (key == GLFW_KEY_F12) pending.screenshotRequested = true;
   if (key == GLFW_KEY_ESCAPE) pending.escapePressed = true;
+  if (key == GLFW_KEY_F1 || key == GLFW_KEY_H) pending.helpKey = key == GLFW_KEY_F1 ? HelpKey::F1 : HelpKey::H;
+  if ((mods & GLFW_MOD_CONTROL) != 0) {  // Ctrl+S saves, Ctrl+O loads; no chord moves the camera
+    pending.saveRequested = pending.saveRequested || key == GLFW_KEY_S;
+    pending.loadRequested = pending.loadRequested || key == GLFW_KEY_O;
+    return;
+  }
   // A tap shorter than a frame still moves the camera for one frame.
   for (int index = 0; index < kCameraKeyCount; ++index)
     if (key == kCameraKeyCodes[index]) pending.cameraKeys[index] = true;
@@ -88,7 +94,8 @@ FrameInput Window::pollInput() {
   input.control = glfwGetKey(window_, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS ||
                   glfwGetKey(window_, GLFW_KEY_RIGHT_CONTROL) == GLFW_PRESS;
   for (int index = 0; index < kCameraKeyCount; ++index)
-    input.cameraKeys[index] = input.cameraKeys[index] || glfwGetKey(window_, kCameraKeyCodes[index]) == GLFW_PRESS;
+    input.cameraKeys[index] = !input.control && (input.cameraKeys[index] ||
+                                                 glfwGetKey(window_, kCameraKeyCodes[index]) == GLFW_PRESS);
   input.closeRequested = glfwWindowShouldClose(window_);
   return input;
 }

@@ -1,5 +1,6 @@
 // The viewer's frame code, run headless (EGL surfaceless, no display): the same code as the window.
 #include "app/viewer/headless_gl.h"
+#include "app/viewer/panels.h"
 #include "app/viewer/ui_snapshot.h"
 #include "app/viewer/viewer.h"
 #include "core/settings_io.h"
@@ -27,7 +28,9 @@ TEST(HeadlessViewer, RunsFramesWithoutAdvancingThePhysicsClock) {
   for (int frame = 0; frame < 3; ++frame) EXPECT_TRUE(viewer.frame());
   EXPECT_EQ(viewer.stats().frames, 3);
   EXPECT_EQ(viewer.simulation().stepCount(), 0);  // headless time stands still: a snapshot is reproducible
-  EXPECT_EQ(viewer.stats().imageWidth, 320);      // nobody is interacting: the full-resolution image
+  // Nobody is interacting: the full-resolution image, filling the window right of the panel column.
+  EXPECT_EQ(viewer.stats().imageWidth, 320 - static_cast<int>(std::lround(panelColumnWidth(320.0f))));
+  EXPECT_EQ(viewer.stats().imageHeight, 240);
   EXPECT_GT(viewer.stats().rays, 0u);
 }
 

@@ -1,4 +1,5 @@
 #include "core/default_scene.h"
+#include "core/setting_info.h"
 #include "core/settings_io.h"
 
 #include <gtest/gtest.h>
@@ -125,6 +126,67 @@ TEST(Settings, SceneFileAppliesNestedKeysAndReportsItsErrors) {
   EXPECT_NE(errorOf([&] { applySceneFile(settings, path); }).find("JSON object"), std::string::npos);
   std::remove(path.c_str());
   EXPECT_NE(errorOf([&] { applySceneFile(settings, path); }).find("cannot open"), std::string::npos);
+}
+
+// One table, one meaning per key: every line of settings_fields.h carries its one-line help.
+TEST(Settings, EveryKeyIsDescribedWithItsMeaning) {
+  const std::vector<SettingInfo> described = describeSettings(defaultSettings());
+  std::vector<std::string> keys;
+  for (const SettingInfo& info : described) {
+    keys.push_back(info.key);
+    EXPECT_FALSE(info.help.empty()) << info.key << " has no help in core/settings_fields.h";
+    EXPECT_EQ(info.value, settingValue(defaultSettings(), info.key)) << info.key;
+  }
+  EXPECT_EQ(keys, settingKeys());
+}
+
+TEST(Settings, SamplesPerPixelOffersOnlyTheSquaresValidationAccepts) {
+  for (const SettingInfo& info : describeSettings(defaultSettings())) {
+    if (info.key == "render.spp") {
+      EXPECT_EQ(info.onlyValues, (std::vector<int>{1, 4, 9, 16, 25, 36, 49, 64}));
+    } else if (info.key == "slime.level") {
+      EXPECT_TRUE(info.onlyValues.empty()) << "every level 0..7 is valid";
+    }
+  }
+  Settings settings = defaultSettings();
+  settings.render.spp = 2;
+  const std::string error = errorOf([&] { validateSettings(settings); });
+  EXPECT_NE(error.find("render.spp"), std::string::npos) << error;
+  EXPECT_NE(error.find("1, 4, 9, 16"), std::string::npos) << error;
+}
+
+// Save then load (the viewer's Ctrl+S and Ctrl+O, `--scene`) gives back every key, each set to a
+// value other than its default so that a key the writer or reader dropped shows.
+TEST(Settings, SaveAndLoadRoundTripEveryKey) {
+  Settings changed = defaultSettings();
+  for (const SettingInfo& info : describeSettings(changed)) {
+    json value;
+    switch (info.type) {
+      case SettingType::Number: value = info.min + (info.max - info.min) * 0.37; break;
+      case SettingType::Integer:
+        value = info.onlyValues.empty() ? static_cast<int>(info.min + (info.max - info.min) / 3) : info.onlyValues[2];
+        break;
+      case SettingType::Vector: value = json::array({info.min + 0.1 * (info.max - info.min), 0.5 * (info.min + info.max), info.max}); break;
+      case SettingType::Choice: value = info.choices.back() == info.value ? info.choices.front() : info.choices.back(); break;
+      case SettingType::Text: value = "some/floor.png"; break;
+      case SettingType::Boolean: value = !info.value.get<bool>(); break;
+    }
+    if (info.key == "slime.position") value = json::array({0.01, -0.02, 0.5});  // above the floor: z >= radius
+    if (info.key == "floor.pattern") value = "checker";                         // no image file needed
+    setSetting(changed, info.key, value);
+    EXPECT_NE(settingValue(changed, info.key), settingValue(defaultSettings(), info.key)) << info.key;
+  }
+  ASSERT_NO_THROW(validateSettings(changed));
+  const std::string path = std::string(SLIME_TEST_OUTPUT_DIR) + "/round_trip_scene.json";
+  {
+    std::ofstream file(path);
+    file << settingsToJson(changed).dump(2);
+  }
+  Settings loaded = defaultSettings();
+  applySceneFile(loaded, path);
+  for (const std::string& key : settingKeys())
+    EXPECT_EQ(settingValue(loaded, key), settingValue(changed, key)) << key << " did not survive save and load";
+  EXPECT_EQ(settingsToJson(loaded), settingsToJson(changed));
 }
 
 }  // namespace

@@ -2,7 +2,7 @@
 # W moves the camera forward (the picture changes, the camera position too); resizing the window works;
 # Esc quits with exit code 0. Physics is paused so that only the camera changes the picture.
 source "$(dirname "$0")/viewer_lib.sh"
-start_viewer --size 480x360 --set sim.paused=true
+start_viewer --size 730x360  # the image: 480x360 right of the panel column --set sim.paused=true
 sleep 2
 screenshot 1
 xdotool keydown --window "$WINDOW" w

@@ -13,7 +13,7 @@ fail() {
   exit 1
 }
 
-# start_viewer ARGS...: opens the viewer (480x360 unless --size is given) and waits for its window.
+# start_viewer ARGS...: opens the viewer (1280x720 unless --size is given) and waits for its window.
 start_viewer() {
   "$SLIME" view --report "$OUT/report.json" --screenshot-prefix "$OUT/shot" "$@" > "$OUT/stdout.txt" 2>&1 &
   VIEWER_PID=$!

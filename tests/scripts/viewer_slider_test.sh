@@ -1,34 +1,43 @@
 #!/bin/bash
-# A panel slider edits the setting (clicking the transmission slider near its left end); a typed value
-# outside the allowed range is refused with a message and not applied. Clicks on the panel are not
-# seen by the app (no grab starts under them).
+# The panels come from the settings table: a slider click edits the setting (stiffness, near its left
+# end); a typed value outside the table's range is refused with a message naming the key and range and
+# not applied (stiffness 2000: the limit is 1000 N/m); the level slider waits for Reload
+# instead of rebuilding the slime. Clicks on the panel are not seen by the app (no grab starts under them).
+# The column is 250 wide at the left; with the Scene file section closed its rows are 23 px apart.
 source "$(dirname "$0")/viewer_lib.sh"
-start_viewer --size 480x360 --set sim.paused=true
+start_viewer --size 730x360 --set sim.paused=true
 sleep 2
-xdotool mousemove --window "$WINDOW" 40 42 click 1     # open the Slime section
+xdotool mousemove --window "$WINDOW" 60 36 click 1      # close the Scene file section
 sleep 1
 screenshot 1
-xdotool mousemove --window "$WINDOW" 30 88 click 1     # transmission slider, near 0.1
+xdotool mousemove --window "$WINDOW" 12 266 click 1     # stiffness slider (logarithmic 1..1000), near 1 N/m
+sleep 1
+xdotool mousemove --window "$WINDOW" 12 197 click 1     # level slider at its left end: 0, held for Reload
 sleep 1
 screenshot 2
-# Ctrl+click the mass slider to type a value: 0 kg is outside 0.001..100 kg. (Dear ImGui 1.86 misses a
-# key pressed and released within one frame, hence keydown, a pause, keyup.)
-xdotool mousemove --window "$WINDOW" 60 158 keydown ctrl click 1 keyup ctrl
-sleep 0.5
-xdotool type --window "$WINDOW" "0"
-sleep 0.3
-xdotool keydown --window "$WINDOW" Return
-sleep 0.3
-xdotool keyup --window "$WINDOW" Return
-sleep 1
+# Ctrl+click a slider to type a value. (Dear ImGui 1.86 misses a key pressed and released within one
+# frame, hence keydown, a pause, keyup.)
+type_into() {  # X Y TEXT
+  xdotool mousemove --window "$WINDOW" "$1" "$2" keydown ctrl click 1 keyup ctrl
+  sleep 0.5
+  xdotool type --window "$WINDOW" "$3"
+  sleep 0.3
+  xdotool keydown --window "$WINDOW" Return
+  sleep 0.3
+  xdotool keyup --window "$WINDOW" Return
+  sleep 1
+}
+type_into 60 266 "2000"     # stiffness 2000 N/m: outside 1..1000 N/m
 screenshot 3
 quit_viewer
 
-transmission=$(report '.settings.slime.transmission')
-awk -v t="$transmission" 'BEGIN { exit !(t < 0.3) }' || fail "transmission $transmission: the slider click was not applied"
-mass=$(report '.settings.slime.mass')
-awk -v m="$mass" 'BEGIN { exit !(m > 0.001) }' || fail "mass $mass: an out-of-range value was applied"
+stiffness=$(report '.settings.slime.stiffness')
+awk -v k="$stiffness" 'BEGIN { exit !(k < 50) }' || fail "stiffness $stiffness: the slider click near 1 N/m (from 100) was not applied"
+awk -v k="$stiffness" 'BEGIN { exit !(k <= 1000) }' || fail "stiffness $stiffness: an out-of-range value was applied"
 error=$(report '.edit_error')
-echo "$error" | grep -q "slime.mass" || fail "no error naming slime.mass for mass 0: '$error'"
+echo "$error" | grep -q "slime.stiffness" || fail "no error naming slime.stiffness for 2000 N/m: '$error'"
+echo "$error" | grep -q "1 to 1000" || fail "the error does not give the table's range 1 to 1000: '$error'"
+[ "$(report '.settings.slime.level')" -eq 4 ] || fail "the level slider rebuilt the slime at once (level $(report '.settings.slime.level'))"
+report '.reload_pending[]' | grep -qx "slime.level" || fail "slime.level is not waiting for Reload: $(report '.reload_pending')"
 [ "$(report '.grabs')" -eq 0 ] || fail "a click on a panel reached the app as a grab"
-echo "PASS: transmission $transmission, mass 0 refused (mass stays $mass): $error"
+echo "PASS: stiffness $stiffness, 2000 N/m refused: $error; level held for Reload"
