@@ -38,6 +38,7 @@ float phongLobe(const glm::vec3& normal, const glm::vec3& toLight, const glm::ve
 
 struct WhittedTracer::Wavefront {
   std::vector<PendingRay> current, next;  // this generation's rays and their children
+  std::vector<FloorShading> floors;       // per ray of `current`: its floor's shading, when it sees the floor
   std::vector<PendingShadow> shadows;     // the packet's shadow rays, traced last
 };
 
@@ -65,14 +66,25 @@ void WhittedTracer::tracePrimary8(const Ray* rays, const SlimeHit* hits, int cou
   wavefront.current.clear();
   wavefront.next.clear();
   wavefront.shadows.clear();
+  // Most pixels see only the floor or the sky: shaded at once, only their shadow rays may wait. The
+  // floor's pattern is looked up for all the packet's floor pixels together (FloorTexture::albedo8).
+  FloorShading packetShadings[8];
+  FloorShading* shadings = floorCache ? floorCache : packetShadings;
+  float tFloors[8] = {kInfinity, kInfinity, kInfinity, kInfinity, kInfinity, kInfinity, kInfinity, kInfinity};
+  bool needed[8] = {};
+  for (int i = 0; i < count; ++i) {
+    tFloors[i] = hits[i].valid() ? kInfinity : floorDistance(rays[i]);
+    if (tFloors[i] == kInfinity) continue;
+    if (floorCache && floorCache[i].filled) ++counters.cachedFloorPixels;
+    else needed[i] = true;
+  }
+  floorShading8(rays, tFloors, tFloors, needed, shadings);
   for (int i = 0; i < count; ++i) {
     ++counters.rays.primary;
     colors[i] = glm::vec3(0.0f);
     if (!hits[i].valid()) {
-      // Most pixels see only the floor or the sky: shaded at once, only their shadow rays may wait.
-      const float tFloor = floorDistance(rays[i]);
-      if (tFloor == kInfinity) colors[i] = sky(rays[i].direction);
-      else shadeFloor(rays[i], tFloor, Path{}, glm::vec3(1.0f), i, wavefront, counters, floorCache ? floorCache + i : nullptr, colors);
+      if (tFloors[i] == kInfinity) colors[i] = sky(rays[i].direction);
+      else shadeFloorWith(rays[i], tFloors[i], shadings[i], Path{}, glm::vec3(1.0f), i, wavefront, counters, colors);
       continue;
     }
     PendingRay primary;
@@ -87,8 +99,10 @@ void WhittedTracer::tracePrimary8(const Ray* rays, const SlimeHit* hits, int cou
   // which adds what is known now to the pixels and queues the next generation and the shadow rays.
   while (!wavefront.current.empty()) {
     findHits(wavefront.current, counters);
+    lookUpFloors(wavefront.current, wavefront.floors);
     wavefront.next.clear();
-    for (const PendingRay& ray : wavefront.current) shade(ray, wavefront, counters, floorCache, colors);
+    for (std::size_t r = 0; r < wavefront.current.size(); ++r)
+      shade(wavefront.current[r], wavefront.floors[r], wavefront, counters, floorCache, colors);
     std::swap(wavefront.current, wavefront.next);
   }
   traceShadows(wavefront.shadows, counters, colors);
@@ -123,13 +137,44 @@ void WhittedTracer::findHits(std::vector<PendingRay>& rays, TraceCounters& count
   if (size > 0) flush();
 }
 
-void WhittedTracer::shade(const PendingRay& ray, Wavefront& wavefront, TraceCounters& counters,
+void WhittedTracer::lookUpFloors(const std::vector<PendingRay>& rays, std::vector<FloorShading>& floors) const {
+  floors.assign(rays.size(), FloorShading{});
+  Ray packet[8];
+  float t[8], distances[8];
+  bool needed[8] = {};
+  std::size_t members[8] = {};
+  int size = 0;
+  const auto flush = [&] {
+    FloorShading found[8];
+    floorShading8(packet, t, distances, needed, found);
+    for (int k = 0; k < size; ++k) floors[members[k]] = found[k];
+    for (bool& n : needed) n = false;
+    size = 0;
+  };
+  for (std::size_t r = 0; r < rays.size(); ++r) {
+    const PendingRay& ray = rays[r];
+    if (ray.kind == Kind::Primary) continue;  // a primary's floor goes through the renderer's cache
+    const float tFloor = floorDistance(ray.ray);
+    if (tFloor == kInfinity || (ray.hit.valid() && ray.hit.t <= tFloor)) continue;
+    packet[size] = ray.ray;
+    t[size] = tFloor;
+    distances[size] = ray.path.travelled + tFloor;
+    needed[size] = true;
+    members[size] = r;
+    if (++size == 8) flush();
+  }
+  if (size > 0) flush();
+}
+
+void WhittedTracer::shade(const PendingRay& ray, const FloorShading& floor, Wavefront& wavefront, TraceCounters& counters,
                           FloorShading* floorCache, glm::vec3* colors) const {
   const float tFloor = floorDistance(ray.ray);
   if (ray.hit.valid() && ray.hit.t <= tFloor) {
     shadeSlime(ray, wavefront, counters, colors);
   } else if (tFloor == kInfinity) {
     colors[ray.pixel] += ray.factor * sky(ray.ray.direction);
+  } else if (floor.filled) {
+    shadeFloorWith(ray.ray, tFloor, floor, ray.path, ray.factor, ray.pixel, wavefront, counters, colors);
   } else {
     shadeFloor(ray.ray, tFloor, ray.path, ray.factor, ray.pixel, wavefront, counters,
                ray.kind == Kind::Primary && floorCache ? floorCache + ray.pixel : nullptr, colors);
@@ -222,18 +267,25 @@ void WhittedTracer::shadeSlime(const PendingRay& pending, Wavefront& wavefront, 
 void WhittedTracer::shadeFloor(const Ray& ray, float t, const Path& path, const glm::vec3& rayFactor, int pixel,
                                Wavefront& wavefront, TraceCounters& counters, FloorShading* floorCache,
                                glm::vec3* colors) const {
-  const ShadingParameters& p = parameters_;
   glm::vec3 point = ray.origin + t * ray.direction;
   point.z = 0.0f;
-  const float distance = path.travelled + t;
   FloorShading fresh;
   if (!floorCache || !floorCache->filled) {
-    fresh = floorShading(point, ray.direction, distance);
+    fresh = floorShading(point, ray.direction, path.travelled + t);
     if (floorCache) *floorCache = fresh;
   } else {
     ++counters.cachedFloorPixels;
   }
-  const FloorShading& shading = floorCache ? *floorCache : fresh;
+  shadeFloorWith(ray, t, floorCache ? *floorCache : fresh, path, rayFactor, pixel, wavefront, counters, colors);
+}
+
+void WhittedTracer::shadeFloorWith(const Ray& ray, float t, const FloorShading& shading, const Path& path,
+                                   const glm::vec3& rayFactor, int pixel, Wavefront& wavefront, TraceCounters& counters,
+                                   glm::vec3* colors) const {
+  const ShadingParameters& p = parameters_;
+  glm::vec3 point = ray.origin + t * ray.direction;
+  point.z = 0.0f;
+  const float distance = path.travelled + t;
   // colour = mix(ambient + T_light lit + k_s I_mirror, horizon, haze), seen under the jelly (the
   // contact patch) through Beer–Lambert absorption; each term goes to the pixel with its factor.
   const glm::vec3 factor = path.inside ? rayFactor * beerLambert(p.slimeAbsorption, t) : rayFactor;
@@ -299,13 +351,12 @@ void WhittedTracer::traceShadows(const std::vector<PendingShadow>& shadows, Trac
   if (size > 0) flush();
 }
 
-FloorShading WhittedTracer::floorShading(const glm::vec3& point, const glm::vec3& direction, float distance) const {
-  const ShadingParameters& p = parameters_;
+glm::vec2 WhittedTracer::floorFootprint(const glm::vec3& direction, float distance) const {
   // The pixel's cone (width w = distance × spread) cuts the floor in an ellipse with half axes
   // w/(2 cos θ) along the ray's horizontal direction (d_x, d_y)/sin θ and w/2 across it; the texture
   // averages over that ellipse's bounding box, whose half extents are
   //   (w/2) √((d_x²/cos²θ + d_y²)/sin²θ) and (w/2) √((d_y²/cos²θ + d_x²)/sin²θ).
-  const float halfWidth = 0.5f * distance * p.pixelSpread;
+  const float halfWidth = 0.5f * distance * parameters_.pixelSpread;
   const float cosTheta = std::max(std::abs(direction.z), 1e-3f);
   const float inverseCos2 = 1.0f / (cosTheta * cosTheta);
   const float dx2 = direction.x * direction.x, dy2 = direction.y * direction.y, sin2 = dx2 + dy2;
@@ -314,8 +365,34 @@ FloorShading WhittedTracer::floorShading(const glm::vec3& point, const glm::vec3
     const float scale = halfWidth * halfWidth / sin2;
     footprint = {std::sqrt(scale * (dx2 * inverseCos2 + dy2)), std::sqrt(scale * (dy2 * inverseCos2 + dx2))};
   }
-  const glm::vec3 albedo = floor_.albedo({point.x, point.y}, footprint);
+  return footprint;
+}
 
+FloorShading WhittedTracer::floorShading(const glm::vec3& point, const glm::vec3& direction, float distance) const {
+  return litFloor(point, direction, distance, floor_.albedo({point.x, point.y}, floorFootprint(direction, distance)));
+}
+
+void WhittedTracer::floorShading8(const Ray* rays, const float* t, const float* distances, const bool* needed,
+                                  FloorShading* shadings) const {
+  float x[8] = {}, y[8] = {}, footprintX[8] = {}, footprintY[8] = {};
+  for (int i = 0; i < 8; ++i) {
+    if (!needed[i]) continue;
+    const glm::vec3 point = rays[i].origin + t[i] * rays[i].direction;
+    const glm::vec2 footprint = floorFootprint(rays[i].direction, distances[i]);
+    x[i] = point.x;
+    y[i] = point.y;
+    footprintX[i] = footprint.x;
+    footprintY[i] = footprint.y;
+  }
+  glm::vec3 albedos[8];
+  floor_.albedo8(x, y, footprintX, footprintY, needed, albedos);
+  for (int i = 0; i < 8; ++i)
+    if (needed[i]) shadings[i] = litFloor({x[i], y[i], 0.0f}, rays[i].direction, distances[i], albedos[i]);
+}
+
+FloorShading WhittedTracer::litFloor(const glm::vec3& point, const glm::vec3& direction, float distance,
+                                     const glm::vec3& albedo) const {
+  const ShadingParameters& p = parameters_;
   FloorShading shading;
   shading.filled = true;
   shading.ambient = albedo * p.ambientLight;
