@@ -41,8 +41,27 @@ struct FrameTiming {
 
 // Still: the view of a person watching or dragging the slime (the renderer reuses what the slime
 // cannot change). Moving: the camera turns by a thousandth of a degree every frame, as when orbiting,
-// so every pixel is traced every frame.
-enum class CameraMotion { Still, Moving };
+// so every pixel is traced every frame. Deforming: the camera moves as in Moving and the slime takes
+// one of two pulled-up shapes in turn (deformedSlime), as while a person drags it: every pixel is
+// traced and the BVH refitted every frame.
+enum class CameraMotion { Still, Moving, Deforming };
+
+// The resting slime with its top pulled up by `lift` (metres at the apex), as a grab lifts it: each
+// vertex of the upper half rises by lift·s², s its height above the centre over the radius.
+TriangleMesh deformedSlime(const TriangleMesh& resting, double radius, double lift) {
+  TriangleMesh mesh = resting;
+  double centre = 0.0;
+  for (const glm::dvec3& p : resting.positions) centre += p.z;
+  centre /= static_cast<double>(std::max<std::size_t>(1, resting.positions.size()));
+  for (glm::dvec3& p : mesh.positions) {
+    const double s = std::clamp((p.z - centre) / radius, 0.0, 1.0);
+    p.z += lift * s * s;
+  }
+  return mesh;
+}
+
+// The two shapes of the deforming frames (even and odd frames): lifted by 10 % and 12 % of the radius.
+constexpr double kDeformLifts[2] = {0.10, 0.12};
 
 // warmup untimed frames, then `frames` timed ones; updateSlime every frame as the viewer does.
 FrameTiming timeFrames(Renderer& renderer, const Settings& stillSettings, const TriangleMesh& mesh, int warmup,
@@ -54,12 +73,19 @@ FrameTiming timeFrames(Renderer& renderer, const Settings& stillSettings, const 
   std::vector<double> samples, refits;
   FrameTiming timing;
   double spent = 0.0;
+  std::vector<TriangleMesh> shapes;
+  if (motion == CameraMotion::Deforming)
+    for (double lift : kDeformLifts) shapes.push_back(deformedSlime(mesh, settings.slime.radius, lift * settings.slime.radius));
   for (int frame = 0; frame < warmup + frames; ++frame) {
-    if (motion == CameraMotion::Moving) settings.camera.yaw = stillSettings.camera.yaw + (frame % 2 ? 1e-3 : -1e-3);
-    renderer.updateSlime(mesh.positions, mesh.triangles);
+    if (motion != CameraMotion::Still) settings.camera.yaw = stillSettings.camera.yaw + (frame % 2 ? 1e-3 : -1e-3);
+    const TriangleMesh& shape = shapes.empty() ? mesh : shapes[frame % 2];
+    const Stopwatch refitWatch;
+    renderer.updateSlime(shape.positions, shape.triangles);
+    const double refitMs = refitWatch.milliseconds();
     const Stopwatch watch;
     timing.stats = renderer.render(settings, image);
-    const double ms = watch.milliseconds();
+    // A deforming frame costs its refit too (the viewer refits before it traces); the others as before.
+    const double ms = watch.milliseconds() + (motion == CameraMotion::Deforming ? refitMs : 0.0);
     if (frame >= warmup) {
       samples.push_back(ms);
       refits.push_back(timing.stats.refitMs);
@@ -101,6 +127,57 @@ void printRow(const json& c) {
   std::printf("\n");
 }
 
+
+// The headline (issue 15) at one image size, level options.headlineLevel, `threads` threads: the
+// still, moving and deforming frames and, measured in the same run right after them, the Embree-only
+// replay of the deforming frame's own queries (the even frames' shape and view).
+json measureHeadline(const Settings& base, int width, int height, int threads, const RenderBenchOptions& options,
+                     BenchProgress& progress) {
+  Settings settings = base;
+  settings.camera.width = width;
+  settings.camera.height = height;
+  settings.render.threads = threads;
+  settings.slime.level = options.headlineLevel;
+  const TriangleMesh mesh = restingSlime(settings.slime, options.headlineLevel);
+  const std::string what = "headline " + std::to_string(width) + "x" + std::to_string(height);
+  Renderer stillRenderer(settings);
+  const FrameTiming still = timeFrames(stillRenderer, settings, mesh, options.warmup, options.frames, progress, what + ", still");
+  Renderer movingRenderer(settings);
+  const FrameTiming moving = timeFrames(movingRenderer, settings, mesh, options.warmup, options.frames, progress,
+                                        what + ", moving camera", 0.0, CameraMotion::Moving);
+  Renderer deformingRenderer(settings);
+  const FrameTiming deforming = timeFrames(deformingRenderer, settings, mesh, options.warmup, options.frames, progress,
+                                           what + ", deforming", 0.0, CameraMotion::Deforming);
+
+  Settings view = settings;
+  view.camera.yaw = settings.camera.yaw - 1e-3;  // timeFrames' even frames
+  const TriangleMesh shape = deformedSlime(mesh, settings.slime.radius, kDeformLifts[0] * settings.slime.radius);
+  const RayLog log = recordSlimeQueries(view, shape.positions, shape.triangles, width, height);
+  EmbreeReplay replay(threads, BvhUpdate::Refit);
+  replay.build(shape.positions, shape.triangles);
+  replay.replay(log, threads);  // warm-up
+  std::vector<double> replayMs;
+  for (int frame = 0; frame < options.frames; ++frame) {
+    replayMs.push_back(replay.replay(log, threads).totalMs());
+    progress.advance(1.0, what + ": Embree-only replay");
+  }
+  const TimingSummary limit = summarize(replayMs);
+  const double ms = deforming.ms.median;
+  return {{"width", width},
+          {"height", height},
+          {"level", options.headlineLevel},
+          {"threads", threads},
+          {"depth", options.depth},
+          {"deforming_frame_ms", ms},
+          {"deforming_frame", {{"ms", toJson(deforming.ms)}, {"refit_ms", deforming.refitMs}, {"rays", raysJson(deforming.stats)},
+                               {"note", "refit + render; camera turned and slime reshaped every frame: every pixel traced"}}},
+          {"deforming_replay_ms", limit.median},
+          {"deforming_replay", {{"ms", toJson(limit)}, {"queries", log.queries()}}},
+          {"deforming_over_replay", limit.median > 0.0 ? ms / limit.median : 0.0},
+          {"moving_camera_ms", moving.ms.median},
+          {"still_ms", still.ms.median},
+          {"aim_ms", width * height <= 734 * 564 ? 16.7 : 33.0}};
+}
 }  // namespace
 
 TriangleMesh restingSlime(const SlimeSettings& slime, int level) {
@@ -125,6 +202,7 @@ json runRenderBench(const Settings& baseSettings, const RenderBenchOptions& opti
     if (level <= options.bruteMaxLevel) total += 3.0;
   }
   total += 30.0 * options.bvhLevels.size();
+  total += options.headlineSizes.size() * (3.0 * perConfiguration + options.frames);
   BenchProgress progress("bench render", total);
 
   json report = {{"bench", "render"},
@@ -135,6 +213,12 @@ json runRenderBench(const Settings& baseSettings, const RenderBenchOptions& opti
                  {"frames", options.frames},
                  {"warmup", options.warmup},
                  {"scene", "default scene, undeformed slime resting on the floor"}};
+  // The headline first, on all the threads asked for (the most of them).
+  const int headlineThreads = *std::max_element(threads.begin(), threads.end());
+  json headline = json::array();
+  for (const auto& [width, height] : options.headlineSizes)
+    headline.push_back(measureHeadline(settings, width, height, headlineThreads, options, progress));
+  report["headline"] = headline;
   json configurations = json::array();
   CsvTable table{{"level", "faces", "threads", "ms_per_frame", "ms_min", "ms_max", "mrays_per_s", "rays_total",
                   "limit_ms_per_frame", "limit_mqueries_per_s", "full_over_limit", "brute_ms_per_frame",
@@ -263,6 +347,13 @@ json runRenderBench(const Settings& baseSettings, const RenderBenchOptions& opti
   report["seed"] = seed;
   progress.finish();
 
+  if (!headline.empty())
+    std::printf("headline  size       level thr  deforming ms  replay ms  deforming/replay  moving ms  still ms  aim ms\n");
+  for (const json& h : headline)
+    std::printf("          %4dx%-5d %5d %3d %13.2f %10.2f %17.2f %10.2f %9.2f %7.1f\n", h["width"].get<int>(),
+                h["height"].get<int>(), h["level"].get<int>(), h["threads"].get<int>(), h["deforming_frame_ms"].get<double>(),
+                h["deforming_replay_ms"].get<double>(), h["deforming_over_replay"].get<double>(),
+                h["moving_camera_ms"].get<double>(), h["still_ms"].get<double>(), h["aim_ms"].get<double>());
   std::printf("level   faces thr  ms/frame moving ms  Mrays/s  limit ms  Mqueries/s full/limit  brute ms  speed-up\n");
   for (const json& c : configurations) printRow(c);
   for (const json& b : bvh)
