@@ -165,7 +165,7 @@ struct Renderer::Impl {
               const float v = (y + offsetY) / image.height;
               const glm::vec3 direction = forward + (2.0f * u - 1.0f) * right + (1.0f - 2.0f * v) * up;
               rays[i] = Ray{eye, glm::normalize(direction), 0.0f, kInfinity};
-              active[i] = geometry.mayHit(rays[i]);
+              active[i] = !outside && geometry.mayHit(rays[i]);  // outside the footprint nothing can
               activeCount += active[i];
             }
             if (activeCount > 0) {
@@ -175,7 +175,7 @@ struct Renderer::Impl {
             glm::vec3 colors[kPacket];
             tracer.tracePrimary8(rays, hits, count, counts,
                                  floorShadings ? floorShadings + static_cast<std::size_t>(y) * image.width + x0 : nullptr,
-                                 colors);
+                                 colors, outside);
             for (int i = 0; i < count; ++i) sums[i] += colors[i];
           }
         }
