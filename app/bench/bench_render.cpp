@@ -366,6 +366,13 @@ json runRenderBench(const Settings& baseSettings, const RenderBenchOptions& opti
     writeCsvFile(table, options.csvFile);
     writeCsvFile(bvhTable, siblingCsvPath(options.csvFile, "bvh"));
     writeCsvFile(seedTable, siblingCsvPath(options.csvFile, "seed"));
+    CsvTable headlineTable{{"width", "height", "pixels", "level", "threads", "deforming_frame_ms", "deforming_replay_ms",
+                            "deforming_over_replay", "moving_camera_ms", "still_ms", "aim_ms"}, {}};
+    for (const json& h : headline)
+      headlineTable.add({h["width"], h["height"], h["width"].get<int>() * h["height"].get<int>(), h["level"], h["threads"],
+                         h["deforming_frame_ms"], h["deforming_replay_ms"], h["deforming_over_replay"], h["moving_camera_ms"],
+                         h["still_ms"], h["aim_ms"]});
+    if (!headline.empty()) writeCsvFile(headlineTable, siblingCsvPath(options.csvFile, "headline"));
   }
   return report;
 }

@@ -66,7 +66,7 @@ void registerRender(CLI::App& bench, int& exitCode) {
   command->add_option("--headline-level", options->bench.headlineLevel, "Subdivision level of the headline frames")
       ->check(CLI::Range(0, 7))->capture_default_str();
   command->add_option("--json", options->bench.jsonFile, "Write every figure as JSON");
-  command->add_option("--csv", options->bench.csvFile, "Write the tables as CSV (FILE and FILE_bvh, FILE_seed)");
+  command->add_option("--csv", options->bench.csvFile, "Write the tables as CSV (FILE and FILE_bvh, FILE_seed, FILE_headline)");
   addSceneOptions(*command, options->scene);
   command->callback([options, &exitCode] {
     RenderBenchOptions bench = options->bench;
