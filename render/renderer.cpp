@@ -41,9 +41,9 @@ bool sameFloor(const FloorSettings& a, const FloorSettings& b) {
 // Everything a primary ray's FloorShading, and the colour of a pixel outside the slime's footprint,
 // depend on: the view, the image size, the floor's lighting, the sky, and whether the floor sends
 // shadow and mirror rays (the floor texture itself is checked by Impl::sync).
-using FloorCacheKey = std::array<double, 38>;
+using FloorCacheKey = std::array<double, 40>;
 
-FloorCacheKey floorCacheKey(const Camera& camera, const ShadingParameters& p, int width, int height) {
+FloorCacheKey floorCacheKey(const Camera& camera, const ShadingParameters& p, int width, int height, glm::vec2 pixelOffset) {
   const glm::vec3 light = p.lightPosition, color = p.lightColor, ambient = p.ambientLight, horizon = p.skyHorizon,
                   zenith = p.skyZenith;
   return {camera.position.x, camera.position.y, camera.position.z, camera.forward.x, camera.forward.y,
@@ -53,7 +53,7 @@ FloorCacheKey floorCacheKey(const Camera& camera, const ShadingParameters& p, in
           p.pixelSpread,     light.x,           light.y,           light.z,           color.x,
           color.y,           color.z,           ambient.x,         ambient.y,         ambient.z,
           horizon.x,         horizon.y,         horizon.z,         zenith.x,          zenith.y,
-          zenith.z,          static_cast<double>(p.depth), p.shadows ? 1.0 : 0.0};
+          zenith.z,          static_cast<double>(p.depth), p.shadows ? 1.0 : 0.0, pixelOffset.x, pixelOffset.y};
 }
 
 }  // namespace
@@ -120,7 +120,7 @@ struct Renderer::Impl {
   // those that can reach the slime's bounding sphere), then their Whitted trees as packets. With a
   // floor cache, packets outside `footprint` are copied from the last frame once they have been traced.
   void traceTile(const WhittedTracer& tracer, const SlimeIntersector& intersector, const Camera& camera,
-                 int samplesPerAxis, int rowBegin, int rowEnd, int columnBegin, int columnEnd, Image& image,
+                 int samplesPerAxis, glm::vec2 pixelOffset, int rowBegin, int rowEnd, int columnBegin, int columnEnd, Image& image,
                  std::uint8_t* srgba, FloorShading* floorShadings, const ScreenFootprint* footprint, TraceCounters& counts) {
     FlushDenormals flush;
     const auto start = std::chrono::steady_clock::now();
@@ -158,11 +158,14 @@ struct Renderer::Impl {
             SlimeHit hits[kPacket];
             int activeCount = 0;
             for (int i = 0; i < kPacket && x0 + i < columnEnd; ++i) {
-              const float u = (x0 + i + (sampleX + 0.5f) / samplesPerAxis) / image.width;
-              const float v = (y + (sampleY + 0.5f) / samplesPerAxis) / image.height;
+              // One sample: the caller's point of the pixel; more: the centre of each cell.
+              const float offsetX = samplesPerAxis == 1 ? pixelOffset.x : (sampleX + 0.5f) / samplesPerAxis;
+              const float offsetY = samplesPerAxis == 1 ? pixelOffset.y : (sampleY + 0.5f) / samplesPerAxis;
+              const float u = (x0 + i + offsetX) / image.width;
+              const float v = (y + offsetY) / image.height;
               const glm::vec3 direction = forward + (2.0f * u - 1.0f) * right + (1.0f - 2.0f * v) * up;
               rays[i] = Ray{eye, glm::normalize(direction), 0.0f, kInfinity};
-              active[i] = geometry.mayHit(rays[i]);
+              active[i] = !outside && geometry.mayHit(rays[i]);  // outside the footprint nothing can
               activeCount += active[i];
             }
             if (activeCount > 0) {
@@ -172,7 +175,7 @@ struct Renderer::Impl {
             glm::vec3 colors[kPacket];
             tracer.tracePrimary8(rays, hits, count, counts,
                                  floorShadings ? floorShadings + static_cast<std::size_t>(y) * image.width + x0 : nullptr,
-                                 colors);
+                                 colors, outside);
             for (int i = 0; i < count; ++i) sums[i] += colors[i];
           }
         }
@@ -206,7 +209,7 @@ void Renderer::updateSlime(const std::vector<glm::dvec3>& positions, const std::
 }
 
 RenderStats Renderer::render(const Settings& settings, Image& image, std::vector<std::uint8_t>* srgba,
-                             bool buffersKept) {
+                             bool buffersKept, glm::vec2 pixelOffset) {
   Impl& impl = *impl_;
   const auto start = std::chrono::steady_clock::now();
   impl.sync(settings);
@@ -232,7 +235,7 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
   impl.lastKeptCaches = false;  // until this frame is finished
   impl.imageInPlace = impl.bytesInPlace = false;
   if (samplesPerAxis == 1) {
-    const FloorCacheKey view = floorCacheKey(camera, parameters, image.width, image.height);
+    const FloorCacheKey view = floorCacheKey(camera, parameters, image.width, image.height, pixelOffset);
     impl.cachesStale = !impl.floorCacheValid || view != impl.floorCacheView;
     if (impl.cachesStale) {
       impl.floorCache.resize(image.pixels.size());
@@ -253,7 +256,7 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
   stats.threads = brute ? 1 : impl.arena->max_concurrency();
   if (brute) {
     // The seed's algorithm is the oracle: one thread, no packets that matter, every triangle.
-    impl.traceTile(tracer, intersector, camera, samplesPerAxis, 0, image.height, 0, image.width, image, bytes,
+    impl.traceTile(tracer, intersector, camera, samplesPerAxis, pixelOffset, 0, image.height, 0, image.width, image, bytes,
                    floorShadings, footprint, impl.counters.local());
   } else {
     handOff(&impl);  // the frame's inputs, to the workers
@@ -261,7 +264,7 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
       tbb::parallel_for(tbb::blocked_range2d<int>(0, image.height, kTileRows, 0, image.width, kTileColumns),
                         [&](const tbb::blocked_range2d<int>& tile) {
                           takeOver(&impl);
-                          impl.traceTile(tracer, intersector, camera, samplesPerAxis, tile.rows().begin(),
+                          impl.traceTile(tracer, intersector, camera, samplesPerAxis, pixelOffset, tile.rows().begin(),
                                          tile.rows().end(), tile.cols().begin(), tile.cols().end(), image, bytes,
                                          floorShadings, footprint, impl.counters.local());
                           handOff(&impl);  // the tile's pixels and counters, back to the caller

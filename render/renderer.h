@@ -11,6 +11,7 @@
 #include "core/settings.h"
 #include "render/image.h"  // Image: a linear-RGB float image, row-major, top row first
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include <cstdint>
@@ -59,8 +60,11 @@ class Renderer {
   // `buffersKept` promises that `image` and `srgba` are the buffers of the last call, unwritten
   // since (a window's): pixels that cannot have changed, outside the slime's footprint now and in the
   // last frame, are then left as they are. Without it every pixel is written.
+  // `pixelOffset`, with one sample per pixel (render.spp = 1), is the point of each pixel its ray goes
+  // through, in pixels from the pixel's top-left corner: (0.5, 0.5), the centre, unless a caller
+  // accumulates frames (AccumulationBuffer). With more samples it is ignored.
   RenderStats render(const Settings& settings, Image& image, std::vector<std::uint8_t>* srgba = nullptr,
-                     bool buffersKept = false);
+                     bool buffersKept = false, glm::vec2 pixelOffset = {0.5f, 0.5f});
 
   // The point where the ray through image point (u, v) in [0,1]² first hits the slime, if it does.
   std::optional<glm::dvec3> pick(const Settings& settings, double u, double v) const;

@@ -9,6 +9,10 @@
 #include <cmath>
 #include <utility>
 
+#if defined(__AVX2__)
+#include <immintrin.h>
+#endif
+
 namespace slime {
 namespace {
 
@@ -38,6 +42,7 @@ float phongLobe(const glm::vec3& normal, const glm::vec3& toLight, const glm::ve
 
 struct WhittedTracer::Wavefront {
   std::vector<PendingRay> current, next;  // this generation's rays and their children
+  std::vector<FloorShading> floors;       // per ray of `current`: its floor's shading, when it sees the floor
   std::vector<PendingShadow> shadows;     // the packet's shadow rays, traced last
 };
 
@@ -60,19 +65,42 @@ glm::vec3 WhittedTracer::tracePrimary(const Ray& ray, const SlimeHit& hit, Trace
 }
 
 void WhittedTracer::tracePrimary8(const Ray* rays, const SlimeHit* hits, int count, TraceCounters& counters,
-                                  FloorShading* floorCache, glm::vec3* colors) const {
+                                  FloorShading* floorCache, glm::vec3* colors, bool outOfReach) const {
   Wavefront& wavefront = threadWavefront();
   wavefront.current.clear();
   wavefront.next.clear();
   wavefront.shadows.clear();
+  // Most pixels see only the floor or the sky: shaded at once, only their shadow rays may wait. The
+  // floor's pattern is looked up for all the packet's floor pixels together (FloorTexture::albedo8).
+  FloorShading packetShadings[8];
+  FloorShading* shadings = floorCache ? floorCache : packetShadings;
+  float tFloors[8] = {kInfinity, kInfinity, kInfinity, kInfinity, kInfinity, kInfinity, kInfinity, kInfinity};
+  bool needed[8] = {};
+  for (int i = 0; i < count; ++i) {
+    tFloors[i] = hits[i].valid() ? kInfinity : floorDistance(rays[i]);
+    if (tFloors[i] == kInfinity) continue;
+    if (floorCache && floorCache[i].filled) ++counters.cachedFloorPixels;
+    else needed[i] = true;
+  }
+  floorShading8(rays, tFloors, tFloors, needed, shadings);
+  if (outOfReach && !(parameters_.floorSpecular > 0.0f)) {
+    // Floor or sky only, and no slime's shadow: no query, no wavefront, and the very sums of the
+    // general path below (shadeFloorWith, its shadow ray counted but not traced), so a pixel shaded
+    // here equals one shaded there bit for bit (the footprint's invariant test demands it).
+    for (int i = 0; i < count; ++i) {
+      ++counters.rays.primary;
+      colors[i] = glm::vec3(0.0f);
+      if (tFloors[i] == kInfinity) colors[i] = sky(rays[i].direction);
+      else shadeFloorWith(rays[i], tFloors[i], shadings[i], Path{}, glm::vec3(1.0f), i, wavefront, counters, colors, true);
+    }
+    return;
+  }
   for (int i = 0; i < count; ++i) {
     ++counters.rays.primary;
     colors[i] = glm::vec3(0.0f);
     if (!hits[i].valid()) {
-      // Most pixels see only the floor or the sky: shaded at once, only their shadow rays may wait.
-      const float tFloor = floorDistance(rays[i]);
-      if (tFloor == kInfinity) colors[i] = sky(rays[i].direction);
-      else shadeFloor(rays[i], tFloor, Path{}, glm::vec3(1.0f), i, wavefront, counters, floorCache ? floorCache + i : nullptr, colors);
+      if (tFloors[i] == kInfinity) colors[i] = sky(rays[i].direction);
+      else shadeFloorWith(rays[i], tFloors[i], shadings[i], Path{}, glm::vec3(1.0f), i, wavefront, counters, colors);
       continue;
     }
     PendingRay primary;
@@ -87,8 +115,10 @@ void WhittedTracer::tracePrimary8(const Ray* rays, const SlimeHit* hits, int cou
   // which adds what is known now to the pixels and queues the next generation and the shadow rays.
   while (!wavefront.current.empty()) {
     findHits(wavefront.current, counters);
+    lookUpFloors(wavefront.current, wavefront.floors);
     wavefront.next.clear();
-    for (const PendingRay& ray : wavefront.current) shade(ray, wavefront, counters, floorCache, colors);
+    for (std::size_t r = 0; r < wavefront.current.size(); ++r)
+      shade(wavefront.current[r], wavefront.floors[r], wavefront, counters, floorCache, colors);
     std::swap(wavefront.current, wavefront.next);
   }
   traceShadows(wavefront.shadows, counters, colors);
@@ -123,13 +153,44 @@ void WhittedTracer::findHits(std::vector<PendingRay>& rays, TraceCounters& count
   if (size > 0) flush();
 }
 
-void WhittedTracer::shade(const PendingRay& ray, Wavefront& wavefront, TraceCounters& counters,
+void WhittedTracer::lookUpFloors(const std::vector<PendingRay>& rays, std::vector<FloorShading>& floors) const {
+  floors.assign(rays.size(), FloorShading{});
+  Ray packet[8];
+  float t[8], distances[8];
+  bool needed[8] = {};
+  std::size_t members[8] = {};
+  int size = 0;
+  const auto flush = [&] {
+    FloorShading found[8];
+    floorShading8(packet, t, distances, needed, found);
+    for (int k = 0; k < size; ++k) floors[members[k]] = found[k];
+    for (bool& n : needed) n = false;
+    size = 0;
+  };
+  for (std::size_t r = 0; r < rays.size(); ++r) {
+    const PendingRay& ray = rays[r];
+    if (ray.kind == Kind::Primary) continue;  // a primary's floor goes through the renderer's cache
+    const float tFloor = floorDistance(ray.ray);
+    if (tFloor == kInfinity || (ray.hit.valid() && ray.hit.t <= tFloor)) continue;
+    packet[size] = ray.ray;
+    t[size] = tFloor;
+    distances[size] = ray.path.travelled + tFloor;
+    needed[size] = true;
+    members[size] = r;
+    if (++size == 8) flush();
+  }
+  if (size > 0) flush();
+}
+
+void WhittedTracer::shade(const PendingRay& ray, const FloorShading& floor, Wavefront& wavefront, TraceCounters& counters,
                           FloorShading* floorCache, glm::vec3* colors) const {
   const float tFloor = floorDistance(ray.ray);
   if (ray.hit.valid() && ray.hit.t <= tFloor) {
     shadeSlime(ray, wavefront, counters, colors);
   } else if (tFloor == kInfinity) {
     colors[ray.pixel] += ray.factor * sky(ray.ray.direction);
+  } else if (floor.filled) {
+    shadeFloorWith(ray.ray, tFloor, floor, ray.path, ray.factor, ray.pixel, wavefront, counters, colors);
   } else {
     shadeFloor(ray.ray, tFloor, ray.path, ray.factor, ray.pixel, wavefront, counters,
                ray.kind == Kind::Primary && floorCache ? floorCache + ray.pixel : nullptr, colors);
@@ -222,18 +283,25 @@ void WhittedTracer::shadeSlime(const PendingRay& pending, Wavefront& wavefront, 
 void WhittedTracer::shadeFloor(const Ray& ray, float t, const Path& path, const glm::vec3& rayFactor, int pixel,
                                Wavefront& wavefront, TraceCounters& counters, FloorShading* floorCache,
                                glm::vec3* colors) const {
-  const ShadingParameters& p = parameters_;
   glm::vec3 point = ray.origin + t * ray.direction;
   point.z = 0.0f;
-  const float distance = path.travelled + t;
   FloorShading fresh;
   if (!floorCache || !floorCache->filled) {
-    fresh = floorShading(point, ray.direction, distance);
+    fresh = floorShading(point, ray.direction, path.travelled + t);
     if (floorCache) *floorCache = fresh;
   } else {
     ++counters.cachedFloorPixels;
   }
-  const FloorShading& shading = floorCache ? *floorCache : fresh;
+  shadeFloorWith(ray, t, floorCache ? *floorCache : fresh, path, rayFactor, pixel, wavefront, counters, colors);
+}
+
+void WhittedTracer::shadeFloorWith(const Ray& ray, float t, const FloorShading& shading, const Path& path,
+                                   const glm::vec3& rayFactor, int pixel, Wavefront& wavefront, TraceCounters& counters,
+                                   glm::vec3* colors, bool unshadowed) const {
+  const ShadingParameters& p = parameters_;
+  glm::vec3 point = ray.origin + t * ray.direction;
+  point.z = 0.0f;
+  const float distance = path.travelled + t;
   // colour = mix(ambient + T_light lit + k_s I_mirror, horizon, haze), seen under the jelly (the
   // contact patch) through Beer–Lambert absorption; each term goes to the pixel with its factor.
   const glm::vec3 factor = path.inside ? rayFactor * beerLambert(p.slimeAbsorption, t) : rayFactor;
@@ -241,7 +309,7 @@ void WhittedTracer::shadeFloor(const Ray& ray, float t, const Path& path, const 
   colors[pixel] += nearFactor * shading.ambient + factor * (shading.haze * p.skyHorizon);
   if (shading.lit != glm::vec3(0.0f)) {  // else the light is below the floor, or black
     if (p.shadows) {
-      addLight(point + glm::vec3(0.0f, 0.0f, kRayOffset), nearFactor * shading.lit, pixel, false, wavefront, counters,
+      addLight(point + glm::vec3(0.0f, 0.0f, kRayOffset), nearFactor * shading.lit, pixel, unshadowed, wavefront, counters,
                colors);
     } else {
       colors[pixel] += nearFactor * shading.lit;
@@ -261,13 +329,17 @@ void WhittedTracer::shadeFloor(const Ray& ray, float t, const Path& path, const 
   }
 }
 
-void WhittedTracer::addLight(const glm::vec3& origin, const glm::vec3& multiplier, int pixel, bool leavesConvexSlime,
+void WhittedTracer::addLight(const glm::vec3& origin, const glm::vec3& multiplier, int pixel, bool unshadowed,
                              Wavefront& wavefront, TraceCounters& counters, glm::vec3* colors) const {
   ++counters.rays.shadow;
+  if (unshadowed) {
+    colors[pixel] += multiplier;
+    return;
+  }
   const glm::vec3 toLight = parameters_.lightPosition - origin;
   const float distance = glm::length(toLight);
   const Ray ray{origin, toLight / distance, 0.0f, distance};
-  if (leavesConvexSlime || !(distance > 0.0f) || !geometry_.mayHit(ray)) {
+  if (!(distance > 0.0f) || !geometry_.mayHit(ray)) {
     colors[pixel] += multiplier;
     return;
   }
@@ -299,13 +371,12 @@ void WhittedTracer::traceShadows(const std::vector<PendingShadow>& shadows, Trac
   if (size > 0) flush();
 }
 
-FloorShading WhittedTracer::floorShading(const glm::vec3& point, const glm::vec3& direction, float distance) const {
-  const ShadingParameters& p = parameters_;
+glm::vec2 WhittedTracer::floorFootprint(const glm::vec3& direction, float distance) const {
   // The pixel's cone (width w = distance × spread) cuts the floor in an ellipse with half axes
   // w/(2 cos θ) along the ray's horizontal direction (d_x, d_y)/sin θ and w/2 across it; the texture
   // averages over that ellipse's bounding box, whose half extents are
   //   (w/2) √((d_x²/cos²θ + d_y²)/sin²θ) and (w/2) √((d_y²/cos²θ + d_x²)/sin²θ).
-  const float halfWidth = 0.5f * distance * p.pixelSpread;
+  const float halfWidth = 0.5f * distance * parameters_.pixelSpread;
   const float cosTheta = std::max(std::abs(direction.z), 1e-3f);
   const float inverseCos2 = 1.0f / (cosTheta * cosTheta);
   const float dx2 = direction.x * direction.x, dy2 = direction.y * direction.y, sin2 = dx2 + dy2;
@@ -314,8 +385,120 @@ FloorShading WhittedTracer::floorShading(const glm::vec3& point, const glm::vec3
     const float scale = halfWidth * halfWidth / sin2;
     footprint = {std::sqrt(scale * (dx2 * inverseCos2 + dy2)), std::sqrt(scale * (dy2 * inverseCos2 + dx2))};
   }
-  const glm::vec3 albedo = floor_.albedo({point.x, point.y}, footprint);
+  return footprint;
+}
 
+FloorShading WhittedTracer::floorShading(const glm::vec3& point, const glm::vec3& direction, float distance) const {
+  return litFloor(point, direction, distance, floor_.albedo({point.x, point.y}, floorFootprint(direction, distance)));
+}
+
+#if defined(__AVX2__)
+namespace {
+
+// e^x for 8 lanes, x ≤ 0 here (the haze): Cephes' expf (range reduction by ln 2, a degree-5
+// polynomial), within 2 ulp of libm's expf over [−87, 0].
+__m256 exp8(__m256 x) {
+  x = _mm256_max_ps(x, _mm256_set1_ps(-87.0f));
+  const __m256 n = _mm256_round_ps(_mm256_mul_ps(x, _mm256_set1_ps(1.44269504088896341f)),
+                                   _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC);
+  __m256 r = _mm256_sub_ps(x, _mm256_mul_ps(n, _mm256_set1_ps(0.693359375f)));
+  r = _mm256_sub_ps(r, _mm256_mul_ps(n, _mm256_set1_ps(-2.12194440e-4f)));
+  __m256 p = _mm256_set1_ps(1.9875691500e-4f);
+  p = _mm256_fmadd_ps(p, r, _mm256_set1_ps(1.3981999507e-3f));
+  p = _mm256_fmadd_ps(p, r, _mm256_set1_ps(8.3334519073e-3f));
+  p = _mm256_fmadd_ps(p, r, _mm256_set1_ps(4.1665795894e-2f));
+  p = _mm256_fmadd_ps(p, r, _mm256_set1_ps(1.6666665459e-1f));
+  p = _mm256_fmadd_ps(p, r, _mm256_set1_ps(5.0000001201e-1f));
+  p = _mm256_fmadd_ps(p, _mm256_mul_ps(r, r), _mm256_add_ps(r, _mm256_set1_ps(1.0f)));
+  const __m256i scale = _mm256_slli_epi32(_mm256_add_epi32(_mm256_cvtps_epi32(n), _mm256_set1_epi32(127)), 23);
+  return _mm256_mul_ps(p, _mm256_castsi256_ps(scale));
+}
+
+__m256 lane(const float* values) { return _mm256_loadu_ps(values); }
+
+}  // namespace
+#endif
+
+void WhittedTracer::floorShading8(const Ray* rays, const float* t, const float* distances, const bool* needed,
+                                  FloorShading* shadings) const {
+  float x[8] = {}, y[8] = {}, footprintX[8] = {}, footprintY[8] = {};
+#if defined(__AVX2__) && defined(__FMA__)
+  // The same steps as floorFootprint and litFloor, 8 lanes at a time (within rounding of them).
+  const ShadingParameters& p = parameters_;
+  float directionX[8] = {}, directionY[8] = {}, directionZ[8] = {}, originX[8] = {}, originY[8] = {}, along[8] = {},
+        distance[8] = {};
+  for (int i = 0; i < 8; ++i) {
+    if (!needed[i]) continue;
+    directionX[i] = rays[i].direction.x;
+    directionY[i] = rays[i].direction.y;
+    directionZ[i] = rays[i].direction.z;
+    originX[i] = rays[i].origin.x;
+    originY[i] = rays[i].origin.y;
+    along[i] = t[i];
+    distance[i] = distances[i];
+  }
+  const __m256 dx = lane(directionX), dy = lane(directionY), dz = lane(directionZ), d = lane(distance);
+  const __m256 px = _mm256_fmadd_ps(lane(along), dx, lane(originX)), py = _mm256_fmadd_ps(lane(along), dy, lane(originY));
+  const __m256 halfWidth = _mm256_mul_ps(_mm256_mul_ps(_mm256_set1_ps(0.5f), d), _mm256_set1_ps(p.pixelSpread));
+  const __m256 cosTheta = _mm256_max_ps(_mm256_andnot_ps(_mm256_set1_ps(-0.0f), dz), _mm256_set1_ps(1e-3f));
+  const __m256 inverseCos2 = _mm256_div_ps(_mm256_set1_ps(1.0f), _mm256_mul_ps(cosTheta, cosTheta));
+  const __m256 dx2 = _mm256_mul_ps(dx, dx), dy2 = _mm256_mul_ps(dy, dy), sin2 = _mm256_add_ps(dx2, dy2);
+  const __m256 scale = _mm256_div_ps(_mm256_mul_ps(halfWidth, halfWidth), sin2);
+  const __m256 oblique = _mm256_cmp_ps(sin2, _mm256_set1_ps(1e-12f), _CMP_GT_OQ);
+  const __m256 fx = _mm256_blendv_ps(_mm256_div_ps(halfWidth, cosTheta),
+                                     _mm256_sqrt_ps(_mm256_mul_ps(scale, _mm256_fmadd_ps(dx2, inverseCos2, dy2))), oblique);
+  const __m256 fy = _mm256_blendv_ps(halfWidth, _mm256_sqrt_ps(_mm256_mul_ps(scale, _mm256_fmadd_ps(dy2, inverseCos2, dx2))),
+                                     oblique);
+  _mm256_storeu_ps(x, px);
+  _mm256_storeu_ps(y, py);
+  _mm256_storeu_ps(footprintX, fx);
+  _mm256_storeu_ps(footprintY, fy);
+  glm::vec3 albedos[8];
+  floor_.albedo8(x, y, footprintX, footprintY, needed, albedos);
+
+  // litFloor: the haze, and the light's direction (its z) at each point; the floor's own highlight
+  // (floor.specular > 0) goes through litFloor one lane at a time.
+  float haze[8], lightZ[8];
+  _mm256_storeu_ps(haze, _mm256_sub_ps(_mm256_set1_ps(1.0f), exp8(_mm256_div_ps(_mm256_sub_ps(_mm256_setzero_ps(), d),
+                                                                                 _mm256_set1_ps(p.hazeDistance)))));
+  const __m256 toLightX = _mm256_sub_ps(_mm256_set1_ps(p.lightPosition.x), px);
+  const __m256 toLightY = _mm256_sub_ps(_mm256_set1_ps(p.lightPosition.y), py);
+  const __m256 toLightZ = _mm256_set1_ps(p.lightPosition.z);
+  const __m256 length2 = _mm256_fmadd_ps(toLightX, toLightX, _mm256_fmadd_ps(toLightY, toLightY, _mm256_mul_ps(toLightZ, toLightZ)));
+  _mm256_storeu_ps(lightZ, _mm256_mul_ps(toLightZ, _mm256_div_ps(_mm256_set1_ps(1.0f), _mm256_sqrt_ps(length2))));
+  for (int i = 0; i < 8; ++i) {
+    if (!needed[i]) continue;
+    if (p.floorSpecular > 0.0f) {
+      shadings[i] = litFloor({x[i], y[i], 0.0f}, rays[i].direction, distances[i], albedos[i]);
+      continue;
+    }
+    FloorShading& shading = shadings[i];
+    shading = FloorShading{};
+    shading.filled = true;
+    shading.ambient = albedos[i] * p.ambientLight;
+    shading.haze = haze[i];
+    if (p.lightPosition.z > 0.0f) shading.lit = p.lightColor * (p.floorDiffuse * lightZ[i] * albedos[i]);
+  }
+#else
+  for (int i = 0; i < 8; ++i) {
+    if (!needed[i]) continue;
+    const glm::vec3 point = rays[i].origin + t[i] * rays[i].direction;
+    const glm::vec2 footprint = floorFootprint(rays[i].direction, distances[i]);
+    x[i] = point.x;
+    y[i] = point.y;
+    footprintX[i] = footprint.x;
+    footprintY[i] = footprint.y;
+  }
+  glm::vec3 albedos[8];
+  floor_.albedo8(x, y, footprintX, footprintY, needed, albedos);
+  for (int i = 0; i < 8; ++i)
+    if (needed[i]) shadings[i] = litFloor({x[i], y[i], 0.0f}, rays[i].direction, distances[i], albedos[i]);
+#endif
+}
+
+FloorShading WhittedTracer::litFloor(const glm::vec3& point, const glm::vec3& direction, float distance,
+                                     const glm::vec3& albedo) const {
+  const ShadingParameters& p = parameters_;
   FloorShading shading;
   shading.filled = true;
   shading.ambient = albedo * p.ambientLight;

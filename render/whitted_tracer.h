@@ -50,9 +50,11 @@ class WhittedTracer {
   // The rays' Whitted trees are traced breadth first, one generation at a time: every slime query of
   // a generation and every shadow ray of the packet goes to the intersector as a packet of up to 8
   // (neighbouring pixels refract and reflect alike, so these packets stay coherent).
-  // `floorCache`, if given, holds the FloorShading of these count pixels.
+  // `floorCache`, if given, holds the FloorShading of these count pixels. `outOfReach` promises that
+  // the slime can neither be seen nor cast a shadow in these pixels (outside its ScreenFootprint):
+  // on a matte floor they are then shaded as floor or sky at once, with no query and no wavefront.
   void tracePrimary8(const Ray* rays, const SlimeHit* hits, int count, TraceCounters& counters,
-                     FloorShading* floorCache, glm::vec3* colors) const;
+                     FloorShading* floorCache, glm::vec3* colors, bool outOfReach = false) const;
 
   // One primary ray whose slime hit is known (tracePrimary8 with one ray).
   glm::vec3 tracePrimary(const Ray& ray, const SlimeHit& hit, TraceCounters& counters,
@@ -89,19 +91,37 @@ class WhittedTracer {
 
   // The slime hits of the rays that do not know theirs, queried 8 at a time.
   void findHits(std::vector<PendingRay>& rays, TraceCounters& counters) const;
-  void shade(const PendingRay& ray, Wavefront& wavefront, TraceCounters& counters, FloorShading* floorCache,
-             glm::vec3* colors) const;
+  // The floor's shading of every ray of a generation that sees the floor (primaries excepted), looked
+  // up 8 at a time; floors[r] is left unfilled for the others.
+  void lookUpFloors(const std::vector<PendingRay>& rays, std::vector<FloorShading>& floors) const;
+  // `floor`: the ray's floor shading if lookUpFloors found it (else computed here as needed).
+  void shade(const PendingRay& ray, const FloorShading& floor, Wavefront& wavefront, TraceCounters& counters,
+             FloorShading* floorCache, glm::vec3* colors) const;
   void shadeSlime(const PendingRay& ray, Wavefront& wavefront, TraceCounters& counters, glm::vec3* colors) const;
   // The floor at distance t along `ray`, its radiance times `factor` into pixel `pixel`.
   void shadeFloor(const Ray& ray, float t, const Path& path, const glm::vec3& factor, int pixel, Wavefront& wavefront,
                   TraceCounters& counters, FloorShading* floorCache, glm::vec3* colors) const;
   // The light reaching `origin` times `multiplier`, for pixel `pixel`: added at once when nothing can
-  // shadow it (it leaves a convex slime's outside, or its ray misses the slime's bounds), else queued.
-  void addLight(const glm::vec3& origin, const glm::vec3& multiplier, int pixel, bool leavesConvexSlime,
+  // shadow it (`unshadowed`: it leaves a convex slime's outside, or lies outside the slime's
+  // footprint; or its ray misses the slime's bounds), else queued.
+  void addLight(const glm::vec3& origin, const glm::vec3& multiplier, int pixel, bool unshadowed,
                 Wavefront& wavefront, TraceCounters& counters, glm::vec3* colors) const;
   // Traces the packet's queued shadow rays 8 at a time and adds what reaches each pixel.
   void traceShadows(const std::vector<PendingShadow>& shadows, TraceCounters& counters, glm::vec3* colors) const;
+  // The same floor shading, its FloorShading already known (from the cache or floorShading8).
+  // `unshadowed`: nothing can shadow this floor point (outside the slime's footprint).
+  void shadeFloorWith(const Ray& ray, float t, const FloorShading& shading, const Path& path, const glm::vec3& factor,
+                      int pixel, Wavefront& wavefront, TraceCounters& counters, glm::vec3* colors,
+                      bool unshadowed = false) const;
   FloorShading floorShading(const glm::vec3& point, const glm::vec3& direction, float distance) const;
+  // floorShading for up to 8 rays that reach the floor at t[i] along them, distances[i] from the eye
+  // (needed[i]), the pattern looked up 8 at a time; writes shadings[i] of those only.
+  void floorShading8(const Ray* rays, const float* t, const float* distances, const bool* needed,
+                     FloorShading* shadings) const;
+  // Half extents on the floor of the pixel cone's footprint, `distance` from the eye along `direction`.
+  glm::vec2 floorFootprint(const glm::vec3& direction, float distance) const;
+  // The floor's FloorShading at `point` once its albedo is known.
+  FloorShading litFloor(const glm::vec3& point, const glm::vec3& direction, float distance, const glm::vec3& albedo) const;
   glm::vec3 environment(const Ray& ray, float travelled) const;  // floor (unshadowed) or sky, no slime
   // One crossing of a shadow ray with the slime's surface at `hit`: `transmittance` takes what passes
   // it and the ray moves past it. False when the walk is over (blocked, or out of a convex slime).

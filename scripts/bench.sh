@@ -29,7 +29,7 @@ if [ "$quick" = 1 ]; then
   # The brute force keeps its 3 samples after a warm-up (cheap at 160×120, level 2); with --brute-samples
   # below 3 the JSON's headline would say "quick".
   "$slime" bench render --levels 2 --threads 1 --frames 2 --warmup 1 --size 160x120 --brute-max-level 2 --bvh-levels 4 \
-    --json "$out/render.json" --csv "$out/render.csv"
+    --headline-sizes 160x120 --headline-level 2 --json "$out/render.json" --csv "$out/render.csv"
   "$slime" bench physics --levels 2 --integrators symplectic_euler,implicit_euler --seconds 0.05 --stability-level 2 \
     --stiffnesses 40 --accuracy-level 2 --steps 1e-3,5e-3 --settle 0.1 --json "$out/physics.json" --csv "$out/physics.csv"
   "$slime" bench accuracy --levels 1,2 --depths 1,2 --frames 1 --size 160x120 --json "$out/accuracy.json" --csv "$out/accuracy.csv"
@@ -40,6 +40,10 @@ else
   mkdir -p "$out"
   "$slime" bench render --levels 0-6 --frames 15 --warmup 2 --brute-max-level 4 --bvh-levels 4,6 \
     --json "$out/render.json" --csv "$out/render.csv"
+  # Frame time against image size (issue 15): the headline frames alone, from 734×564 to 1920×1080.
+  "$slime" bench render --levels 4 --threads 2 --frames 15 --warmup 2 --brute-max-level -1 --bvh-levels none \
+    --headline-sizes 734x564,960x540,1280x720,1600x900,1920x1080 \
+    --json "$out/render_sizes.json" --csv "$out/render_sizes.csv"
   "$slime" bench accuracy --levels 0-6 --depths 1-6 --frames 3 --images "$out" \
     --json "$out/accuracy.json" --csv "$out/accuracy.csv"
   "$slime" bench physics --levels 3-6 --seconds 1 --json "$out/physics.json" --csv "$out/physics.csv"

@@ -43,8 +43,10 @@ int faceCount(int level) { return 20 << (2 * level); }
 
 // Still: the view of a person watching or dragging the slime (the renderer reuses what the slime
 // cannot change). Moving: the camera turns by a thousandth of a degree every frame, as when orbiting,
-// so every pixel is traced every frame.
-enum class CameraMotion { Still, Moving };
+// so every pixel is traced every frame. Deforming: the camera moves as in Moving and the slime takes
+// one of two pulled-up shapes in turn (deformedSlime), as while a person drags it: every pixel is
+// traced and the BVH refitted every frame.
+enum class CameraMotion { Still, Moving, Deforming };
 
 struct FramePlan {
   int warmup = 0;          // untimed frames first
@@ -60,7 +62,25 @@ struct FrameTiming {
   double refitMs = 0.0;
 };
 
-// The plan's frames, updateSlime every frame as the viewer does.
+// The two shapes of the deforming frames (even and odd frames): the top lifted by 10 % and 12 % of the radius.
+constexpr double kDeformLifts[2] = {0.10, 0.12};
+
+// The resting slime with its top pulled up by `lift` (metres at the apex), as a grab lifts it: each
+// vertex of the upper half rises by lift·s², s its height above the centre over the radius.
+TriangleMesh deformedSlime(const TriangleMesh& resting, double radius, double lift) {
+  TriangleMesh mesh = resting;
+  double centre = 0.0;
+  for (const glm::dvec3& p : resting.positions) centre += p.z;
+  centre /= static_cast<double>(std::max<std::size_t>(1, resting.positions.size()));
+  for (glm::dvec3& p : mesh.positions) {
+    const double s = std::clamp((p.z - centre) / radius, 0.0, 1.0);
+    p.z += lift * s * s;
+  }
+  return mesh;
+}
+
+// The plan's frames, updateSlime every frame as the viewer does. A deforming frame costs its refit too
+// (the viewer refits before it traces); the others as before.
 FrameTiming timeFrames(Renderer& renderer, const Settings& stillSettings, const TriangleMesh& mesh,
                        const FramePlan& plan, BenchProgress& progress, const std::string& what) {
   Settings settings = stillSettings;
@@ -69,13 +89,18 @@ FrameTiming timeFrames(Renderer& renderer, const Settings& stillSettings, const 
   std::vector<double> samples, refits;
   FrameTiming timing;
   double spent = 0.0;
+  std::vector<TriangleMesh> shapes;
+  if (plan.motion == CameraMotion::Deforming)
+    for (double lift : kDeformLifts) shapes.push_back(deformedSlime(mesh, settings.slime.radius, lift * settings.slime.radius));
   for (int frame = 0; frame < plan.warmup + plan.frames; ++frame) {
-    if (plan.motion == CameraMotion::Moving)
-      settings.camera.yaw = stillSettings.camera.yaw + (frame % 2 ? 1e-3 : -1e-3);
-    renderer.updateSlime(mesh.positions, mesh.triangles);
+    if (plan.motion != CameraMotion::Still) settings.camera.yaw = stillSettings.camera.yaw + (frame % 2 ? 1e-3 : -1e-3);
+    const TriangleMesh& shape = shapes.empty() ? mesh : shapes[frame % 2];
+    const Stopwatch refitWatch;
+    renderer.updateSlime(shape.positions, shape.triangles);
+    const double refitMs = refitWatch.milliseconds();
     const Stopwatch watch;
     timing.stats = renderer.render(settings, image);
-    const double ms = watch.milliseconds();
+    const double ms = watch.milliseconds() + (plan.motion == CameraMotion::Deforming ? refitMs : 0.0);
     progress.advance(1.0, what);
     if (frame < plan.warmup) continue;
     samples.push_back(ms);
@@ -179,6 +204,63 @@ void printRow(const json& c) {
   std::printf("\n");
 }
 
+// The headline (issue 15) at one image size, level options.headlineLevel, `threads` threads: the
+// still, moving and deforming frames and, measured in the same run right after them, the Embree-only
+// replay of the deforming frame's own queries (the even frames' shape and view).
+json measureHeadline(const Settings& base, int width, int height, int threads, const RenderBenchOptions& options,
+                     BenchProgress& progress) {
+  Settings settings = base;
+  settings.camera.width = width;
+  settings.camera.height = height;
+  settings.render.threads = threads;
+  settings.slime.level = options.headlineLevel;
+  const TriangleMesh mesh = restingSlime(settings.slime, options.headlineLevel);
+  const std::string what = "headline " + std::to_string(width) + "x" + std::to_string(height);
+  const auto plan = [&](CameraMotion motion) {
+    FramePlan p;
+    p.warmup = options.warmup;
+    p.frames = options.frames;
+    p.motion = motion;
+    return p;
+  };
+  Renderer stillRenderer(settings);
+  const FrameTiming still = timeFrames(stillRenderer, settings, mesh, plan(CameraMotion::Still), progress, what + ", still");
+  Renderer movingRenderer(settings);
+  const FrameTiming moving =
+      timeFrames(movingRenderer, settings, mesh, plan(CameraMotion::Moving), progress, what + ", moving camera");
+  Renderer deformingRenderer(settings);
+  const FrameTiming deforming =
+      timeFrames(deformingRenderer, settings, mesh, plan(CameraMotion::Deforming), progress, what + ", deforming");
+
+  Settings view = settings;
+  view.camera.yaw = settings.camera.yaw - 1e-3;  // timeFrames' even frames
+  const TriangleMesh shape = deformedSlime(mesh, settings.slime.radius, kDeformLifts[0] * settings.slime.radius);
+  const RayLog log = recordSlimeQueries(view, shape.positions, shape.triangles, width, height);
+  EmbreeReplay replay(threads, BvhUpdate::Refit);
+  replay.build(shape.positions, shape.triangles);
+  replay.replay(log, threads);  // warm-up
+  std::vector<double> replayMs;
+  for (int frame = 0; frame < options.frames; ++frame) {
+    replayMs.push_back(replay.replay(log, threads).totalMs());
+    progress.advance(1.0, what + ": Embree-only replay");
+  }
+  const TimingSummary limit = summarize(replayMs);
+  const double ms = deforming.ms.median;
+  return {{"width", width},
+          {"height", height},
+          {"level", options.headlineLevel},
+          {"threads", threads},
+          {"depth", options.depth},
+          {"deforming_frame_ms", ms},
+          {"deforming_frame", {{"ms", toJson(deforming.ms)}, {"refit_ms", deforming.refitMs}, {"rays", raysJson(deforming.stats)},
+                               {"note", "refit + render; camera turned and slime reshaped every frame: every pixel traced"}}},
+          {"deforming_replay_ms", limit.median},
+          {"deforming_replay", {{"ms", toJson(limit)}, {"queries", log.queries()}}},
+          {"deforming_over_replay", limit.median > 0.0 ? ms / limit.median : 0.0},
+          {"moving_camera_ms", moving.ms.median},
+          {"still_ms", still.ms.median},
+          {"aim_ms", width == 734 && height == 564 ? 16.7 : width == 1280 && height == 720 ? 33.0 : 0.0}};  // issue 15's aims
+}
 }  // namespace
 
 TriangleMesh restingSlime(const SlimeSettings& slime, int level) {
@@ -213,6 +295,7 @@ json runRenderBench(const Settings& baseSettings, const RenderBenchOptions& opti
     if (level <= options.bruteMaxLevel) total += brutePlan.warmup + brutePlan.frames;
   }
   total += 30.0 * options.bvhLevels.size();
+  total += options.headlineSizes.size() * (3.0 * perConfiguration + options.frames);
   BenchProgress progress("bench render", total);
 
   json report = {{"bench", "render"},
@@ -225,6 +308,12 @@ json runRenderBench(const Settings& baseSettings, const RenderBenchOptions& opti
                  {"brute_force_min_samples", brutePlan.minFrames},
                  {"brute_force_warmup_frames", brutePlan.warmup},
                  {"scene", "default scene, undeformed slime resting on the floor"}};
+  // The headline first, on all the threads asked for (the most of them).
+  const int headlineThreads = *std::max_element(threads.begin(), threads.end());
+  json headline = json::array();
+  for (const auto& [width, height] : options.headlineSizes)
+    headline.push_back(measureHeadline(settings, width, height, headlineThreads, options, progress));
+  report["headline"] = headline;
   json configurations = json::array();
   CsvTable table{{"level", "faces", "threads", "still_camera_frame_ms", "still_ms_min", "still_ms_max",
                   "moving_camera_frame_ms", "moving_ms_min", "moving_ms_max", "all_mrays_per_s", "all_rays",
@@ -360,6 +449,13 @@ json runRenderBench(const Settings& baseSettings, const RenderBenchOptions& opti
   report["seed"] = seed;
   progress.finish();
 
+  if (!headline.empty())
+    std::printf("headline  size       level thr  deforming ms  replay ms  deforming/replay  moving ms  still ms  aim ms\n");
+  for (const json& h : headline)
+    std::printf("          %4dx%-5d %5d %3d %13.2f %10.2f %17.2f %10.2f %9.2f %7.1f\n", h["width"].get<int>(),
+                h["height"].get<int>(), h["level"].get<int>(), h["threads"].get<int>(), h["deforming_frame_ms"].get<double>(),
+                h["deforming_replay_ms"].get<double>(), h["deforming_over_replay"].get<double>(),
+                h["moving_camera_ms"].get<double>(), h["still_ms"].get<double>(), h["aim_ms"].get<double>());
   // "all M rays/s" counts the analytic floor and sky rays of the moving frame; "Embree Mq/s" only queries.
   std::printf("%5s %7s %3s %9s %9s %12s %8s %12s %8s %15s %9s\n", "level", "faces", "thr", "still ms", "moving ms",
               "all Mrays/s", "limit ms", "Embree Mq/s", "mov/lim", "brute ms [n]", "speed-up");
@@ -374,6 +470,13 @@ json runRenderBench(const Settings& baseSettings, const RenderBenchOptions& opti
     writeCsvFile(table, options.csvFile);
     writeCsvFile(bvhTable, siblingCsvPath(options.csvFile, "bvh"));
     writeCsvFile(seedTable, siblingCsvPath(options.csvFile, "seed"));
+    CsvTable headlineTable{{"width", "height", "pixels", "level", "threads", "deforming_frame_ms", "deforming_replay_ms",
+                            "deforming_over_replay", "moving_camera_ms", "still_ms", "aim_ms"}, {}};
+    for (const json& h : headline)
+      headlineTable.add({h["width"], h["height"], h["width"].get<int>() * h["height"].get<int>(), h["level"], h["threads"],
+                         h["deforming_frame_ms"], h["deforming_replay_ms"], h["deforming_over_replay"], h["moving_camera_ms"],
+                         h["still_ms"], h["aim_ms"]});
+    if (!headline.empty()) writeCsvFile(headlineTable, siblingCsvPath(options.csvFile, "headline"));
   }
   return report;
 }

@@ -3,6 +3,8 @@
 //  - the full frame (Renderer::render): ms/frame (median, min, max) and rays by kind;
 //  - the limit: the same slime queries replayed through Embree alone (no shading, no floor);
 //  - the seed's algorithm (render.backend=brute: bounding sphere + every triangle) where it finishes;
+//  - the headline: the frame where the slime deforms and the camera moves (every pixel traced) at
+//    734×564 and 1280×720, level 4, beside the Embree-only replay of that frame's queries;
 //  - BVH refit vs rebuild at LOW/MEDIUM/HIGH on a slime stretched by the physics (bench_bvh.h).
 #pragma once
 
@@ -12,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace slime {
@@ -28,6 +31,10 @@ struct RenderBenchOptions {
   int bruteSamples = 3;            // timed brute-force frames at least (after one warm-up); below 3 the
                                    // headline is labelled a quick, indicative figure
   std::vector<int> bvhLevels{4, 6};  // levels of the refit-vs-rebuild measurement (empty: none)
+  // The headline (issue 15): the deforming frame at these sizes, level headlineLevel, beside the
+  // Embree-only replay of its queries (empty: none).
+  std::vector<std::pair<int, int>> headlineSizes{{734, 564}, {1280, 720}};
+  int headlineLevel = 4;
   std::string jsonFile;
   std::string csvFile;
 };

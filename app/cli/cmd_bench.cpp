@@ -46,7 +46,7 @@ std::vector<int> parseList(const std::string& option, const std::string& text, i
 struct RenderCommand {
   SceneOptions scene;
   RenderBenchOptions bench;
-  std::string levels = "0-6", threads, bvhLevels = "4,6", size = "734x564";
+  std::string levels = "0-6", threads, bvhLevels = "4,6", size = "734x564", headlineSizes = "734x564,1280x720";
 };
 
 void registerRender(CLI::App& bench, int& exitCode) {
@@ -64,11 +64,26 @@ void registerRender(CLI::App& bench, int& exitCode) {
                       "Timed brute-force frames at least, after one warm-up (below 3: the headline is labelled quick)")
       ->check(CLI::Range(1, 1000))->capture_default_str();
   command->add_option("--bvh-levels", options->bvhLevels, "Levels of the refit-vs-rebuild measurement ('none' to skip)")->capture_default_str();
+  command->add_option("--headline-sizes", options->headlineSizes,
+                      "Sizes of the headline deforming frame, e.g. 734x564,1280x720 ('none' to skip)")->capture_default_str();
+  command->add_option("--headline-level", options->bench.headlineLevel, "Subdivision level of the headline frames")
+      ->check(CLI::Range(0, 7))->capture_default_str();
   command->add_option("--json", options->bench.jsonFile, "Write every figure as JSON");
-  command->add_option("--csv", options->bench.csvFile, "Write the tables as CSV (FILE and FILE_bvh, FILE_seed)");
+  command->add_option("--csv", options->bench.csvFile, "Write the tables as CSV (FILE and FILE_bvh, FILE_seed, FILE_headline)");
   addSceneOptions(*command, options->scene);
   command->callback([options, &exitCode] {
     RenderBenchOptions bench = options->bench;
+    bench.headlineSizes.clear();
+    if (options->headlineSizes != "none") {
+      std::string list = options->headlineSizes;
+      for (std::size_t start = 0; start <= list.size();) {
+        const std::size_t comma = std::min(list.find(',', start), list.size());
+        int width = 0, height = 0;
+        parseSize(list.substr(start, comma - start), width, height);
+        bench.headlineSizes.emplace_back(width, height);
+        start = comma + 1;
+      }
+    }
     bench.levels = parseList("--levels", options->levels, 0, 7);
     if (!options->threads.empty()) bench.threads = parseList("--threads", options->threads, 1, 1024);
     bench.bvhLevels = options->bvhLevels == "none" ? std::vector<int>{} : parseList("--bvh-levels", options->bvhLevels, 0, 7);

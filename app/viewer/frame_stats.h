@@ -28,6 +28,7 @@ struct FrameStats {
   int traceThreads = 0;                  // threads tracing the last traced frame
   double threadUse = 0.0;                // their busy time / (trace time × threads), 0..1
   int physicsSteps = 0;                  // fixed steps run in the last frame
+  int samplesPerPixel = 1;               // samples averaged in the image shown (progressive anti-aliasing)
   int imageWidth = 0;                    // traced image size of the last frame
   int imageHeight = 0;
   std::array<float, kHistory> frameHistoryMs{};  // ring buffer of frame times

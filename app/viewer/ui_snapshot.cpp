@@ -16,6 +16,7 @@ void writeUiSnapshot(const Settings& settings, const std::string& path,
   ViewerOptions options;
   options.maxFrames = kFramesForLayout;
   options.screenshotOnExit = path;
+  options.refineSamples = 1;  // the picture `snapshot` traces (render.spp), not a partly refined one
   Viewer viewer(backend, settings, options);
   if (settle) {
     settle(viewer.simulation());

@@ -44,7 +44,8 @@ Viewer::Viewer(ViewerBackend& backend, const Settings& settings, ViewerOptions o
       built_(settings),
       scenePath_(options_.scenePath),
       simulation_(settings),
-      renderer_(settings) {
+      renderer_(settings),
+      refinement_(options_.refineSamples) {
   if (options_.scenario) scenario_.emplace(*options_.scenario);
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
@@ -274,8 +275,8 @@ glm::ivec2 Viewer::tracedImageSize() const {
   const glm::ivec2 full = backend_.framebufferSize();
   if (full.x <= 0 || full.y <= 0 || view.x <= 0 || window.x <= 0) return {0, 0};  // minimised: nothing to show
   const glm::ivec2 framebuffer{full.x * view.x / window.x, full.y};
-  // A coarser image while the user moves things keeps the window responsive; the full one when still.
-  const double scale = settings_.render.scale * (interacting() ? kInteractiveScale : 1.0);
+  // Full resolution while the user moves things too (issue 15); render.scale is the user's own choice.
+  const double scale = settings_.render.scale;
   return {std::max(1, static_cast<int>(std::lround(framebuffer.x * scale))),
           std::max(1, static_cast<int>(std::lround(framebuffer.y * scale)))};
 }
@@ -284,8 +285,17 @@ void Viewer::traceImage() {
   imageTraced_ = false;
   const glm::ivec2 size = tracedImageSize();
   if (size.x <= 0) return;
-  if (!sceneChanged_ && size == glm::ivec2(image_.width, image_.height)) return;  // nothing new to see
   const Stopwatch traceTime;
+  if (!sceneChanged_ && size == glm::ivec2(image_.width, image_.height)) {  // nothing new: refine it
+    if (refineImage(size)) {
+      stats_.stages.trace = traceTime.milliseconds();
+      imageTraced_ = true;
+    }
+    stats_.samplesPerPixel = std::max(1, refinement_.samples());
+    return;
+  }
+  refinement_.reset();
+  stats_.samplesPerPixel = 1;
   image_.resize(size.x, size.y);
   const RenderStats render = renderer_.render(frameSettings(size), image_, &imageBytes_, /*buffersKept=*/true);
   stats_.stages.trace = traceTime.milliseconds();
@@ -299,6 +309,17 @@ void Viewer::traceImage() {
   stats_.imageHeight = size.y;
   sceneChanged_ = false;
   imageTraced_ = true;
+}
+
+// Progressive anti-aliasing: once nothing has moved for kRefineAfterSeconds, each frame traces the
+// image once more at another point of every pixel until ViewerOptions::refineSamples are averaged; any change
+// (camera, slime, settings, size) resets it in traceImage. Supersampled settings (render.spp > 1)
+// already average their own samples.
+bool Viewer::refineImage(glm::ivec2 size) {
+  if (interacting() || refinement_.converged() || settings_.render.spp > 1) return false;
+  sampleImage_.resize(size.x, size.y);
+  renderer_.render(frameSettings(size), sampleImage_, nullptr, /*buffersKept=*/false, refinement_.nextOffset());
+  return refinement_.add(sampleImage_, image_, &imageBytes_);
 }
 
 void Viewer::uploadImage() {

@@ -18,6 +18,7 @@
 #include "core/scenario.h"
 #include "core/settings.h"
 #include "core/simulation.h"
+#include "render/accumulation_buffer.h"
 #include "render/renderer.h"
 
 #include <glm/vec3.hpp>
@@ -35,12 +36,12 @@ struct ViewerOptions {
   std::string screenshotPrefix = "slime-screenshot";  // F12 writes <prefix>-<n>.png
   std::optional<Scenario> scenario;                 // timed grab/drag/press/set events to replay
   std::string scenePath = "slime-scene.json";       // where Ctrl+S saves and Ctrl+O loads (panel field)
+  int refineSamples = 16;  // samples per pixel a still image accumulates (1: none, as `snapshot` shows it)
 };
 
 class Viewer {
  public:
-  static constexpr double kInteractiveScale = 0.5;  // image scale while the user moves things
-  static constexpr double kRefineAfterSeconds = 0.25;  // stillness before the full-resolution image
+  static constexpr double kRefineAfterSeconds = 0.25;  // stillness before the image starts refining
   // Wall time physics may take per frame. When steps cost more than real time allows, the slime runs
   // slower than real time (the Stats panel says how much) instead of the window freezing.
   static constexpr double kPhysicsBudgetMs = 60.0;
@@ -88,6 +89,7 @@ class Viewer {
   bool motionWouldShow() const;         // the slime moved visibly since it was last drawn
   glm::ivec2 tracedImageSize() const;   // the image this frame traces; {0, 0} when minimised
   void traceImage();
+  bool refineImage(glm::ivec2 size);    // traces one more sample of a still image; true if it shows
   void uploadImage();
   PanelRequests drawPanelsAndOverlay(const glm::dvec3& heldCentre);  // reads, never edits, the slime
   void applyPanelRequests(const PanelRequests& requests);
@@ -125,6 +127,8 @@ class Viewer {
   Renderer renderer_;
   Image image_;
   std::vector<std::uint8_t> imageBytes_;  // image_ as sRGB RGBA bytes, for the blit
+  AccumulationBuffer refinement_;         // a still image's frames, averaged (progressive AA)
+  Image sampleImage_;                     // one of those frames, traced off the pixels' centres
   GlBlit blit_;
   CameraController cameraController_;
   GrabInteraction grab_;

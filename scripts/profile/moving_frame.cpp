@@ -1,0 +1,71 @@
+// Profiling driver (issue 15): the render bench's moving-camera frame (every pixel traced; the camera
+// turns by 1e-3 degrees each frame), level 4, depth 3, nothing else in the process, so that a
+// profiler sees only it. Not part of the CMake build; after a release build:
+//   g++ -std=c++20 -O2 -g -march=native -I. -Ibuild/release/core scripts/profile/moving_frame.cpp \
+//     build/release/render/libslime_render.a build/release/core/libslime_core.a -lembree3 -ltbb -lstb \
+//     -lpthread -o build/moving_frame
+//   perf record -F 2000 build/moving_frame 40 734 564 2 && perf report --no-children --sort dso,symbol
+// Arguments: frames, width, height, threads, [PNG of the last frame]. Prints the median wall and CPU
+// (process, all threads) time per frame: CPU time is the steadier figure on a shared machine.
+#include "core/icosphere.h"
+#include "core/settings_io.h"
+#include "render/image_io.h"
+#include "render/renderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <vector>
+
+using namespace slime;
+
+namespace {
+
+double processCpuMilliseconds() {
+  timespec now;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
+  return now.tv_sec * 1e3 + now.tv_nsec * 1e-6;
+}
+
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  return values[values.size() / 2];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int frames = argc > 1 ? std::atoi(argv[1]) : 50;
+  const int width = argc > 2 ? std::atoi(argv[2]) : 734, height = argc > 3 ? std::atoi(argv[3]) : 564;
+  Settings settings = defaultSettings();
+  settings.camera.width = width;
+  settings.camera.height = height;
+  settings.render.depth = 3;
+  settings.render.threads = argc > 4 ? std::atoi(argv[4]) : 2;
+  settings.slime.level = 4;
+  const TriangleMesh mesh = makeIcosphere(4, settings.slime.radius,
+                                          {settings.slime.position.x, settings.slime.position.y, settings.slime.radius});
+  Renderer renderer(settings);
+  Image image;
+  image.resize(width, height);
+  std::vector<std::uint8_t> bytes;
+  std::vector<double> wallMs, cpuMs;
+  const double yaw = settings.camera.yaw;
+  for (int frame = 0; frame < frames; ++frame) {
+    settings.camera.yaw = yaw + (frame % 2 ? 1e-3 : -1e-3);  // as bench render's moving camera
+    renderer.updateSlime(mesh.positions, mesh.triangles);
+    const auto start = std::chrono::steady_clock::now();
+    const double cpuStart = processCpuMilliseconds();
+    const RenderStats stats = renderer.render(settings, image, &bytes, true);
+    cpuMs.push_back(processCpuMilliseconds() - cpuStart);
+    wallMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    if (frame == 0)
+      std::fprintf(stderr, "rays %llu, slime queries %llu, reused pixels %llu\n",
+                   static_cast<unsigned long long>(stats.rays.total()), static_cast<unsigned long long>(stats.slimeQueries),
+                   static_cast<unsigned long long>(stats.reusedPixels));
+  }
+  if (argc > 5) writePng(image, argv[5]);
+  std::printf("median %.2f ms wall, %.2f ms CPU per frame (%d frames)\n", median(wallMs), median(cpuMs), frames);
+}
