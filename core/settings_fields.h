@@ -50,8 +50,10 @@ void forEachField(S& s, Visitor&& visit) {
   visit("floor.specular", s.floor.specular, Limits{0.0, 1.0, ""});
   // Slime: shape and physics
   visit("slime.shape", s.slime.shape, Choices{"mesh", "sphere"});
+  visit("slime.model", s.slime.model, Choices{"bulk", "membrane"});
   visit("slime.radius", s.slime.radius, Limits{0.005, 1.0, "m"});
   visit("slime.level", s.slime.level, Limits{0, 7, "subdivision level"});
+  visit("slime.resolution", s.slime.resolution, Limits{1, 4, "body shell level"});
   visit("slime.autoLevel", s.slime.autoLevel, Choices{});
   // Mass and stiffness are bounded so that the stiffest, lightest slime still keeps its volume within
   // 1 % and costs at most ~100 substeps per 10 ms step (the step count grows as sqrt(k/m)).
@@ -61,6 +63,12 @@ void forEachField(S& s, Visitor&& visit) {
   visit("slime.pressure", s.slime.pressure, Limits{0.0, 100.0, "relative"});
   visit("slime.friction", s.slime.friction, Limits{0.0, 10.0, "Coulomb coefficient"});
   visit("slime.rolling", s.slime.rolling, Limits{0.0, 1000.0, "1/s"});
+  // The bulk material: moduli from a soft jelly to a stiff rubber; τ from a fast to a near-solid gel.
+  visit("slime.modulus", s.slime.modulus, Limits{50.0, 1.0e5, "Pa"});
+  visit("slime.longTerm", s.slime.longTerm, Limits{0.01, 1.0, "of the modulus"});
+  visit("slime.relaxation", s.slime.relaxation, Limits{0.01, 1000.0, "s"});
+  visit("slime.poisson", s.slime.poisson, Limits{0.0, 0.49, ""});
+  visit("slime.viscosity", s.slime.viscosity, Limits{0.0, 100.0, "Pa·s"});
   visit("slime.position", s.slime.position, Limits{-100.0, 100.0, "m"});
   // Slime: optics
   visit("slime.color", s.slime.color, Limits{0.0, 1.0, "linear RGB"});
