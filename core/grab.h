@@ -13,6 +13,11 @@
 
 namespace slime {
 
+// The fastest the grabbed points follow the grab target, m/s: a target that jumps (a mouse flick, a
+// scenario's 1 m drag in 10 ms) is followed at this speed, never faster. Tests that drag quickly
+// state their physical limit with it.
+constexpr double kGrabSpeed = 1.5;
+
 // Closest point to p on triangle abc (Ericson, Real-Time Collision Detection, 2005, §5.1.5).
 glm::dvec3 closestPointOnTriangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
                                   const glm::dvec3& c);

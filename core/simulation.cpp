@@ -12,6 +12,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 namespace slime {
 namespace {
@@ -19,7 +20,6 @@ namespace {
 constexpr int kGoodStateInterval = 8;   // steps between saved good states
 constexpr int kMaxRefinement = 64;      // the guard doubles substeps after a rollback, up to this
 constexpr int kCleanStepsToCoarsen = 500;  // after this many steps with no rollback it halves them again
-constexpr double kGrabSpeed = 1.5;      // m/s: how fast grabbed points follow a jumping target
 constexpr int kRollingInterval = 4;     // steps between applications of the rolling resistance
 // Steps between the Maxwell branches' flow updates (exact over the interval for the strain at its end;
 // 4 ms against relaxation times of 10 ms and more). Every step it cost a quarter of the step.
@@ -28,6 +28,15 @@ constexpr int kRelaxInterval = 4;
 }  // namespace
 
 Simulation::Simulation(const Settings& settings) { reload(settings); }
+
+Simulation::Simulation(const Settings& settings, SlimeBody body) {
+  settings_ = settings;
+  settings_.slime.level = effectiveLevel(settings);
+  settings_.slime.model = "membrane";  // a body of springs made elsewhere
+  bulk_ = false;
+  body_ = std::move(body);
+  start();
+}
 
 void Simulation::reload(const Settings& settings) {
   settings_ = settings;
@@ -40,9 +49,14 @@ void Simulation::reload(const Settings& settings) {
     bulkBody_ = BulkBody{};
     body_ = buildSlimeBody(settings_.slime);
   }
+  start();
+}
+
+void Simulation::start() {
   mouse_ = MouseSpring{};
   handForce_ = glm::dvec3(0.0);
   drawnStale_ = true;
+  cleanSteps_ = 0;
   time_ = 0.0;
   stepCount_ = 0;
   refinement_ = 1;

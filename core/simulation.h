@@ -51,6 +51,10 @@ struct DivergenceEvent {
 class Simulation {
  public:
   explicit Simulation(const Settings& settings);  // builds the slime at slime.position, at rest
+  // Runs the physics on a body built elsewhere (tests: one spring against its analytic solution, run
+  // by exactly the code that runs the slime). The settings give the integrator, dt, substeps, damping,
+  // gravity and friction; reload() and a structural applySettings() build the icosphere instead.
+  Simulation(const Settings& settings, SlimeBody body);
 
   void reload(const Settings& settings);          // rebuild from the settings (level, radius, ...)
   void applySettings(const Settings& settings);   // live changes: mass, stiffness, damping, dt, integrator, ...
@@ -95,6 +99,7 @@ class Simulation {
   double largestStableStep() const;                              // for the current integrator, s
 
  private:
+  void start();  // time zero, nothing grabbed, models built for body_
   void rebuildModels();
   void substep(double h);
   void bulkSubstep(double h);

@@ -1,5 +1,5 @@
 # The stability map: the largest stable time step against spring stiffness for each integrator
-# (bisection on the blow-up criterion of app/bench_stability.h), under the theoretical limits from
+# (bisection on the blow-up criterion of app/bench/bench_stability.h), under the theoretical limits from
 # ω_max of the mesh (power iteration on M⁻¹K) and the SPEC's estimate ω_max ≈ 2.48 √(k/m).
 load "scripts/plots/_style.gp"
 set output dir."/physics_stability.png"

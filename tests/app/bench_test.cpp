@@ -1,8 +1,8 @@
 // The benchmarks run end to end at a tiny size so their code cannot rot: every JSON field the charts
 // and the README read is there and sane. Nothing about timing is asserted beyond "positive".
-#include "app/bench_accuracy.h"
-#include "app/bench_physics.h"
-#include "app/bench_render.h"
+#include "app/bench/bench_accuracy.h"
+#include "app/bench/bench_physics.h"
+#include "app/bench/bench_render.h"
 #include "core/settings_io.h"
 
 #include <gtest/gtest.h>

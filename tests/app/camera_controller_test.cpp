@@ -1,4 +1,4 @@
-#include "app/camera_controller.h"
+#include "app/viewer/camera_controller.h"
 
 #include "core/camera.h"
 

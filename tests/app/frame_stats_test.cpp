@@ -1,5 +1,5 @@
 // The Stats panel's and the viewer report's frame figures: the run's mean rate and a robust recent median.
-#include "app/frame_stats.h"
+#include "app/viewer/frame_stats.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "app/interaction.h"
+#include "app/viewer/interaction.h"
 
 #include "core/camera.h"
 

@@ -1,4 +1,4 @@
-#include "app/physics_clock.h"
+#include "app/viewer/physics_clock.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // The viewer's frame code, run headless (EGL surfaceless, no display): the same code as the window.
-#include "app/headless_gl.h"
-#include "app/ui_snapshot.h"
-#include "app/viewer.h"
+#include "app/viewer/headless_gl.h"
+#include "app/viewer/ui_snapshot.h"
+#include "app/viewer/viewer.h"
 #include "core/settings_io.h"
 #include "render/image_io.h"
 

@@ -1,0 +1,29 @@
+// BVH update cost and the trace time after it, on a slime deformed by the physics: the ball settles
+// on the floor, its top is grabbed and pulled up 5 cm (a grab-and-stretch), and every displayed
+// frame (60 Hz) the BVH is either refitted (built once on the round ball) or rebuilt from scratch
+// at LOW, MEDIUM or HIGH quality. At the most stretched frame the recorded slime queries of that
+// frame are replayed through each BVH: does refitting slow tracing down as the slime deforms?
+#pragma once
+
+#include "app/bench/bench_progress.h"
+#include "app/bench/bench_report.h"
+#include "core/settings.h"
+
+#include <nlohmann/json.hpp>
+
+namespace slime {
+
+struct BvhBenchOptions {
+  int level = 4;
+  int width = 734, height = 564;
+  int replays = 10;  // timed replays of the frame's queries per method
+  int threads = 0;   // 0: all cores
+};
+
+// One JSON entry per update method; also appends rows to `table` (columns set by makeBvhTable).
+nlohmann::json runBvhBench(const Settings& settings, const BvhBenchOptions& options, BenchProgress& progress,
+                           CsvTable& table);
+
+CsvTable makeBvhTable();
+
+}  // namespace slime

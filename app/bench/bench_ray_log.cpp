@@ -1,0 +1,102 @@
+#include "app/bench/bench_ray_log.h"
+
+#include "core/camera.h"
+#include "render/embree_scene.h"
+#include "render/floor_texture.h"
+#include "render/shading_parameters.h"
+#include "render/slime_geometry.h"
+#include "render/whitted_tracer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+
+namespace slime {
+namespace {
+
+constexpr int kPacket = 8;
+
+// Answers every query of the tracer through Embree and logs it. Shadow packets are the ones with a
+// finite tFar (the light's distance); reflection and refraction rays run to infinity.
+class RecordingIntersector final : public SlimeIntersector {
+ public:
+  RecordingIntersector(const SlimeIntersector& inner, RayLog& log) : inner_(inner), log_(log) {}
+
+  SlimeHit intersect(const Ray& ray) const override {  // logged as a packet of one
+    const bool active[kPacket] = {true};
+    const Ray rays[kPacket] = {ray};
+    SlimeHit hits[kPacket];
+    intersect8(rays, active, hits);
+    return hits[0];
+  }
+
+  void intersect8(const Ray* rays, const bool* active, SlimeHit* hits) const override {
+    RayPacket packet;
+    bool shadow = false;
+    for (int i = 0; i < kPacket; ++i) {
+      packet.rays[i] = rays[i];
+      packet.active[i] = active[i];
+      shadow = shadow || (active[i] && !std::isinf(rays[i].tFar));
+    }
+    (shadow ? log_.shadow : log_.secondary).push_back(packet);
+    inner_.intersect8(rays, active, hits);
+    for (int i = 0; i < kPacket; ++i) log_.hits += active[i] && hits[i].valid();
+  }
+
+ private:
+  const SlimeIntersector& inner_;
+  RayLog& log_;
+};
+
+}  // namespace
+
+std::uint64_t RayLog::activeRays(const std::vector<RayPacket>& packets) {
+  std::uint64_t count = 0;
+  for (const RayPacket& packet : packets)
+    for (bool active : packet.active) count += active;
+  return count;
+}
+
+RayLog recordSlimeQueries(const Settings& settings, const std::vector<glm::dvec3>& positions,
+                          const std::vector<Triangle>& triangles, int width, int height) {
+  RayLog log;
+  SlimeGeometry geometry;
+  geometry.update(positions, triangles);
+  if (settings.slime.shape == "sphere") geometry.setAnalyticSphere(true, static_cast<float>(settings.slime.radius));
+  EmbreeScene embree(settings.render.threads);
+  embree.update(geometry, true);
+  const RecordingIntersector recorder(embree, log);
+  const FloorTexture floor(settings.floor);
+  const ShadingParameters parameters = makeShadingParameters(settings, height);
+  const WhittedTracer tracer(geometry, recorder, floor, parameters);
+  const Camera camera = makeCamera(settings.camera, width, height);
+  const glm::vec3 eye(camera.position);
+  TraceCounters counters;
+  // The renderer's primary loop at one sample per pixel: rows of 8-ray packets, only the rays that
+  // can reach the slime's bounding sphere are active, then the Whitted trees of the 8 pixels.
+  for (int y = 0; y < height; ++y) {
+    for (int x0 = 0; x0 < width; x0 += kPacket) {
+      RayPacket packet;
+      SlimeHit hits[kPacket];
+      int activeCount = 0;
+      const int count = std::min(kPacket, width - x0);
+      for (int i = 0; i < count; ++i) {
+        const double u = (x0 + i + 0.5) / width;
+        const double v = (y + 0.5) / height;
+        packet.rays[i] = Ray{eye, glm::vec3(camera.rayDirection(u, v)), 0.0f, kInfinity};
+        packet.active[i] = geometry.mayHit(packet.rays[i]);
+        activeCount += packet.active[i];
+      }
+      if (activeCount > 0) {
+        log.primary.push_back(packet);
+        embree.intersect8(packet.rays.data(), packet.active.data(), hits);
+        for (int i = 0; i < kPacket; ++i) log.hits += packet.active[i] && hits[i].valid();
+      }
+      glm::vec3 colors[kPacket];
+      tracer.tracePrimary8(packet.rays.data(), hits, count, counters, nullptr, colors);
+    }
+  }
+  return log;
+}
+
+}  // namespace slime

@@ -1,0 +1,82 @@
+#include "app/bench/bench_report.h"
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace slime {
+namespace {
+
+std::string formatValue(const nlohmann::json& value) {
+  if (value.is_string()) return value.get<std::string>();
+  if (value.is_boolean()) return value.get<bool>() ? "1" : "0";
+  if (value.is_number_integer() || value.is_number_unsigned()) return value.dump();
+  if (value.is_number()) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.6g", value.get<double>());
+    return text;
+  }
+  return "";  // null: an empty cell, which gnuplot skips
+}
+
+void writeText(const std::string& text, const std::string& path) {
+  std::ofstream file(path, std::ios::binary);
+  if (!file || !(file << text) || !file.flush()) throw std::runtime_error("cannot write " + path);
+}
+
+}  // namespace
+
+void CsvTable::add(const std::vector<nlohmann::json>& values) {
+  std::vector<std::string> row;
+  row.reserve(values.size());
+  for (const nlohmann::json& value : values) row.push_back(formatValue(value));
+  rows.push_back(std::move(row));
+}
+
+void writeJsonFile(const nlohmann::json& document, const std::string& path) { writeText(document.dump(2) + "\n", path); }
+
+void writeCsvFile(const CsvTable& table, const std::string& path) {
+  std::ostringstream text;
+  for (std::size_t i = 0; i < table.columns.size(); ++i) text << (i ? "," : "") << table.columns[i];
+  text << "\n";
+  for (const auto& row : table.rows) {
+    for (std::size_t i = 0; i < row.size(); ++i) text << (i ? "," : "") << row[i];
+    text << "\n";
+  }
+  writeText(text.str(), path);
+}
+
+std::string siblingCsvPath(const std::string& csvPath, const std::string& name) {
+  const std::size_t dot = csvPath.rfind('.');
+  const std::size_t slash = csvPath.find_last_of('/');
+  const bool hasExtension = dot != std::string::npos && (slash == std::string::npos || dot > slash);
+  const std::string stem = hasExtension ? csvPath.substr(0, dot) : csvPath;
+  return stem + "_" + name + ".csv";
+}
+
+std::vector<int> parseIntegerList(const std::string& text) {
+  std::vector<int> values;
+  std::stringstream stream(text);
+  std::string item;
+  const auto number = [&](const std::string& part) {
+    std::size_t used = 0;
+    const int value = part.empty() ? -1 : std::stoi(part, &used);
+    if (part.empty() || used != part.size()) throw std::invalid_argument("not a number: '" + part + "' in '" + text + "'");
+    return value;
+  };
+  while (std::getline(stream, item, ',')) {
+    const std::size_t dash = item.find('-', 1);
+    if (dash == std::string::npos) {
+      values.push_back(number(item));
+      continue;
+    }
+    const int first = number(item.substr(0, dash)), last = number(item.substr(dash + 1));
+    if (last < first) throw std::invalid_argument("empty range '" + item + "' in '" + text + "'");
+    for (int value = first; value <= last; ++value) values.push_back(value);
+  }
+  if (values.empty()) throw std::invalid_argument("empty list '" + text + "'");
+  return values;
+}
+
+}  // namespace slime

@@ -1,0 +1,152 @@
+// `slime bench render|physics|accuracy`: the benchmarks behind docs/bench (scripts/bench.sh runs
+// all three and redraws the charts). Each prints a table, and writes every figure with --json/--csv.
+#include "app/bench/bench_accuracy.h"
+#include "app/bench/bench_physics.h"
+#include "app/bench/bench_render.h"
+#include "app/bench/bench_report.h"
+#include "app/cli/commands.h"
+#include "core/integrators.h"
+#include "core/settings_io.h"
+
+#include <memory>
+#include <stdexcept>
+
+namespace slime {
+namespace {
+
+// Parses "WxH" (each 1..8192) for --size.
+void parseSize(const std::string& text, int& width, int& height) {
+  const std::size_t x = text.find_first_of("xX");
+  try {
+    if (x == std::string::npos) throw std::invalid_argument("no x");
+    std::size_t usedWidth = 0, usedHeight = 0;
+    width = std::stoi(text.substr(0, x), &usedWidth);
+    height = std::stoi(text.substr(x + 1), &usedHeight);
+    if (usedWidth != x || usedHeight != text.size() - x - 1 || width < 1 || height < 1 || width > 8192 || height > 8192)
+      throw std::invalid_argument("range");
+  } catch (const std::exception&) {
+    throw SettingsError("--size must be WxH with W and H whole numbers in 1..8192 pixels, got '" + text + "'");
+  }
+}
+
+std::vector<int> parseList(const std::string& option, const std::string& text, int low, int high) {
+  std::vector<int> values;
+  try {
+    values = parseIntegerList(text);
+  } catch (const std::exception& e) {
+    throw SettingsError(option + ": " + e.what());
+  }
+  for (int value : values)
+    if (value < low || value > high)
+      throw SettingsError(option + " values must be in " + std::to_string(low) + ".." + std::to_string(high) +
+                          ", got " + std::to_string(value));
+  return values;
+}
+
+struct RenderCommand {
+  SceneOptions scene;
+  RenderBenchOptions bench;
+  std::string levels = "0-6", threads, bvhLevels = "4,6", size = "734x564";
+};
+
+void registerRender(CLI::App& bench, int& exitCode) {
+  auto options = std::make_shared<RenderCommand>();
+  auto* command = bench.add_subcommand("render", "Ray-tracing throughput vs faces and threads, against the Embree-only limit and the seed's brute force");
+  command->add_option("--levels", options->levels, "Subdivision levels, e.g. 0-6 or 2,4")->capture_default_str();
+  command->add_option("--threads", options->threads, "Thread counts, e.g. 1,2 (default: 1 and all cores)");
+  command->add_option("--frames", options->bench.frames, "Timed frames per configuration")->check(CLI::Range(1, 10000))->capture_default_str();
+  command->add_option("--warmup", options->bench.warmup, "Untimed frames first")->check(CLI::Range(0, 1000))->capture_default_str();
+  command->add_option("--size", options->size, "Image size WxH")->capture_default_str();
+  command->add_option("--depth", options->bench.depth, "Whitted recursion depth")->check(CLI::Range(1, 16))->capture_default_str();
+  command->add_option("--brute-max-level", options->bench.bruteMaxLevel, "Run the seed's brute-force tracer up to this level (-1: never)")
+      ->check(CLI::Range(-1, 7))->capture_default_str();
+  command->add_option("--bvh-levels", options->bvhLevels, "Levels of the refit-vs-rebuild measurement ('none' to skip)")->capture_default_str();
+  command->add_option("--json", options->bench.jsonFile, "Write every figure as JSON");
+  command->add_option("--csv", options->bench.csvFile, "Write the tables as CSV (FILE and FILE_bvh, FILE_seed)");
+  addSceneOptions(*command, options->scene);
+  command->callback([options, &exitCode] {
+    RenderBenchOptions bench = options->bench;
+    bench.levels = parseList("--levels", options->levels, 0, 7);
+    if (!options->threads.empty()) bench.threads = parseList("--threads", options->threads, 1, 1024);
+    bench.bvhLevels = options->bvhLevels == "none" ? std::vector<int>{} : parseList("--bvh-levels", options->bvhLevels, 0, 7);
+    parseSize(options->size, bench.width, bench.height);
+    runRenderBench(loadSettings(options->scene), bench);
+    exitCode = 0;
+  });
+}
+
+struct PhysicsCommand {
+  SceneOptions scene;
+  PhysicsBenchOptions bench;
+  std::string levels = "3-6";
+};
+
+void registerPhysics(CLI::App& bench, int& exitCode) {
+  auto options = std::make_shared<PhysicsCommand>();
+  PhysicsBenchOptions& b = options->bench;
+  auto* command = bench.add_subcommand("physics", "Integrators: ms/step by level, stability map, accuracy against cost, roundness at rest");
+  command->add_option("--levels", options->levels, "Levels of the cost table, e.g. 3-6")->capture_default_str();
+  command->add_option("--integrators", b.integrators, "Integrators (default: all), e.g. rk4,xpbd")->delimiter(',')
+      ->check(CLI::IsMember(integratorNames()));
+  command->add_option("--seconds", b.secondsPerMeasurement, "Wall seconds spent timing each integrator and level")
+      ->check(CLI::Range(0.0, 600.0))->capture_default_str();
+  command->add_option("--stability-level", b.stabilityLevel, "Level of the stability map (-1: skip)")->check(CLI::Range(-1, 7))->capture_default_str();
+  command->add_option("--stiffnesses", b.stiffnesses, "Stiffnesses k_e of the stability map, N/m")->delimiter(',')
+      ->check(CLI::PositiveNumber);
+  command->add_option("--accuracy-level", b.accuracyLevel, "Level of the accuracy run (-1: skip)")->check(CLI::Range(-1, 7))->capture_default_str();
+  command->add_option("--steps", b.steps, "Time steps of the accuracy run, s (each must divide 10 ms)")->delimiter(',')
+      ->check(CLI::Range(1e-6, 0.01));
+  command->add_option("--settle", b.settleSeconds, "Seconds to settle for the roundness at rest (0: skip)")
+      ->check(CLI::Range(0.0, 60.0))->capture_default_str();
+  command->add_option("--json", b.jsonFile, "Write every figure as JSON");
+  command->add_option("--csv", b.csvFile, "Write the tables as CSV (FILE and FILE_stability, FILE_theory, FILE_accuracy)");
+  addSceneOptions(*command, options->scene);
+  command->callback([options, &exitCode] {
+    PhysicsBenchOptions bench = options->bench;
+    bench.levels = parseList("--levels", options->levels, 0, 7);
+    runPhysicsBench(loadSettings(options->scene), bench);
+    exitCode = 0;
+  });
+}
+
+struct AccuracyCommand {
+  SceneOptions scene;
+  AccuracyBenchOptions bench;
+  std::string levels = "0-6", depths = "1-6", size = "734x564";
+};
+
+void registerAccuracy(CLI::App& bench, int& exitCode) {
+  auto options = std::make_shared<AccuracyCommand>();
+  AccuracyBenchOptions& b = options->bench;
+  auto* command = bench.add_subcommand("accuracy", "Image error of the mesh slime against the analytic sphere vs frame time");
+  command->add_option("--levels", options->levels, "Subdivision levels, e.g. 0-6")->capture_default_str();
+  command->add_option("--depths", options->depths, "Whitted depths, e.g. 1-6 (the largest is the reference's)")->capture_default_str();
+  command->add_option("--normals", b.normals, "Shading normals to compare")->delimiter(',')->check(CLI::IsMember({"flat", "smooth"}));
+  command->add_option("--frames", b.frames, "Timed frames per configuration")->check(CLI::Range(1, 1000))->capture_default_str();
+  command->add_option("--size", options->size, "Image size WxH")->capture_default_str();
+  command->add_option("--threads", b.threads, "Render threads (0: all cores)")->check(CLI::Range(0, 1024))->capture_default_str();
+  command->add_option("--images", b.imageDirectory, "Directory for the reference and per-level PNGs");
+  command->add_option("--json", b.jsonFile, "Write every figure as JSON");
+  command->add_option("--csv", b.csvFile, "Write the table as CSV");
+  addSceneOptions(*command, options->scene);
+  command->callback([options, &exitCode] {
+    AccuracyBenchOptions bench = options->bench;
+    bench.levels = parseList("--levels", options->levels, 0, 7);
+    bench.depths = parseList("--depths", options->depths, 1, 16);
+    parseSize(options->size, bench.width, bench.height);
+    runAccuracyBench(loadSettings(options->scene), bench);
+    exitCode = 0;
+  });
+}
+
+}  // namespace
+
+void registerBenchCommand(CLI::App& root, int& exitCode) {
+  auto* bench = root.add_subcommand("bench", "Benchmarks: render throughput, physics cost and stability, image accuracy");
+  bench->require_subcommand(1);
+  registerRender(*bench, exitCode);
+  registerPhysics(*bench, exitCode);
+  registerAccuracy(*bench, exitCode);
+}
+
+}  // namespace slime

@@ -1,0 +1,177 @@
+// `slime sim`: run the physics headless for a number of simulated seconds, print a one-line summary
+// and optionally write a JSON report. The same inputs give a bitwise identical report, apart from the
+// timing fields (ms_per_step, wall_seconds).
+#include "app/cli/commands.h"
+#include "core/integrators.h"
+#include "core/scenario.h"
+#include "core/settings_io.h"
+#include "core/simulation.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <ctime>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <optional>
+
+namespace slime {
+namespace {
+
+using nlohmann::json;
+
+constexpr double kMaxSeconds = 3600.0;    // simulated seconds a run may ask for
+constexpr double kSeriesInterval = 0.01;  // s between series samples
+constexpr std::size_t kMaxRollbacks = 20; // give up after this many divergences
+
+struct SimOptions {
+  SceneOptions scene;
+  double seconds = 3.0;
+  std::string reportFile;
+};
+
+void checkSeconds(double seconds) {
+  if (!std::isfinite(seconds) || seconds <= 0.0 || seconds > kMaxSeconds) {
+    char text[160];
+    std::snprintf(text, sizeof text, "--seconds: %g is not allowed; expected a number greater than 0 and at most %g (s)",
+                  seconds, kMaxSeconds);
+    throw SettingsError(text);
+  }
+}
+
+glm::dvec3 centroid(const std::vector<glm::dvec3>& positions) {
+  glm::dvec3 sum(0.0);
+  for (const glm::dvec3& p : positions) sum += p;
+  return sum / static_cast<double>(positions.size());
+}
+
+// CPU time of this thread: ms per step stays meaningful on a machine shared with other jobs.
+double threadSeconds() {
+  timespec now{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
+}
+
+// One point of the report's series: kept as plain numbers (32 bytes) while the run goes, turned into
+// JSON once at the end, so a long run's memory grows by its data and not by JSON nodes.
+struct SeriesSample {
+  double t, volumeRatio, height, kineticEnergy;
+};
+
+SeriesSample metricsSample(double t, const SlimeMetrics& metrics) {
+  return {t, metrics.volumeRatio, metrics.height, metrics.kineticEnergy};
+}
+
+json seriesJson(const std::vector<SeriesSample>& series) {
+  json samples = json::array();
+  for (const SeriesSample& s : series)
+    samples.push_back({{"t", s.t}, {"volume_ratio", s.volumeRatio}, {"height", s.height},
+                       {"kinetic_energy", s.kineticEnergy}});
+  return samples;
+}
+
+int runSim(const SimOptions& options) {
+  checkSeconds(options.seconds);
+  Settings settings = loadSettings(options.scene);
+  std::optional<ScenarioPlayer> player;
+  if (!options.scene.scenarioFile.empty()) player.emplace(loadScenario(options.scene.scenarioFile));
+
+  Simulation simulation(settings);
+  const double dt = settings.sim.dt;
+  const auto totalSteps = static_cast<std::int64_t>(std::llround(options.seconds / dt));
+  const auto sampleEvery = std::max<std::int64_t>(1, std::llround(kSeriesInterval / dt));
+
+  SlimeMetrics metrics = simulation.metrics();
+  double volumeMin = metrics.volumeRatio, volumeMax = metrics.volumeRatio;
+  double minZ = metrics.minZ, maxSpeed = metrics.maxSpeed;
+  std::vector<SeriesSample> series;
+  series.reserve(static_cast<std::size_t>(totalSteps / sampleEvery) + 2);
+  series.push_back(metricsSample(0.0, metrics));
+  std::int64_t stepsRun = 0;
+  double stepSeconds = 0.0;  // thread CPU time inside step()
+  const auto wallStart = std::chrono::steady_clock::now();
+  while (simulation.stepCount() < totalSteps && simulation.divergences().size() <= kMaxRollbacks) {
+    if (player) player->advanceTo(simulation.time(), simulation, settings);
+    const double start = threadSeconds();
+    simulation.step();
+    stepSeconds += threadSeconds() - start;
+    ++stepsRun;
+    metrics = simulation.metrics();
+    volumeMin = std::min(volumeMin, metrics.volumeRatio);
+    volumeMax = std::max(volumeMax, metrics.volumeRatio);
+    minZ = std::min(minZ, metrics.minZ);
+    maxSpeed = std::max(maxSpeed, metrics.maxSpeed);
+    if (simulation.stepCount() % sampleEvery == 0)
+      series.push_back(metricsSample(static_cast<double>(simulation.stepCount()) * dt, metrics));
+  }
+  const double wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
+  metrics = simulation.metrics();
+  const bool nan = !std::isfinite(metrics.volumeRatio) || !std::isfinite(metrics.kineticEnergy) ||
+                   std::any_of(simulation.divergences().begin(), simulation.divergences().end(),
+                               [](const DivergenceEvent& e) { return e.what.find("NaN") != std::string::npos; });
+  const double msPerStep = stepsRun > 0 ? 1000.0 * stepSeconds / static_cast<double>(stepsRun) : 0.0;
+  const std::size_t rollbacks = simulation.divergences().size();
+
+  std::printf("sim: %.3f s, %lld steps of %g s, %s, level %d (%zu vertices), %.4f ms/step, volume %.4f, "
+              "aspect %.3f, min z %.2e m, KE %.2e J, rollbacks %zu%s\n",
+              simulation.time(), static_cast<long long>(simulation.stepCount()), dt,
+              settings.sim.integrator.c_str(), simulation.settings().slime.level, simulation.positions().size(), msPerStep,
+              metrics.volumeRatio, metrics.aspect, metrics.minZ, metrics.kineticEnergy, rollbacks,
+              nan ? ", NaN" : "");
+
+  if (!options.reportFile.empty()) {
+    const glm::dvec3 finalCentroid = centroid(simulation.positions());
+    json divergences = json::array();
+    for (const DivergenceEvent& e : simulation.divergences())
+      divergences.push_back({{"step", e.step}, {"time", e.time}, {"integrator", e.integrator}, {"what", e.what}});
+    json report = {
+        {"seconds", options.seconds},
+        {"steps", simulation.stepCount()},
+        {"steps_run", stepsRun},
+        {"dt", dt},
+        {"substeps", simulation.substepsPerStep()},
+        {"integrator", settings.sim.integrator},
+        {"level", simulation.settings().slime.level},
+        {"vertices", simulation.positions().size()},
+        {"springs", simulation.body().springs.size()},
+        {"ms_per_step", msPerStep},
+        {"cpu_seconds", stepSeconds},
+        {"wall_seconds", wallSeconds},
+        {"nan", nan},
+        {"rollbacks", rollbacks},
+        {"divergences", divergences},
+        {"final", {{"volume_ratio", metrics.volumeRatio}, {"height", metrics.height}, {"width", metrics.width},
+                   {"aspect", metrics.aspect}, {"min_z", metrics.minZ}, {"kinetic_energy", metrics.kineticEnergy},
+                   {"max_speed", metrics.maxSpeed},
+                   {"centroid", {finalCentroid.x, finalCentroid.y, finalCentroid.z}}}},
+        {"range", {{"volume_ratio_min", volumeMin}, {"volume_ratio_max", volumeMax}, {"min_z", minZ},
+                   {"max_speed", maxSpeed}}},
+        {"series", seriesJson(series)},
+    };
+    std::ofstream out(options.reportFile);
+    if (!out) throw SettingsError("--report: cannot write " + options.reportFile);
+    out << report.dump(2) << "\n";
+    if (!out) throw SettingsError("--report: failed writing " + options.reportFile);
+  }
+  return rollbacks > kMaxRollbacks ? 1 : 0;
+}
+
+}  // namespace
+
+void registerSimCommand(CLI::App& root, int& exitCode) {
+  auto options = std::make_shared<SimOptions>();
+  std::string integrators;
+  for (const std::string& name : integratorNames()) integrators += (integrators.empty() ? "" : ", ") + name;
+  auto* command = root.add_subcommand(
+      "sim", "Run the physics headless and report shape, volume and energy (integrators: " + integrators +
+                 "; choose with --set sim.integrator=NAME)");
+  command->add_option("--seconds", options->seconds, "Simulated seconds to run (> 0, at most 3600)")
+      ->capture_default_str();
+  command->add_option("--report", options->reportFile, "Write a JSON report to this file");
+  addSceneOptions(*command, options->scene);
+  command->callback([options, &exitCode] { exitCode = runSim(*options); });
+}
+
+}  // namespace slime

@@ -1,0 +1,86 @@
+// `slime snapshot`: settle the slime, trace one frame, write it as a PNG, report time and rays.
+#include "app/cli/commands.h"
+#include "app/cli/snapshot.h"
+#include "app/viewer/ui_snapshot.h"
+#include "core/camera.h"
+#include "core/settings_io.h"
+#include "render/image_io.h"
+
+#include <cstdio>
+#include <memory>
+#include <optional>
+
+namespace slime {
+namespace {
+
+struct SnapshotOptions {
+  SceneOptions scene;
+  std::string output;
+  std::string size;
+  double settle = -1.0;
+  std::vector<double> viewPoint, viewTarget;
+  std::optional<double> fov;
+  bool ui = false;  // --ui: the whole viewer, panels included, drawn headless (app/viewer/ui_snapshot.h)
+};
+
+void runSnapshot(const SnapshotOptions& options) {
+  Settings settings = loadSettings(options.scene);
+  if (!options.size.empty()) applyImageSize(settings, options.size);
+  if (options.fov) {
+    if (!(*options.fov > 1.0 && *options.fov < 179.0))
+      throw SettingsError("--fov must be in (1, 179) degrees, got " + std::to_string(*options.fov));
+    settings.camera.fov = *options.fov;
+  }
+  if (!options.viewPoint.empty()) settings.camera.position = {options.viewPoint[0], options.viewPoint[1], options.viewPoint[2]};
+  if (!options.viewTarget.empty()) {
+    const glm::dvec3 target{options.viewTarget[0], options.viewTarget[1], options.viewTarget[2]};
+    if (target == settings.camera.position) throw SettingsError("--vi must differ from the eye position");
+    lookAt(settings.camera, settings.camera.position, target);
+  }
+  validateSettings(settings);
+
+  if (options.ui) {
+    writeUiSnapshot(settings, options.output, [&](Simulation& simulation) {
+      settleForSnapshot(simulation, settings, options.settle, options.scene.scenarioFile);
+    });
+    std::printf("wrote %s (%dx%d, viewer with panels)\n", options.output.c_str(), settings.camera.width,
+                settings.camera.height);
+    return;
+  }
+  const SnapshotResult snapshot = takeSnapshot(settings, options.settle, options.scene.scenarioFile);
+  writePng(snapshot.image, options.output);
+  const RayCounts& rays = snapshot.stats.rays;
+  std::printf("wrote %s (%dx%d) after %.3f s simulated\n", options.output.c_str(), snapshot.image.width,
+              snapshot.image.height, snapshot.simulatedSeconds);
+  const SlimeMetrics& m = snapshot.metrics;
+  std::printf("slime: height %.4f m, width %.4f m, min z %.2e m, max speed %.2e m/s, volume %.4f, rollbacks %zu\n",
+              m.height, m.width, m.minZ, m.maxSpeed, m.volumeRatio, snapshot.divergences);
+  std::printf("render %.2f ms (refit %.3f ms)\n", snapshot.stats.traceMs, snapshot.stats.refitMs);
+  std::printf("rays %llu: primary %llu, shadow %llu, reflection %llu, refraction %llu; slime queries %llu\n",
+              static_cast<unsigned long long>(rays.total()), static_cast<unsigned long long>(rays.primary),
+              static_cast<unsigned long long>(rays.shadow), static_cast<unsigned long long>(rays.reflection),
+              static_cast<unsigned long long>(rays.refraction),
+              static_cast<unsigned long long>(snapshot.stats.slimeQueries));
+}
+
+}  // namespace
+
+void registerSnapshotCommand(CLI::App& root, int& exitCode) {
+  auto options = std::make_shared<SnapshotOptions>();
+  auto* command = root.add_subcommand("snapshot", "Settle the slime, ray-trace one frame and write it as a PNG");
+  command->add_option("-o,--output", options->output, "PNG file to write")->required();
+  command->add_option("--size", options->size, "Image size WxH in pixels (each 1..8192), default camera.width x camera.height");
+  command->add_option("--settle", options->settle, "Seconds to simulate before the frame (default: until the slime rests, at most 3 s)")
+      ->check(CLI::Range(0.0, 600.0));
+  command->add_option("--vp", options->viewPoint, "Eye position x y z, m")->expected(3);
+  command->add_option("--vi", options->viewTarget, "Point to look at x y z, m (sets yaw and pitch)")->expected(3);
+  command->add_option("--fov", options->fov, "Vertical field of view, degrees");
+  command->add_flag("--ui", options->ui, "Draw the whole viewer (image and panels) headless, through EGL");
+  addSceneOptions(*command, options->scene);
+  command->callback([options, &exitCode] {
+    runSnapshot(*options);
+    exitCode = 0;
+  });
+}
+
+}  // namespace slime

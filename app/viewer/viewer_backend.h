@@ -1,0 +1,34 @@
+// The seam between the viewer's frame code and the platform it runs on (as Polyscope's engine
+// back-ends): a GLFW window (window.h) or an EGL surfaceless context rendering into an FBO
+// (headless_gl.h). Both give a current GL 3.3 core context; the frame code is shared.
+#pragma once
+
+#include "app/viewer/frame_input.h"
+
+#include <glm/vec2.hpp>
+
+namespace slime {
+
+class ViewerBackend {
+ public:
+  virtual ~ViewerBackend() = default;
+
+  // Collects the input since the last frame (and the wall time that passed). In a headless run time
+  // stands still, so a snapshot is the same every time.
+  virtual FrameInput pollInput() = 0;
+
+  // Pixels of the framebuffer to draw into, and of the window the cursor lives in (they differ on
+  // HiDPI screens). Either may be 0×0 while the window is minimised.
+  virtual glm::ivec2 framebufferSize() const = 0;
+  virtual glm::ivec2 windowSize() const = 0;
+
+  // The platform half of Dear ImGui: installs it, starts its frame, removes it.
+  virtual void initImGuiPlatform() = 0;
+  virtual void newImGuiPlatformFrame() = 0;
+  virtual void shutdownImGuiPlatform() = 0;
+
+  // Shows the finished frame (swap buffers; nothing for an FBO).
+  virtual void present() = 0;
+};
+
+}  // namespace slime

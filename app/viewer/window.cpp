@@ -1,0 +1,117 @@
+#include "app/viewer/window.h"
+
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <imgui.h>
+
+#include <cstdio>
+#include <stdexcept>
+
+namespace slime {
+namespace {
+
+void reportGlfwError(int code, const char* description) {
+  std::fprintf(stderr, "slime: GLFW error %d: %s\n", code, description);
+}
+
+// The seed's keys, in CameraKey order.
+constexpr int kCameraKeyCodes[kCameraKeyCount] = {GLFW_KEY_W, GLFW_KEY_S, GLFW_KEY_A, GLFW_KEY_D,
+                                                  GLFW_KEY_Q, GLFW_KEY_E, GLFW_KEY_R, GLFW_KEY_F};
+
+Window& owner(GLFWwindow* window) { return *static_cast<Window*>(glfwGetWindowUserPointer(window)); }
+
+}  // namespace
+
+Window::Window(const std::string& title, int width, int height) {
+  glfwSetErrorCallback(reportGlfwError);
+  if (!glfwInit()) throw std::runtime_error("cannot initialise GLFW (is there a display? try `slime snapshot --ui`)");
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
+  if (!window_) {
+    glfwTerminate();
+    throw std::runtime_error("cannot create a GL 3.3 core window");
+  }
+  glfwMakeContextCurrent(window_);
+  glfwSwapInterval(0);  // the ray tracer sets the pace; waiting for vsync would only add latency
+  glfwSetWindowUserPointer(window_, this);
+  // Our callbacks first: ImGui's back-end, installed later, chains to them.
+  glfwSetMouseButtonCallback(window_, onMouseButton);
+  glfwSetScrollCallback(window_, onScroll);
+  glfwSetKeyCallback(window_, onKey);
+  lastTime_ = glfwGetTime();
+}
+
+Window::~Window() {
+  glfwDestroyWindow(window_);
+  glfwTerminate();
+}
+
+void Window::onMouseButton(GLFWwindow* window, int button, int action, int mods) {
+  MouseButtonEvent event;
+  if (button == GLFW_MOUSE_BUTTON_LEFT) event.button = MouseButton::Left;
+  else if (button == GLFW_MOUSE_BUTTON_RIGHT) event.button = MouseButton::Right;
+  else if (button == GLFW_MOUSE_BUTTON_MIDDLE) event.button = MouseButton::Middle;
+  else return;
+  event.pressed = action == GLFW_PRESS;
+  glfwGetCursorPos(window, &event.position.x, &event.position.y);
+  event.shift = (mods & GLFW_MOD_SHIFT) != 0;
+  event.control = (mods & GLFW_MOD_CONTROL) != 0;
+  owner(window).pending_.buttons.push_back(event);
+}
+
+void Window::onScroll(GLFWwindow* window, double, double y) { owner(window).pending_.wheel += y; }
+
+void Window::onKey(GLFWwindow* window, int key, int, int action, int) {
+  if (action != GLFW_PRESS) return;
+  FrameInput& pending = owner(window).pending_;
+  if (key == GLFW_KEY_F12) pending.screenshotRequested = true;
+  if (key == GLFW_KEY_ESCAPE) pending.escapePressed = true;
+  // A tap shorter than a frame still moves the camera for one frame.
+  for (int index = 0; index < kCameraKeyCount; ++index)
+    if (key == kCameraKeyCodes[index]) pending.cameraKeys[index] = true;
+}
+
+FrameInput Window::pollInput() {
+  glfwPollEvents();
+  FrameInput input = std::move(pending_);
+  pending_ = FrameInput{};
+  const double now = glfwGetTime();
+  input.elapsedSeconds = now - lastTime_;
+  lastTime_ = now;
+  glfwGetCursorPos(window_, &input.cursor.x, &input.cursor.y);
+  input.windowSize = windowSize();
+  input.shift = glfwGetKey(window_, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS ||
+                glfwGetKey(window_, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
+  input.control = glfwGetKey(window_, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS ||
+                  glfwGetKey(window_, GLFW_KEY_RIGHT_CONTROL) == GLFW_PRESS;
+  for (int index = 0; index < kCameraKeyCount; ++index)
+    input.cameraKeys[index] = input.cameraKeys[index] || glfwGetKey(window_, kCameraKeyCodes[index]) == GLFW_PRESS;
+  input.closeRequested = glfwWindowShouldClose(window_);
+  return input;
+}
+
+glm::ivec2 Window::framebufferSize() const {
+  glm::ivec2 size;
+  glfwGetFramebufferSize(window_, &size.x, &size.y);
+  return size;
+}
+
+glm::ivec2 Window::windowSize() const {
+  glm::ivec2 size;
+  glfwGetWindowSize(window_, &size.x, &size.y);
+  return size;
+}
+
+void Window::initImGuiPlatform() { ImGui_ImplGlfw_InitForOpenGL(window_, true); }
+void Window::newImGuiPlatformFrame() { ImGui_ImplGlfw_NewFrame(); }
+void Window::shutdownImGuiPlatform() { ImGui_ImplGlfw_Shutdown(); }
+void Window::present() {
+  // Minimised: nothing was drawn; wait for events a little instead of spinning at full speed.
+  if (framebufferSize() == glm::ivec2(0, 0)) glfwWaitEventsTimeout(0.05);
+  else glfwSwapBuffers(window_);
+}
+
+}  // namespace slime
