@@ -71,7 +71,6 @@ void applyBulkMaterial(BulkBody& body, const SlimeSettings& slime) {
   body.material.maxwellShear = (1.0 - slime.longTerm) * slime.modulus;
   body.material.lameLambda = lameLambdaFor(slime.modulus, slime.poisson);
   body.material.relaxationTime = slime.relaxation;
-  body.volumeStiffness = kVolumeStiffnessPerModulus * slime.modulus;
   body.edgeDamping.resize(body.edges.size());
   for (std::size_t s = 0; s < body.edges.size(); ++s) {
     const glm::dvec3 d = mesh.positions[body.edges[s].y] - mesh.positions[body.edges[s].x];
@@ -80,7 +79,7 @@ void applyBulkMaterial(BulkBody& body, const SlimeSettings& slime) {
 }
 
 void bulkInternalForces(const BulkBody& body, const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v,
-                        BulkScratch& scratch, std::vector<glm::dvec3>& forces, bool dampers) {
+                        std::vector<glm::dvec3>& forces, bool dampers) {
   forces.assign(x.size(), glm::dvec3(0.0));
   const std::vector<Tetrahedron>& tetrahedra = body.mesh.tetrahedra;
   // Elastic and Maxwell branches: f = −V0 P Dm⁻ᵀ on nodes 1..3, the opposite of their sum on node 0.
@@ -107,10 +106,6 @@ void bulkInternalForces(const BulkBody& body, const std::vector<glm::dvec3>& x, 
       forces[j] -= force;
     }
   }
-  // The whole body's volume: p = K_V (1 − V/V0) pushes along ∇V on the surface nodes.
-  const double volume = volumeGradient(x, body.mesh.surface, scratch.volumeGradient);
-  const double pressure = body.volumeStiffness * (1.0 - volume / body.restVolume);
-  for (std::size_t i = 0; i < body.mesh.surfaceNodes; ++i) forces[i] += pressure * scratch.volumeGradient[i];
 }
 
 void dampEdges(const BulkBody& body, double h, BulkScratch& scratch, ParticleState& state) {
@@ -136,6 +131,22 @@ void dampEdges(const BulkBody& body, double h, BulkScratch& scratch, ParticleSta
   }
 }
 
+void projectBulkVolume(const BulkBody& body, double h, BulkScratch& scratch, ParticleState& state) {
+  const double volume = volumeGradient(state.positions, body.mesh.surface, scratch.volumeGradient);
+  const std::vector<glm::dvec3>& gradient = scratch.volumeGradient;
+  // A node lying on the floor is held by it (as a pinned node is by the hand): it does not move.
+  const auto mobility = [&](std::size_t i) { return state.positions[i].z > 0.0 ? state.inverseMasses[i] : 0.0; };
+  double resistance = 0.0;  // Σ w_i |∇_i V|²
+  for (std::size_t i = 0; i < body.mesh.surfaceNodes; ++i) resistance += mobility(i) * glm::dot(gradient[i], gradient[i]);
+  if (resistance <= 0.0) return;
+  const double multiplier = (body.restVolume - volume) / resistance;
+  for (std::size_t i = 0; i < body.mesh.surfaceNodes; ++i) {
+    const glm::dvec3 move = (multiplier * mobility(i)) * gradient[i];
+    state.positions[i] += move;
+    state.velocities[i] += move / h;
+  }
+}
+
 double bulkElasticEnergy(const BulkBody& body, const std::vector<glm::dvec3>& x) {
   double energy = 0.0;
   for (std::size_t e = 0; e < body.mesh.tetrahedra.size(); ++e) {
@@ -143,8 +154,7 @@ double bulkElasticEnergy(const BulkBody& body, const std::vector<glm::dvec3>& x)
     const glm::dmat3 f = deformationGradient(body.rest[e], x[t.x], x[t.y], x[t.z], x[t.w]);
     energy += body.rest[e].volume * energyDensity(body.material, f, body.maxwellInverse[e]);
   }
-  const double change = enclosedVolume(x, body.mesh.surface) - body.restVolume;
-  return energy + 0.5 * body.volumeStiffness * change * change / body.restVolume;
+  return energy;
 }
 
 void relaxBulk(BulkBody& body, double dt) {
@@ -200,7 +210,7 @@ double bulkHighestFrequency(const BulkBody& body, BulkScratch& scratch, int iter
   const std::size_t n = rest.size();
   const std::vector<glm::dvec3> still(n, glm::dvec3(0.0));
   std::vector<glm::dvec3> base, probe, direction(n);
-  bulkInternalForces(body, rest, still, scratch, base, false);
+  bulkInternalForces(body, rest, still, base, false);
   for (std::size_t i = 0; i < n; ++i)  // a deterministic start that excites every node
     direction[i] = glm::dvec3(std::sin(1.0 + 3.0 * i), std::cos(2.0 + 5.0 * i), std::sin(3.0 + 7.0 * i));
   const double epsilon = 1e-8;  // m, along a unit vector over all nodes
@@ -216,7 +226,7 @@ double bulkHighestFrequency(const BulkBody& body, BulkScratch& scratch, int iter
       direction[i] /= norm;
       displaced[i] = rest[i] + epsilon * direction[i];
     }
-    bulkInternalForces(body, displaced, still, scratch, probe, false);
+    bulkInternalForces(body, displaced, still, probe, false);
     double rayleigh = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
       const glm::dvec3 next = -(probe[i] - base[i]) / epsilon * body.freeInverseMasses[i];

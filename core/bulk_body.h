@@ -12,8 +12,11 @@
 //    share of its tetrahedra's volume (the seed's "damping" slider), so the body's viscosity does not
 //    depend on the resolution.
 // Linear tetrahedra lock when each element is made nearly incompressible, so elements have ν = 0.4
-// by default and the whole body's volume is held by a pressure p = K_V (1 − V/V0) on its surface
-// (K_V = kVolumeStiffnessPerModulus·G); the n = 2 modes that Lamb's oracle checks keep the volume.
+// by default, and the whole body's volume is held exactly instead by one constraint, V = V0, projected
+// after every substep (XPBD with zero compliance, Macklin et al. 2016: Δx_i = −C w_i ∇_i V / Σ w|∇V|²,
+// with the velocity following the correction). A stiff pressure force would need several substeps
+// per step; the projection costs one pass over the surface. The n = 2 modes that Lamb's oracle checks
+// keep the volume, so it leaves them alone.
 #pragma once
 
 #include "core/icosphere.h"
@@ -29,8 +32,6 @@
 
 namespace slime {
 
-constexpr double kVolumeStiffnessPerModulus = 50.0;  // K_V / G
-
 struct BulkBody {
   TetMesh mesh;                           // at rest at slime.position
   ParticleState state;
@@ -40,7 +41,6 @@ struct BulkBody {
   std::vector<glm::u32vec2> edges;        // every tetrahedron edge once
   std::vector<double> edgeDamping;        // k_d per edge, N·s/m
   ViscoelasticMaterial material;
-  double volumeStiffness = 0.0;           // K_V, Pa
   double restVolume = 0.0;                // V0 of the tetrahedral ball, m³
   double totalMass = 0.0;                 // kg
   TriangleMesh drawn;                     // the drawn icosphere at rest
@@ -61,11 +61,11 @@ struct BulkScratch {
   std::vector<glm::dvec3> positions;  // the frequency estimate's displaced shape
 };
 
-// Internal forces at (x, v): elastic and Maxwell stresses, edge dampers and the volume pressure.
-// No gravity, no contact. `forces` is resized and overwritten.
+// Internal forces at (x, v): elastic and Maxwell stresses and the edge dampers. No gravity, no
+// contact, no volume (projectBulkVolume). `forces` is resized and overwritten.
 void bulkInternalForces(const BulkBody& body, const std::vector<glm::dvec3>& positions,
-                        const std::vector<glm::dvec3>& velocities, BulkScratch& scratch,
-                        std::vector<glm::dvec3>& forces, bool dampers = true);
+                        const std::vector<glm::dvec3>& velocities, std::vector<glm::dvec3>& forces,
+                        bool dampers = true);
 
 // The seed's dampers integrated exactly pair by pair, as symplectic_euler does for the membrane: the
 // relative velocity of each edge's ends along the edge decays by exp(−k_d (w_i + w_j) h), the two
@@ -73,7 +73,11 @@ void bulkInternalForces(const BulkBody& body, const std::vector<glm::dvec3>& pos
 // dampers never limit the step. Call after the kick.
 void dampEdges(const BulkBody& body, double h, BulkScratch& scratch, ParticleState& state);
 
-// Elastic energy (both branches and the volume term), J.
+// Moves the surface nodes so the body's volume is its rest volume again (one projection along ∇V)
+// and the velocity of that move over h. Nodes lying on the floor are held by it and stay.
+void projectBulkVolume(const BulkBody& body, double h, BulkScratch& scratch, ParticleState& state);
+
+// Elastic energy of both branches, J.
 double bulkElasticEnergy(const BulkBody& body, const std::vector<glm::dvec3>& positions);
 
 // The Maxwell branches' flow over dt (once per step).
@@ -82,7 +86,9 @@ void relaxBulk(BulkBody& body, double dt);
 // Lifts every drawn vertex that went below the floor back onto it by moving the nodes that carry it
 // with positive weight in proportion to w_j / m_j, and takes away those nodes' downward speed (a
 // position-level contact on the drawn surface, where a person sees it). Returns how many drawn
-// vertices touched.
+// vertices touched. (Its lifts squeeze the body by up to 1 % while it lands; the next substep's volume
+// projection gives that back. Projecting again right here, as shape or as speed, kept the resting
+// body from settling.)
 std::size_t resolveDrawnFloorContact(BulkBody& body);
 
 // ω_max of the undamped linearised body (power iteration on finite differences of the forces) and

@@ -236,16 +236,17 @@ void Simulation::substep(double h) {
 // a = (internal forces + mouse spring) / m + g for the bulk body; pinned nodes (w = 0) do not move.
 void Simulation::bulkAccelerations(const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v,
                                    std::vector<glm::dvec3>& a) {
-  bulkInternalForces(bulkBody_, x, v, bulkScratch_, a);
+  bulkInternalForces(bulkBody_, x, v, a);
   if (grabbing_) handForce_ = addMouseSpringForces(mouse_, x, v, a);
   const glm::dvec3 gravity{0.0, 0.0, -settings_.sim.gravity};
   const std::vector<double>& w = bulkBody_.state.inverseMasses;
   for (std::size_t i = 0; i < a.size(); ++i) a[i] = w[i] > 0.0 ? a[i] * w[i] + gravity : glm::dvec3(0.0);
 }
 
-// The bulk body's substep. symplectic_euler: v += h a(x, v), x += h v, then the floor on every node
-// (the drawn surface's own contact follows once per step). explicit_euler and rk4 integrate the same
-// accelerations through integrators.h.
+// The bulk body's substep. symplectic_euler: v += h a(x), the dampers exactly, x += h v; explicit_euler
+// and rk4 integrate the same accelerations, dampers included, through integrators.h. Then the floor on
+// every node and the volume projection, which leaves the nodes on the floor where they are (the drawn
+// surface's own contact follows once per step).
 void Simulation::bulkSubstep(double h) {
   ParticleState& state = bulkBody_.state;
   switch (integrator_) {
@@ -254,7 +255,7 @@ void Simulation::bulkSubstep(double h) {
     default: {
       // Kick with every force but the dampers, the dampers exactly (dampEdges), then drift.
       std::vector<glm::dvec3>& a = bulkScratch_.forces;
-      bulkInternalForces(bulkBody_, state.positions, state.velocities, bulkScratch_, a, false);
+      bulkInternalForces(bulkBody_, state.positions, state.velocities, a, false);
       if (grabbing_) handForce_ = addMouseSpringForces(mouse_, state.positions, state.velocities, a);
       const glm::dvec3 gravity{0.0, 0.0, -settings_.sim.gravity};
       for (std::size_t i = 0; i < state.size(); ++i) {
@@ -270,6 +271,7 @@ void Simulation::bulkSubstep(double h) {
   const double friction = settings_.slime.friction;
   for (std::size_t i = 0; i < state.size(); ++i)
     if (state.inverseMasses[i] > 0.0) resolveFloorContactAt(state.positions[i], state.velocities[i], friction);
+  projectBulkVolume(bulkBody_, h, bulkScratch_, state);
 }
 
 // Grabbed points land exactly where they are driven (the integrators moved them by v h).
