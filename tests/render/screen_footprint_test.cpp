@@ -13,6 +13,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
+#include <cstdio>
 #include <string>
 
 namespace slime {
@@ -25,6 +26,7 @@ struct View {
   glm::dvec3 slimeCenter;
   glm::dvec3 light;
   double floorSpecular = 0.0;
+  glm::dvec3 stretch{1.0};  // the ball scaled about its centre: the bulk slime hanging or pressed flat
 };
 
 struct Coverage {
@@ -70,7 +72,8 @@ Settings settingsFor(const View& view) {
 
 Coverage check(const View& view, int width, int height, ScreenFootprint& footprint) {
   const Settings settings = settingsFor(view);
-  const TriangleMesh mesh = makeIcosphere(3, settings.slime.radius, view.slimeCenter);
+  TriangleMesh mesh = makeIcosphere(3, settings.slime.radius, view.slimeCenter);
+  for (glm::dvec3& p : mesh.positions) p = view.slimeCenter + view.stretch * (p - view.slimeCenter);
   SlimeGeometry geometry;
   geometry.update(mesh.positions, mesh.triangles);
   const Camera camera = makeCamera(settings.camera, width, height);
@@ -108,6 +111,29 @@ TEST(ScreenFootprint, HoldsEveryPixelTheSlimeCanReachAndLittleElse) {
       // Two pixels of margin around shapes a few dozen pixels across: at most about half as many again.
       EXPECT_LE(footprint.area(), 1.6 * coverage.reachable + 4 * (size.x + size.y)) << what;
     }
+  }
+}
+
+// The bulk slime held up by a pinch hangs several times taller than it is wide, and pressed it spreads
+// flat: the footprint must still hold every pixel it can reach (its bound follows the shape).
+TEST(ScreenFootprint, HoldsAStretchedOrFlattenedSlime) {
+  const double r = 0.04;
+  const View views[] = {
+      {"hanging, 3.5 times its height", {0.0, -0.35, 0.15}, {0.0, 0.0, 0.12}, {0.0, 0.0, 0.16}, {0.3, -0.05, 0.35},
+       0.0, {0.55, 0.55, 3.5}},
+      {"pressed flat", {0.0, -0.22, 0.1}, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.3 * r}, {0.3, -0.05, 0.35}, 0.0,
+       {1.8, 1.8, 0.3}},
+      {"pulled sideways, varnished floor", {0.05, -0.3, 0.12}, {0.05, 0.0, r}, {0.06, 0.0, r}, {-0.2, 0.1, 0.2}, 0.3,
+       {3.0, 0.6, 0.6}},
+  };
+  ScreenFootprint footprint;
+  for (const View& view : views) {
+    const Coverage coverage = check(view, 160, 120, footprint);
+    EXPECT_GT(coverage.reachable, 0) << view.what;
+    EXPECT_EQ(coverage.missed, 0) << view.what << ": " << coverage.missed << " of " << coverage.reachable
+                                  << " pixels missed";
+    std::printf("%s: footprint %lld pixels for %lld reachable\n", view.what.c_str(),
+                static_cast<long long>(footprint.area()), coverage.reachable);
   }
 }
 
