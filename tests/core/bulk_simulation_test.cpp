@@ -275,3 +275,29 @@ TEST(BulkSlime, OnlyTheIntegratorsItSupports) {
 
 }  // namespace
 }  // namespace slime
+
+namespace slime {
+namespace {
+
+// After a rollback the guard takes twice the substeps, and after 500 clean steps it tries the step it
+// was given again (here too long for the material, so it refines again: over 1,500 steps it does both).
+TEST(BulkSlime, RefinementAfterARollbackReturnsAfterCleanSteps) {
+  Settings settings = defaultSettings();
+  settings.sim.dt = 0.0025;  // above the explicit limit 2/ω_max ≈ 1.8 ms of the default body, half of it below
+  Simulation simulation(settings);
+  simulation.setAutomaticSubsteps(false);
+  ASSERT_GT(settings.sim.dt, simulation.largestStableStep());
+  while (simulation.divergences().empty() && simulation.time() < 2.0) simulation.step();
+  ASSERT_FALSE(simulation.divergences().empty());
+  EXPECT_EQ(simulation.substepsPerStep(), 2);
+  int fewest = simulation.substepsPerStep();
+  for (int i = 0; i < 1500; ++i) {
+    simulation.step();
+    fewest = std::min(fewest, simulation.substepsPerStep());
+  }
+  EXPECT_EQ(fewest, 1) << simulation.divergences().size() << " rollbacks";
+  for (const glm::dvec3& p : simulation.positions()) ASSERT_TRUE(std::isfinite(p.x + p.y + p.z));
+}
+
+}  // namespace
+}  // namespace slime
