@@ -2,6 +2,8 @@
 
 #include <glm/geometric.hpp>
 
+#include <cmath>
+
 #include <limits>
 
 namespace slime {
@@ -58,6 +60,25 @@ glm::dvec3 stepTowards(const glm::dvec3& anchor, const glm::dvec3& target, doubl
   const double distance = glm::length(offset);
   if (distance <= maxStep) return target;
   return anchor + offset * (maxStep / distance);
+}
+
+glm::dvec3 addMouseSpringForces(const MouseSpring& spring, const std::vector<glm::dvec3>& positions,
+                                const std::vector<glm::dvec3>& velocities, std::vector<glm::dvec3>& forces) {
+  glm::dvec3 total(0.0);
+  for (std::size_t k = 0; k < spring.nodes.size(); ++k) {
+    const std::uint32_t i = spring.nodes[k];
+    total += spring.shares[k] * (spring.stiffness * (spring.target + spring.offsets[k] - positions[i]) +
+                                 spring.damping * (spring.targetVelocity - velocities[i]));
+  }
+  const double magnitude = glm::length(total);
+  const double scale = magnitude > spring.maxForce ? spring.maxForce / magnitude : 1.0;
+  for (std::size_t k = 0; k < spring.nodes.size(); ++k) {
+    const std::uint32_t i = spring.nodes[k];
+    forces[i] += (scale * spring.shares[k]) *
+                 (spring.stiffness * (spring.target + spring.offsets[k] - positions[i]) +
+                  spring.damping * (spring.targetVelocity - velocities[i]));
+  }
+  return scale * total;
 }
 
 }  // namespace slime

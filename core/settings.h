@@ -37,15 +37,22 @@ struct FloorSettings {
 
 struct SlimeSettings {
   std::string shape = "mesh";            // mesh (the simulated icosphere) | sphere (analytic reference)
+  std::string model = "bulk";            // bulk (viscoelastic tetrahedral body) | membrane (the seed's skin)
   double radius = 0.04;                  // rest radius, m
-  int level = 4;                         // icosphere subdivision level 0..7: 20*4^level faces
+  int level = 4;                         // drawn icosphere subdivision level 0..7: 20*4^level faces
+  int resolution = 2;                    // bulk: the simulated body's shell level 1..4 (tet_mesh.h)
   bool autoLevel = false;                // slime.level=auto: smallest level whose image error is invisible
   double mass = 0.268;                   // total mass, kg (≈ 1000 kg/m^3 at radius 4 cm)
-  double stiffness = 100.0;              // elementary spring stiffness k_e, N/m (series rule k = k_e d_e / d)
-  double damping = 0.1;                  // damper coefficient k_d along each spring, N·s/m
-  double pressure = 3.0;                 // volume preservation strength, relative (0 = none)
+  double stiffness = 100.0;              // membrane: spring stiffness k_e, N/m (series rule k = k_e d_e / d)
+  double damping = 0.1;                  // membrane: damper coefficient k_d along each spring, N·s/m
+  double pressure = 3.0;                 // membrane: volume preservation strength, relative (0 = none)
   double friction = 0.6;                 // Coulomb friction coefficient against the floor
-  double rolling = 5.0;                  // rolling resistance: 1/s at which the slime's turning decays on the floor
+  double rolling = 5.0;                  // membrane: rolling resistance, 1/s at which the turning decays on the floor
+  double modulus = 1200.0;               // bulk: instantaneous shear modulus G = μ∞ + μ1, Pa (the seed's stiffness)
+  double longTerm = 0.4;                 // bulk: μ∞ / G, the part of the modulus that never relaxes
+  double relaxation = 0.6;               // bulk: relaxation time τ of the Maxwell branch, s
+  double poisson = 0.4;                  // bulk: Poisson ratio ν of each element
+  double viscosity = 30.0;               // bulk: viscosity η of the edge dampers, Pa·s (the seed's damping)
   glm::dvec3 position{0.0, 0.0, 0.10};   // start position of the centre, m
   glm::dvec3 color{0.25, 0.85, 0.35};    // slime colour: surface tint and per-channel transmittance
   double transmission = 0.7;             // k_t: weight of the refracted ray

@@ -67,24 +67,39 @@ void forEachField(S& s, Visitor&& visitor) {
   // Slime: shape and physics
   visit("slime.shape", s.slime.shape, Choices{"mesh", "sphere"},
         "mesh (the simulated icosphere) or sphere (analytic reference)");
+  visit("slime.model", s.slime.model, Choices{"bulk", "membrane"},
+        "bulk (viscoelastic tetrahedral body) or membrane (the seed's skin of springs around a fill)");
   visit("slime.radius", s.slime.radius, Limits{0.005, 1.0, "m"}, "rest radius of the ball");
   visit("slime.level", s.slime.level, Limits{0, 7, "subdivision level"},
-        "icosphere subdivision level: 20*4^level faces (or auto)");
+        "drawn icosphere subdivision level: 20*4^level faces (or auto)");
+  visit("slime.resolution", s.slime.resolution, Limits{1, 4, "body shell level"},
+        "bulk: the simulated body's shell level (85, 487, 3,211 or 23,059 mass points)");
   visit("slime.autoLevel", s.slime.autoLevel, Choices{},
         "pick the smallest level whose image error is invisible");
   // Mass and stiffness are bounded so that the stiffest, lightest slime still keeps its volume within
   // 1 % and costs at most ~100 substeps per 10 ms step (the step count grows as sqrt(k/m)).
   visit("slime.mass", s.slime.mass, Limits{0.01, 100.0, "kg"}, "total mass");
   visit("slime.stiffness", s.slime.stiffness, Limits{1.0, 1000.0, "N/m"},
-        "elementary spring stiffness k_e (longer springs are softer)");
+        "membrane: elementary spring stiffness k_e (longer springs are softer)");
   visit("slime.damping", s.slime.damping, Limits{0.0, 100.0, "N·s/m"},
-        "damper coefficient k_d along each spring");
+        "membrane: damper coefficient k_d along each spring");
   visit("slime.pressure", s.slime.pressure, Limits{0.0, 100.0, "relative"},
-        "volume preservation strength (0 = none)");
+        "membrane: volume preservation strength (0 = none)");
   visit("slime.friction", s.slime.friction, Limits{0.0, 10.0, "Coulomb coefficient"},
         "Coulomb friction coefficient against the floor");
   visit("slime.rolling", s.slime.rolling, Limits{0.0, 1000.0, "1/s"},
-        "rate at which the slime's rolling decays on the floor");
+        "membrane: rate at which the slime's rolling decays on the floor");
+  // The bulk material: moduli from a soft jelly to a stiff rubber; τ from a fast to a near-solid gel.
+  visit("slime.modulus", s.slime.modulus, Limits{50.0, 1.0e5, "Pa"},
+        "bulk: instantaneous shear modulus G (the seed's stiffness slider)");
+  visit("slime.longTerm", s.slime.longTerm, Limits{0.01, 1.0, "of the modulus"},
+        "bulk: the part of G that never relaxes and brings the ball back (1 = purely elastic)");
+  visit("slime.relaxation", s.slime.relaxation, Limits{0.01, 1000.0, "s"},
+        "bulk: relaxation time of the flowing (Maxwell) part");
+  visit("slime.poisson", s.slime.poisson, Limits{0.0, 0.49, ""},
+        "bulk: Poisson ratio of each element (the whole body keeps its volume anyway)");
+  visit("slime.viscosity", s.slime.viscosity, Limits{0.0, 100.0, "Pa·s"},
+        "bulk: viscosity of the dampers along the body's edges (the seed's damping slider)");
   visit("slime.position", s.slime.position, Limits{-100.0, 100.0, "m"}, "start position of the centre");
   // Slime: optics
   visit("slime.color", s.slime.color, Limits{0.0, 1.0, "linear RGB"},

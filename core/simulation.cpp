@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <utility>
 
 namespace slime {
@@ -18,7 +19,11 @@ namespace {
 
 constexpr int kGoodStateInterval = 8;   // steps between saved good states
 constexpr int kMaxRefinement = 64;      // the guard doubles substeps after a rollback, up to this
+constexpr int kCleanStepsToCoarsen = 500;  // after this many steps with no rollback it halves them again
 constexpr int kRollingInterval = 4;     // steps between applications of the rolling resistance
+// Steps between the Maxwell branches' flow updates (exact over the interval for the strain at its end;
+// 4 ms against relaxation times of 10 ms and more). Every step it cost a quarter of the step.
+constexpr int kRelaxInterval = 4;
 
 }  // namespace
 
@@ -27,6 +32,8 @@ Simulation::Simulation(const Settings& settings) { reload(settings); }
 Simulation::Simulation(const Settings& settings, SlimeBody body) {
   settings_ = settings;
   settings_.slime.level = effectiveLevel(settings);
+  settings_.slime.model = "membrane";  // a body of springs made elsewhere
+  bulk_ = false;
   body_ = std::move(body);
   start();
 }
@@ -34,11 +41,22 @@ Simulation::Simulation(const Settings& settings, SlimeBody body) {
 void Simulation::reload(const Settings& settings) {
   settings_ = settings;
   settings_.slime.level = effectiveLevel(settings);  // slime.level=auto resolved once, here
-  body_ = buildSlimeBody(settings_.slime);
+  bulk_ = settings_.slime.model == "bulk";
+  if (bulk_) {
+    body_ = SlimeBody{};
+    bulkBody_ = buildBulkBody(settings_.slime);
+  } else {
+    bulkBody_ = BulkBody{};
+    body_ = buildSlimeBody(settings_.slime);
+  }
   start();
 }
 
 void Simulation::start() {
+  mouse_ = MouseSpring{};
+  handForce_ = glm::dvec3(0.0);
+  drawnStale_ = true;
+  cleanSteps_ = 0;
   time_ = 0.0;
   stepCount_ = 0;
   refinement_ = 1;
@@ -53,18 +71,26 @@ void Simulation::start() {
 void Simulation::applySettings(const Settings& settings) {
   const bool rebuild = effectiveLevel(settings) != settings_.slime.level ||
                        settings.slime.radius != settings_.slime.radius ||
-                       settings.slime.shape != settings_.slime.shape;
+                       settings.slime.shape != settings_.slime.shape ||
+                       settings.slime.model != settings_.slime.model ||
+                       settings.slime.resolution != settings_.slime.resolution;
   if (rebuild) {
     reload(settings);
     return;
   }
   const bool material = settings.slime.mass != settings_.slime.mass ||
                         settings.slime.stiffness != settings_.slime.stiffness ||
-                        settings.slime.pressure != settings_.slime.pressure;
+                        settings.slime.pressure != settings_.slime.pressure ||
+                        settings.slime.modulus != settings_.slime.modulus ||
+                        settings.slime.longTerm != settings_.slime.longTerm ||
+                        settings.slime.relaxation != settings_.slime.relaxation ||
+                        settings.slime.poisson != settings_.slime.poisson ||
+                        settings.slime.viscosity != settings_.slime.viscosity;
   const int level = settings_.slime.level;
   settings_ = settings;
   settings_.slime.level = level;
-  if (material) applySlimeMaterial(body_, settings.slime);
+  if (material && bulk_) applyBulkMaterial(bulkBody_, settings.slime);
+  if (material && !bulk_) applySlimeMaterial(body_, settings.slime);
   refinement_ = 1;
   rebuildModels();
 }
@@ -72,6 +98,15 @@ void Simulation::applySettings(const Settings& settings) {
 void Simulation::rebuildModels() {
   integrator_ = parseIntegrator(settings_.sim.integrator);
   const glm::dvec3 gravity{0.0, 0.0, -settings_.sim.gravity};
+  if (bulk_) {
+    accelerationField_ = [this](const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v,
+                                std::vector<glm::dvec3>& a) { bulkAccelerations(x, v, a); };
+    highestFrequency_ = bulkHighestFrequency(bulkBody_, bulkScratch_);
+    // symplectic_euler integrates the dampers exactly; the explicit methods feel their rate.
+    highestDampingRate_ = integrator_ == Integrator::SymplecticEuler ? 0.0 : bulkHighestDampingRate(bulkBody_);
+    bulkScratch_.decayStep = -1.0;
+    return;
+  }
   const bool hasVolume = settings_.slime.pressure > 0.0;
   forceModel_ = ForceModel{};
   forceModel_.springs = &body_.springs;
@@ -138,22 +173,39 @@ int Simulation::substepsPerStep() const {
 void Simulation::step() {
   const int substeps = substepsPerStep();
   const double h = settings_.sim.dt / substeps;
+  if (bulk_) {  // the mouse target moves to where dragTo put it over this step
+    mouse_.targetVelocity = (pendingTarget_ - mouse_.target) / settings_.sim.dt;
+    mouse_.target = pendingTarget_;
+  }
   for (int s = 0; s < substeps; ++s) substep(h);
   time_ += settings_.sim.dt;
   ++stepCount_;
-  // Rolling resistance damps a slow motion (the rocking it is for has a period near 1.4 s), so it
-  // acts every few steps, decaying over all of them at once; every step it cost 13 % of a step.
-  if (stepCount_ % kRollingInterval == 0)
+  if (bulk_) {
+    if (stepCount_ % kRelaxInterval == 0) relaxBulk(bulkBody_, kRelaxInterval * settings_.sim.dt);
+    resolveDrawnFloorContact(bulkBody_);
+    drawnStale_ = true;
+  } else if (stepCount_ % kRollingInterval == 0) {
+    // Rolling resistance damps a slow motion (the rocking it is for has a period near 1.4 s), so it
+    // acts every few steps, decaying over all of them at once; every step it cost 13 % of a step.
     dampTurningOnFloor(body_.state, settings_.slime.rolling, kRollingInterval * settings_.sim.dt);
-  const std::string what = findDivergence(body_.state);
+  }
+  const std::string what = findDivergence(activeState());
   if (!what.empty()) {
     rollBack(what);
     return;
+  }
+  if (refinement_ > 1 && ++cleanSteps_ >= kCleanStepsToCoarsen) {
+    refinement_ /= 2;
+    cleanSteps_ = 0;
   }
   if (stepCount_ % kGoodStateInterval == 0) saveGoodState();
 }
 
 void Simulation::substep(double h) {
+  if (bulk_) {
+    bulkSubstep(h);
+    return;
+  }
   if (grabbing_) driveGrabbedPoints(h);
   ParticleState& state = body_.state;
   if (integrator_ == Integrator::SymplecticEuler) {
@@ -181,6 +233,47 @@ void Simulation::substep(double h) {
   resolveFloorContact(state, settings_.slime.friction);
 }
 
+// a = (internal forces + mouse spring) / m + g for the bulk body; pinned nodes (w = 0) do not move.
+void Simulation::bulkAccelerations(const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v,
+                                   std::vector<glm::dvec3>& a) {
+  bulkInternalForces(bulkBody_, x, v, a);
+  if (grabbing_) handForce_ = addMouseSpringForces(mouse_, x, v, a);
+  const glm::dvec3 gravity{0.0, 0.0, -settings_.sim.gravity};
+  const std::vector<double>& w = bulkBody_.state.inverseMasses;
+  for (std::size_t i = 0; i < a.size(); ++i) a[i] = w[i] > 0.0 ? a[i] * w[i] + gravity : glm::dvec3(0.0);
+}
+
+// The bulk body's substep. symplectic_euler: v += h a(x), the dampers exactly, x += h v; explicit_euler
+// and rk4 integrate the same accelerations, dampers included, through integrators.h. Then the floor on
+// every node and the volume projection, which leaves the nodes on the floor where they are (the drawn
+// surface's own contact follows once per step).
+void Simulation::bulkSubstep(double h) {
+  ParticleState& state = bulkBody_.state;
+  switch (integrator_) {
+    case Integrator::ExplicitEuler: explicitEulerStep(state, h, accelerationField_, integratorScratch_); break;
+    case Integrator::Rk4: rk4Step(state, h, accelerationField_, integratorScratch_); break;
+    default: {
+      // Kick with every force but the dampers, the dampers exactly (dampEdges), then drift.
+      std::vector<glm::dvec3>& a = bulkScratch_.forces;
+      bulkInternalForces(bulkBody_, state.positions, state.velocities, a, false);
+      if (grabbing_) handForce_ = addMouseSpringForces(mouse_, state.positions, state.velocities, a);
+      const glm::dvec3 gravity{0.0, 0.0, -settings_.sim.gravity};
+      for (std::size_t i = 0; i < state.size(); ++i) {
+        const double w = state.inverseMasses[i];
+        if (w != 0.0) state.velocities[i] += h * (a[i] * w + gravity);
+      }
+      dampEdges(bulkBody_, h, bulkScratch_, state);
+      for (std::size_t i = 0; i < state.size(); ++i)
+        if (state.inverseMasses[i] != 0.0) state.positions[i] += h * state.velocities[i];
+      break;
+    }
+  }
+  const double friction = settings_.slime.friction;
+  for (std::size_t i = 0; i < state.size(); ++i)
+    if (state.inverseMasses[i] > 0.0) resolveFloorContactAt(state.positions[i], state.velocities[i], friction);
+  projectBulkVolume(bulkBody_, h, bulkScratch_, state);
+}
+
 // Grabbed points land exactly where they are driven (the integrators moved them by v h).
 void Simulation::placeGrabbedPoints() {
   ParticleState& state = body_.state;
@@ -203,7 +296,8 @@ void Simulation::driveGrabbedPoints(double h) {
 }
 
 void Simulation::saveGoodState() {
-  goodState_ = body_.state;
+  goodState_ = activeState();
+  goodMaxwell_ = bulkBody_.maxwellInverse;
   goodTime_ = time_;
   goodStep_ = stepCount_;
 }
@@ -214,33 +308,68 @@ void Simulation::rollBack(const std::string& what) {
   event.time = time_;
   event.integrator = integratorName(integrator_);
   refinement_ = std::min(refinement_ * 2, kMaxRefinement);
+  cleanSteps_ = 0;
   event.what = what + "; rolled back to step " + std::to_string(goodStep_) + ", now " +
                std::to_string(substepsPerStep()) + " substeps per step";
   divergences_.push_back(event);
-  body_.state = goodState_;
+  activeState() = goodState_;
+  bulkBody_.maxwellInverse = goodMaxwell_;
+  drawnStale_ = true;
   time_ = goodTime_;
   stepCount_ = goodStep_;
 }
 
 double Simulation::time() const { return time_; }
 std::int64_t Simulation::stepCount() const { return stepCount_; }
-const std::vector<glm::dvec3>& Simulation::positions() const { return body_.state.positions; }
-const std::vector<Triangle>& Simulation::triangles() const { return body_.triangles; }
+const std::vector<glm::dvec3>& Simulation::positions() const {
+  if (!bulk_) return body_.state.positions;
+  if (drawnStale_) {
+    placeEmbedded(bulkBody_.embedding, bulkBody_.state.positions, drawnPositions_);
+    drawnStale_ = false;
+  }
+  return drawnPositions_;
+}
+const std::vector<Triangle>& Simulation::triangles() const {
+  return bulk_ ? bulkBody_.drawn.triangles : body_.triangles;
+}
 const std::vector<DivergenceEvent>& Simulation::divergences() const { return divergences_; }
-double Simulation::volume() const { return enclosedVolume(body_.state.positions, body_.triangles); }
+double Simulation::volume() const {
+  return bulk_ ? enclosedVolume(bulkBody_.state.positions, bulkBody_.mesh.surface)
+               : enclosedVolume(body_.state.positions, body_.triangles);
+}
+void Simulation::setVelocities(const std::vector<glm::dvec3>& velocities) {
+  if (velocities.size() != state().size())
+    throw std::invalid_argument("setVelocities: " + std::to_string(velocities.size()) + " velocities for " +
+                                std::to_string(state().size()) + " points");
+  activeState().velocities = velocities;
+  saveGoodState();
+}
 
+std::size_t Simulation::elementCount() const {
+  return bulk_ ? bulkBody_.mesh.tetrahedra.size() : body_.springs.size();
+}
+double Simulation::elasticEnergy() const {
+  return bulk_ ? bulkElasticEnergy(bulkBody_, bulkBody_.state.positions) : 0.0;
+}
+
+// Shape from the surface points (the membrane's vertices, the body's outer nodes); energy and speed
+// from every simulated point.
 SlimeMetrics Simulation::metrics() const {
   SlimeMetrics metrics;
-  const ParticleState& state = body_.state;
+  const ParticleState& state = this->state();
+  const std::vector<double>& freeInverseMasses = bulk_ ? bulkBody_.freeInverseMasses : body_.freeInverseMasses;
+  const std::size_t surfacePoints = bulk_ ? bulkBody_.mesh.surfaceNodes : state.size();
   glm::dvec3 low(std::numeric_limits<double>::infinity()), high(-std::numeric_limits<double>::infinity());
   for (std::size_t i = 0; i < state.size(); ++i) {
-    low = glm::min(low, state.positions[i]);
-    high = glm::max(high, state.positions[i]);
+    if (i < surfacePoints) {
+      low = glm::min(low, state.positions[i]);
+      high = glm::max(high, state.positions[i]);
+    }
     const double speedSquared = glm::dot(state.velocities[i], state.velocities[i]);
-    metrics.kineticEnergy += 0.5 * speedSquared / body_.freeInverseMasses[i];
+    metrics.kineticEnergy += 0.5 * speedSquared / freeInverseMasses[i];
     metrics.maxSpeed = std::max(metrics.maxSpeed, std::sqrt(speedSquared));
   }
-  metrics.volumeRatio = volume() / body_.restVolume;
+  metrics.volumeRatio = volume() / restVolume();
   metrics.height = high.z - low.z;
   metrics.width = std::max(high.x - low.x, high.y - low.y);
   metrics.aspect = metrics.width > 0.0 ? metrics.height / metrics.width : 1.0;
@@ -250,6 +379,38 @@ SlimeMetrics Simulation::metrics() const {
 
 bool Simulation::grab(const glm::dvec3& point, double radius) {
   release();
+  if (bulk_) {
+    // The drawn surface point nearest to `point`, and the body's nodes within `radius` of it (or,
+    // when none is that close, the nodes that carry the nearest drawn vertex).
+    const std::vector<glm::dvec3>& drawn = positions();
+    const glm::dvec3 surface = nearestSurfacePoint(drawn, bulkBody_.drawn.triangles, point);
+    const ParticleState& state = bulkBody_.state;
+    std::vector<std::uint32_t> nodes = pointsWithinRadius(state.positions, surface, radius);
+    if (nodes.empty()) {
+      std::uint32_t nearest = 0;
+      for (std::uint32_t i = 1; i < drawn.size(); ++i)
+        if (glm::length(drawn[i] - surface) < glm::length(drawn[nearest] - surface)) nearest = i;
+      const Tetrahedron& t = bulkBody_.embedding.nodes[nearest];
+      nodes = {t.x, t.y, t.z, t.w};
+      std::sort(nodes.begin(), nodes.end());
+      nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    }
+    mouse_ = MouseSpring{};
+    double mass = 0.0;
+    for (std::uint32_t i : nodes) {
+      mouse_.offsets.push_back(state.positions[i] - surface);
+      mouse_.shares.push_back(1.0 / static_cast<double>(nodes.size()));
+      mass += 1.0 / bulkBody_.freeInverseMasses[i];
+    }
+    mouse_.nodes = nodes;
+    mouse_.target = surface;
+    mouse_.damping = kMouseDampingRatio * 2.0 * std::sqrt(mouse_.stiffness * mass);
+    pendingTarget_ = surface;
+    grabbing_ = true;
+    grabbed_ = std::move(nodes);
+    grabTarget_ = surface;
+    return true;
+  }
   const glm::dvec3 surface = nearestSurfacePoint(body_.state.positions, body_.triangles, point);
   std::vector<std::uint32_t> indices = pointsWithinRadius(body_.state.positions, surface, radius);
   if (indices.empty()) return false;
@@ -267,10 +428,28 @@ bool Simulation::grab(const glm::dvec3& point, double radius) {
 }
 
 void Simulation::dragTo(const glm::dvec3& target) {
-  if (grabbing_) grabTarget_ = target;
+  if (!grabbing_) return;
+  grabTarget_ = target;
+  pendingTarget_ = target;
+}
+
+glm::dvec3 Simulation::grabbedPoint() const {
+  if (!grabbing_) return grabTarget_;
+  glm::dvec3 sum(0.0);
+  const std::vector<glm::dvec3>& x = state().positions;
+  for (std::size_t k = 0; k < grabbed_.size(); ++k)
+    sum += x[grabbed_[k]] - (bulk_ ? mouse_.offsets[k] : grabOffsets_[k]);
+  return sum / static_cast<double>(grabbed_.size());
 }
 
 void Simulation::release() {
+  if (bulk_) {
+    mouse_ = MouseSpring{};
+    handForce_ = glm::dvec3(0.0);
+    grabbing_ = false;
+    grabbed_.clear();
+    return;
+  }
   for (std::uint32_t i : grabbed_) body_.state.inverseMasses[i] = body_.freeInverseMasses[i];
   if (!grabbed_.empty()) dampingDecayStep_ = -1.0;
   grabbing_ = false;

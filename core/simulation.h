@@ -1,14 +1,18 @@
-// The slime's physics as one object: the mass points of an icosphere joined by springs, with volume
-// preservation, floor contact and grab/press, advanced with a fixed time step by the integrator that
-// sim.integrator names. A headless run, a test and a viewer reset each make a new Simulation.
+// The slime's physics as one object, advanced with a fixed time step by the integrator that
+// sim.integrator names: slime.model=bulk (the default) is a viscoelastic tetrahedral body carrying the
+// drawn icosphere (bulk_body.h); slime.model=membrane is the seed's skin, the mass points of the drawn
+// icosphere joined by springs around a pressurised fill (slime_body.h). Both have floor contact and
+// grab/press. A headless run, a test and a viewer reset each make a new Simulation.
 //
 // CONTRACT used by render/ and app/ (keep these signatures; add whatever else physics needs):
 //   Simulation(const Settings&), reload, applySettings, step, time, stepCount, positions, triangles,
 //   metrics, divergences, grab, dragTo, release, grabbing, grabTarget, grabbedIndices.
 #pragma once
 
+#include "core/bulk_body.h"
 #include "core/damped_symplectic_euler.h"
 #include "core/force_model.h"
+#include "core/grab.h"
 #include "core/icosphere.h"
 #include "core/implicit_euler.h"
 #include "core/integrators.h"
@@ -58,8 +62,8 @@ class Simulation {
 
   double time() const;                            // simulated seconds since (re)load
   std::int64_t stepCount() const;
-  const std::vector<glm::dvec3>& positions() const;
-  const std::vector<Triangle>& triangles() const;
+  const std::vector<glm::dvec3>& positions() const;  // the drawn surface's vertices
+  const std::vector<Triangle>& triangles() const;    // the drawn surface's triangles
   SlimeMetrics metrics() const;
   const std::vector<DivergenceEvent>& divergences() const;
 
@@ -69,13 +73,22 @@ class Simulation {
   void release();
   bool grabbing() const;
   glm::dvec3 grabTarget() const;
+  glm::dvec3 grabbedPoint() const;                // where the grabbed part of the surface is now
+  glm::dvec3 handForce() const { return handForce_; }  // bulk: the mouse spring's force, N
+  // The simulated points that are grabbed (indices into state().positions).
   const std::vector<std::uint32_t>& grabbedIndices() const;
 
   // More for tests, reports and tools.
-  const ParticleState& state() const { return body_.state; }
-  const SlimeBody& body() const { return body_; }
+  bool bulk() const { return bulk_; }
+  const ParticleState& state() const { return bulk_ ? bulkBody_.state : body_.state; }  // simulated points
+  const SlimeBody& body() const { return body_; }           // membrane only
+  const BulkBody& bulkBody() const { return bulkBody_; }    // bulk only
+  // Starts the simulated points moving (an initial condition for oracles); sizes must match state().
+  void setVelocities(const std::vector<glm::dvec3>& velocities);
+  std::size_t elementCount() const;                         // tetrahedra (bulk) or springs (membrane)
+  double elasticEnergy() const;                             // bulk: elastic and volume energy, J
   const Settings& settings() const { return settings_; }
-  double restVolume() const { return body_.restVolume; }
+  double restVolume() const { return bulk_ ? bulkBody_.restVolume : body_.restVolume; }
   double volume() const;
   int substepsPerStep() const;  // sim.substeps times the guard's refinement after rollbacks
   int lastSolverIterations() const { return lastSolverIterations_; }  // CG iterations (implicit_euler)
@@ -89,13 +102,25 @@ class Simulation {
   void start();  // time zero, nothing grabbed, models built for body_
   void rebuildModels();
   void substep(double h);
+  void bulkSubstep(double h);
+  void bulkAccelerations(const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v,
+                         std::vector<glm::dvec3>& a);
+  ParticleState& activeState() { return bulk_ ? bulkBody_.state : body_.state; }
   void driveGrabbedPoints(double h);
   void placeGrabbedPoints();
   void saveGoodState();
   void rollBack(const std::string& what);
 
   Settings settings_;
+  bool bulk_ = false;
   SlimeBody body_;
+  BulkBody bulkBody_;
+  BulkScratch bulkScratch_;
+  MouseSpring mouse_;
+  glm::dvec3 pendingTarget_{0.0};  // where dragTo put the target; the mouse spring reaches it over a step
+  glm::dvec3 handForce_{0.0};
+  mutable std::vector<glm::dvec3> drawnPositions_;  // bulk: placed from the body when first asked for
+  mutable bool drawnStale_ = true;
   Integrator integrator_ = Integrator::SymplecticEuler;
   ForceModel forceModel_;    // every force, the damper explicit
   bool automaticSubsteps_ = true;
@@ -115,11 +140,13 @@ class Simulation {
   double time_ = 0.0;
   std::int64_t stepCount_ = 0;
   int refinement_ = 1;  // extra substeps the divergence guard asked for
+  int cleanSteps_ = 0;  // steps since the last rollback or coarsening
   int lastSolverIterations_ = 0;
   std::vector<DivergenceEvent> divergences_;
 
   // The last good state the guard rolls back to.
   ParticleState goodState_;
+  std::vector<glm::dmat3> goodMaxwell_;
   double goodTime_ = 0.0;
   std::int64_t goodStep_ = 0;
 

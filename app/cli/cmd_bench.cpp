@@ -1,12 +1,14 @@
-// `slime bench render|physics|accuracy`: the benchmarks behind docs/bench (scripts/bench.sh runs
-// all three and redraws the charts). Each prints a table, and writes every figure with --json/--csv.
+// `slime bench render|physics|accuracy|material`: the benchmarks behind docs/bench (scripts/bench.sh
+// runs them all and redraws the charts). Each prints a table, and writes every figure with --json/--csv.
 #include "app/bench/bench_accuracy.h"
+#include "app/bench/bench_material.h"
 #include "app/bench/bench_physics.h"
 #include "app/bench/bench_render.h"
 #include "app/bench/bench_report.h"
 #include "app/cli/commands.h"
 #include "core/integrators.h"
 #include "core/settings_io.h"
+#include "core/tet_mesh.h"
 
 #include <memory>
 #include <stdexcept>
@@ -157,14 +159,40 @@ void registerAccuracy(CLI::App& bench, int& exitCode) {
   });
 }
 
+struct MaterialCommand {
+  SceneOptions scene;
+  bool quick = false;
+  std::string resolutions, jsonFile, csvFile;
+};
+
+void registerMaterial(CLI::App& bench, int& exitCode) {
+  auto options = std::make_shared<MaterialCommand>();
+  auto* command = bench.add_subcommand("material", "The bulk body against Lamb's frequencies, the material's creep time, energy drift");
+  command->add_flag("--quick", options->quick, "Resolutions 1-2 and short runs (CI)");
+  command->add_option("--resolutions", options->resolutions, "Resolutions of the Lamb runs, e.g. 1-3 (default 1-3; --quick 1-2)");
+  command->add_option("--json", options->jsonFile, "Write every figure as JSON");
+  command->add_option("--csv", options->csvFile, "Write the Lamb table as CSV (and FILE_creep, the creep and recovery series)");
+  addSceneOptions(*command, options->scene);
+  command->callback([options, &exitCode] {
+    MaterialBenchOptions bench = options->quick ? MaterialBenchOptions::quick() : MaterialBenchOptions{};
+    if (!options->resolutions.empty())
+      bench.resolutions = parseList("--resolutions", options->resolutions, kMinBodyResolution, kMaxBodyResolution);
+    bench.jsonFile = options->jsonFile;
+    bench.csvFile = options->csvFile;
+    runMaterialBench(loadSettings(options->scene), bench);
+    exitCode = 0;
+  });
+}
+
 }  // namespace
 
 void registerBenchCommand(CLI::App& root, int& exitCode) {
-  auto* bench = root.add_subcommand("bench", "Benchmarks: render throughput, physics cost and stability, image accuracy");
+  auto* bench = root.add_subcommand("bench", "Benchmarks: render throughput, physics cost and stability, image accuracy, material oracles");
   bench->require_subcommand(1);
   registerRender(*bench, exitCode);
   registerPhysics(*bench, exitCode);
   registerAccuracy(*bench, exitCode);
+  registerMaterial(*bench, exitCode);
 }
 
 }  // namespace slime

@@ -114,10 +114,11 @@ int runSim(const SimOptions& options) {
   const double msPerStep = stepsRun > 0 ? 1000.0 * stepSeconds / static_cast<double>(stepsRun) : 0.0;
   const std::size_t rollbacks = simulation.divergences().size();
 
-  std::printf("sim: %.3f s, %lld steps of %g s, %s, level %d (%zu vertices), %.4f ms/step, volume %.4f, "
-              "aspect %.3f, min z %.2e m, KE %.2e J, rollbacks %zu%s\n",
+  std::printf("sim: %.3f s, %lld steps of %g s, %s, %s, level %d (%zu vertices drawn, %zu simulated), %.4f ms/step, "
+              "volume %.4f, aspect %.3f, min z %.2e m, KE %.2e J, rollbacks %zu%s\n",
               simulation.time(), static_cast<long long>(simulation.stepCount()), dt,
-              settings.sim.integrator.c_str(), simulation.settings().slime.level, simulation.positions().size(), msPerStep,
+              simulation.settings().slime.model.c_str(), settings.sim.integrator.c_str(),
+              simulation.settings().slime.level, simulation.positions().size(), simulation.state().size(), msPerStep,
               metrics.volumeRatio, metrics.aspect, metrics.minZ, metrics.kineticEnergy, rollbacks,
               nan ? ", NaN" : "");
 
@@ -134,8 +135,10 @@ int runSim(const SimOptions& options) {
         {"substeps", simulation.substepsPerStep()},
         {"integrator", settings.sim.integrator},
         {"level", simulation.settings().slime.level},
+        {"model", simulation.settings().slime.model},
         {"vertices", simulation.positions().size()},
-        {"springs", simulation.body().springs.size()},
+        {"simulated_points", simulation.state().size()},
+        {simulation.bulk() ? "tetrahedra" : "springs", simulation.elementCount()},
         {"ms_per_step", msPerStep},
         {"cpu_seconds", stepSeconds},
         {"wall_seconds", wallSeconds},

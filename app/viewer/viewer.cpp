@@ -526,14 +526,7 @@ Settings Viewer::frameSettings(glm::ivec2 imageSize) const {
   return frame;
 }
 
-glm::dvec3 Viewer::grabbedCentre() const {
-  const std::vector<glm::dvec3>& positions = simulation_.positions();
-  const std::vector<std::uint32_t>& grabbed = simulation_.grabbedIndices();
-  if (grabbed.empty()) return simulation_.grabTarget();
-  glm::dvec3 sum(0.0);
-  for (std::uint32_t index : grabbed) sum += positions[index];
-  return sum / static_cast<double>(grabbed.size());
-}
+glm::dvec3 Viewer::grabbedCentre() const { return simulation_.grabbedPoint(); }
 
 glm::dvec3 Viewer::slimeCentre() const {
   const std::vector<glm::dvec3>& positions = simulation_.positions();

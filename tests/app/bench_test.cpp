@@ -2,6 +2,7 @@
 // and the README read is there and sane. Nothing about timing is asserted beyond "positive" and the
 // ratios being the quotients of the times they name.
 #include "app/bench/bench_accuracy.h"
+#include "app/bench/bench_material.h"
 #include "app/bench/bench_physics.h"
 #include "app/bench/bench_render.h"
 #include "core/settings_io.h"
@@ -11,6 +12,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <numbers>
 #include <string>
 
 namespace slime {
@@ -197,6 +199,71 @@ TEST(BenchAccuracy, IdenticalImagesHaveNoError) {
   const ImageError one = compareImages(other, image);
   EXPECT_GT(one.maxError, 2.0);
   EXPECT_NEAR(one.visibleFraction, 1.0 / 12.0, 1e-12);
+}
+
+// `slime bench material --quick`: every field docs/material.md and the charts read, and the oracles
+// within their bounds (Lamb at the default resolution 2 within 5 %, the creep time within 10 % of the
+// material's, energy drift under 1 %, volume within 1 %).
+TEST(BenchMaterial, QuickRunHasEveryFieldAndMeetsItsOracles) {
+  MaterialBenchOptions options = MaterialBenchOptions::quick();
+  options.jsonFile = outputPath("bench_material.json");
+  options.csvFile = outputPath("bench_material.csv");
+  runMaterialBench(defaultSettings(), options);
+
+  const json report = readJson(options.jsonFile);
+  auto expectVolumeWithinOnePercent = [](const json& run, const char* what) {
+    EXPECT_GT(run["volume_ratio"]["min"].get<double>(), 0.99) << what;
+    EXPECT_LT(run["volume_ratio"]["max"].get<double>(), 1.01) << what;
+  };
+  ASSERT_EQ(report["lamb"].size(), 4u);  // resolutions 1, 2 × torsional, spheroidal
+  for (const json& run : report["lamb"]) {
+    const std::string mode = run["mode"];
+    EXPECT_TRUE(mode == "torsional_n2" || mode == "spheroidal_n2") << mode;
+    EXPECT_GT(run["nodes"].get<int>(), 0);
+    const double theory = run["theory_hz"], measured = run["measured_hz"];
+    EXPECT_GT(theory, 5.0);
+    EXPECT_LT(theory, 20.0);
+    EXPECT_NEAR(run["error"].get<double>(), measured / theory - 1.0, 1e-12);
+    EXPECT_LT(std::abs(run["error"].get<double>()), run["resolution"] == 2 ? 0.05 : 0.12) << mode;
+    expectVolumeWithinOnePercent(run, "lamb");
+  }
+  const json& creep = report["creep"];
+  const double material = creep["material_tau_s"];
+  EXPECT_NEAR(material, 0.6 * 1200.0 / (0.4 * 1200.0), 1e-9);  // τ (μ∞ + μ1)/μ∞ at the defaults
+  EXPECT_NEAR(creep["measured_tau_s"].get<double>(), material, 0.1 * material);
+  EXPECT_GT(creep["series"].size(), 10u);
+  expectVolumeWithinOnePercent(creep, "creep");
+  const json& recovery = report["recovery"];
+  EXPECT_NEAR(recovery["measured_tau_s"].get<double>(), material, 0.1 * material);
+  EXPECT_GT(recovery["series"].size(), 10u);
+  const json& energy = report["energy_drift"];
+  EXPECT_GT(energy["initial_energy_j"].get<double>(), 0.0);
+  EXPECT_LT(std::abs(energy["drift"].get<double>()), 0.01);
+  EXPECT_LT(energy["max_deviation"].get<double>(), 0.01);
+  expectVolumeWithinOnePercent(energy, "energy");
+  EXPECT_TRUE(std::ifstream(outputPath("bench_material_creep.csv")).good());
+}
+
+TEST(BenchMaterial, ExponentialFitRecoversItsParameters) {
+  std::vector<double> t, y;
+  for (int k = 0; k <= 200; ++k) {
+    t.push_back(0.04 * k);
+    y.push_back(2.5 - 1.5 * std::exp(-t.back() / 1.5) + 1e-4 * std::sin(37.0 * k));
+  }
+  const ExponentialFit fit = fitExponential(t, y, 0.01, 100.0);
+  EXPECT_NEAR(fit.tau, 1.5, 1e-3);
+  EXPECT_NEAR(fit.asymptote, 2.5, 1e-3);
+  EXPECT_NEAR(fit.initial, 1.0, 1e-3);
+  EXPECT_LT(fit.rms, 2e-4);
+}
+
+TEST(BenchMaterial, ZeroCrossingsGiveTheFrequency) {
+  std::vector<double> t, y;
+  for (int k = 1; k <= 1000; ++k) {
+    t.push_back(1e-3 * k);
+    y.push_back(std::sin(2.0 * std::numbers::pi * 10.7 * t.back()));
+  }
+  EXPECT_NEAR(zeroCrossingFrequency(t, y), 10.7, 1e-3);
 }
 
 }  // namespace

@@ -74,6 +74,25 @@ TEST(Settings, OutOfRangeValueNamesKeyValueAndRange) {
   EXPECT_EQ(settings.slime.level, 4) << "a rejected value must leave the setting unchanged";
 }
 
+// The bulk material's settings: each value just outside its range is refused with the key, the
+// value and the range; the model must be one of its two words.
+TEST(Settings, BulkMaterialSettingsAreRangeChecked) {
+  const struct {
+    const char* assignment;
+    const char* range;
+  } cases[] = {{"slime.modulus=49", "50 to 100000"},    {"slime.longTerm=0", "0.01 to 1"},
+               {"slime.relaxation=0.001", "0.01 to 1000"}, {"slime.poisson=0.5", "0 to 0.49"},
+               {"slime.viscosity=-1", "0 to 100"},      {"slime.resolution=5", "1 to 4"},
+               {"slime.model=jelly", "bulk, membrane"}};
+  for (const auto& c : cases) {
+    Settings settings = defaultSettings();
+    const std::string message = errorOf([&] { applyOverride(settings, c.assignment); });
+    const std::string key = std::string(c.assignment).substr(0, std::string(c.assignment).find('='));
+    EXPECT_NE(message.find(key), std::string::npos) << message;
+    EXPECT_NE(message.find(c.range), std::string::npos) << message;
+  }
+}
+
 TEST(Settings, RejectsWrongTypesNaNAndInfinity) {
   Settings settings = defaultSettings();
   for (const char* bad : {"slime.mass=heavy", "slime.mass=nan", "slime.mass=inf", "slime.mass=-1",

@@ -1,5 +1,6 @@
-// The whole slime: the "defaults that must hold" at every level, volume, floor, grab and release,
-// determinism, and the divergence guard's rollback.
+// The whole slime as the seed's membrane (slime.model=membrane): the "defaults that must hold" at
+// every level, volume, floor, grab and release, determinism, and the divergence guard's rollback.
+// The bulk body, the default, has its own (bulk_simulation_test.cpp).
 #include "core/settings_io.h"
 #include "core/simulation.h"
 
@@ -13,8 +14,14 @@
 namespace slime {
 namespace {
 
-Settings levelSettings(int level) {
+Settings membraneSettings() {
   Settings settings = defaultSettings();
+  settings.slime.model = "membrane";
+  return settings;
+}
+
+Settings levelSettings(int level) {
+  Settings settings = membraneSettings();
   settings.slime.level = level;
   return settings;
 }
@@ -82,7 +89,7 @@ TEST(DefaultsHoldLevel6, LandsWithoutRollbackKeepingVolumeAndFloor) {
 class StifferDamper : public ::testing::TestWithParam<double> {};
 
 TEST_P(StifferDamper, StillComesToRest) {
-  Settings settings = defaultSettings();
+  Settings settings = membraneSettings();
   settings.slime.damping = GetParam();
   Simulation simulation(settings);
   run(simulation, 3.0);
@@ -106,7 +113,7 @@ INSTANTIATE_TEST_SUITE_P(Dampings, StifferDamper, ::testing::Values(0.5, 2.0, 10
 class DefaultBall : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(DefaultBall, ComesToRestWhereItLanded) {
-  Settings settings = defaultSettings();
+  Settings settings = membraneSettings();
   settings.sim.integrator = GetParam();
   Simulation simulation(settings);
   run(simulation, 8.0);
@@ -149,7 +156,7 @@ TEST_P(EveryIntegrator, StableOnTheDefaultSceneAtLevel3) {
 // the ball's own push back over 50 µs is far slower: 0.01-0.2 m/s, 0.6 m/s for xpbd, whose fill is
 // a hard constraint that gives back the squeezed volume within one substep.
 TEST_P(EveryIntegrator, LiftsABallPlacedIntoTheFloorWithoutThrowingIt) {
-  Settings settings = defaultSettings();
+  Settings settings = membraneSettings();
   settings.slime.level = 3;
   settings.sim.integrator = GetParam();
   settings.sim.dt = 1e-5;

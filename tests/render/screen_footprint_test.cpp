@@ -13,6 +13,8 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
+#include <cstdio>
+#include <functional>
 #include <string>
 
 namespace slime {
@@ -25,6 +27,7 @@ struct View {
   glm::dvec3 slimeCenter;
   glm::dvec3 light;
   double floorSpecular = 0.0;
+  glm::dvec3 stretch{1.0};  // the ball scaled about its centre: the bulk slime hanging or pressed flat
 };
 
 struct Coverage {
@@ -41,8 +44,30 @@ Ray primaryRay(const Camera& camera, int x, int y, int width, int height) {
   return Ray{glm::vec3(camera.position), glm::normalize(direction), 0.0f, kInfinity};
 }
 
-bool slimeCanChange(const Ray& ray, const SlimeGeometry& geometry, const ShadingParameters& parameters) {
-  if (geometry.mayHit(ray)) return true;
+// Whether a ray meets the slime: the renderer's own bound (mayHit), or, for the stretched shapes, every
+// triangle tested (Möller & Trumbore 1997), which does not trust the bound.
+using HitTest = std::function<bool(const Ray&)>;
+
+bool hitsTriangles(const Ray& ray, const TriangleMesh& mesh) {
+  for (const Triangle& t : mesh.triangles) {
+    const glm::vec3 a(mesh.positions[t.x]), b(mesh.positions[t.y]), c(mesh.positions[t.z]);
+    const glm::vec3 e1 = b - a, e2 = c - a, p = glm::cross(ray.direction, e2);
+    const float det = glm::dot(e1, p);
+    if (std::abs(det) < 1e-12f) continue;
+    const glm::vec3 s = ray.origin - a;
+    const float u = glm::dot(s, p) / det;
+    if (u < 0.0f || u > 1.0f) continue;
+    const glm::vec3 q = glm::cross(s, e1);
+    const float v = glm::dot(ray.direction, q) / det;
+    if (v < 0.0f || u + v > 1.0f) continue;
+    const float distance = glm::dot(e2, q) / det;
+    if (distance > ray.tNear && distance < ray.tFar) return true;
+  }
+  return false;
+}
+
+bool slimeCanChange(const Ray& ray, const HitTest& mayHit, const ShadingParameters& parameters) {
+  if (mayHit(ray)) return true;
   if (ray.direction.z >= 0.0f) return false;  // the sky
   const float t = std::max(0.0f, ray.origin.z) / -ray.direction.z;
   glm::vec3 point = ray.origin + t * ray.direction;
@@ -51,11 +76,11 @@ bool slimeCanChange(const Ray& ray, const SlimeGeometry& geometry, const Shading
   if (parameters.shadows && parameters.lightPosition.z > 0.0f) {
     const glm::vec3 toLight = parameters.lightPosition - origin;
     const float distance = glm::length(toLight);
-    if (geometry.mayHit(Ray{origin, toLight / distance, 0.0f, distance})) return true;
+    if (mayHit(Ray{origin, toLight / distance, 0.0f, distance})) return true;
   }
   if (parameters.floorSpecular > 0.0f) {
     const Ray mirror{origin, {ray.direction.x, ray.direction.y, -ray.direction.z}, 0.0f, kInfinity};
-    if (geometry.mayHit(mirror)) return true;
+    if (mayHit(mirror)) return true;
   }
   return false;
 }
@@ -68,18 +93,21 @@ Settings settingsFor(const View& view) {
   return settings;
 }
 
-Coverage check(const View& view, int width, int height, ScreenFootprint& footprint) {
+Coverage check(const View& view, int width, int height, ScreenFootprint& footprint, bool bruteForce = false) {
   const Settings settings = settingsFor(view);
-  const TriangleMesh mesh = makeIcosphere(3, settings.slime.radius, view.slimeCenter);
+  TriangleMesh mesh = makeIcosphere(3, settings.slime.radius, view.slimeCenter);
+  for (glm::dvec3& p : mesh.positions) p = view.slimeCenter + view.stretch * (p - view.slimeCenter);
   SlimeGeometry geometry;
   geometry.update(mesh.positions, mesh.triangles);
   const Camera camera = makeCamera(settings.camera, width, height);
   const ShadingParameters parameters = makeShadingParameters(settings, height);
   slimeFootprint(camera, geometry, parameters, width, height, footprint);
+  const HitTest mayHit = bruteForce ? HitTest([&](const Ray& ray) { return hitsTriangles(ray, mesh); })
+                                    : HitTest([&](const Ray& ray) { return geometry.mayHit(ray); });
   Coverage coverage;
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
-      if (!slimeCanChange(primaryRay(camera, x, y, width, height), geometry, parameters)) continue;
+      if (!slimeCanChange(primaryRay(camera, x, y, width, height), mayHit, parameters)) continue;
       ++coverage.reachable;
       coverage.missed += !footprint.contains(x, y);
     }
@@ -108,6 +136,30 @@ TEST(ScreenFootprint, HoldsEveryPixelTheSlimeCanReachAndLittleElse) {
       // Two pixels of margin around shapes a few dozen pixels across: at most about half as many again.
       EXPECT_LE(footprint.area(), 1.6 * coverage.reachable + 4 * (size.x + size.y)) << what;
     }
+  }
+}
+
+// The bulk slime held up by a pinch hangs several times taller than it is wide, and pressed it spreads
+// flat: the footprint must still hold every pixel whose primary, shadow or mirror ray meets one of its
+// triangles (tested one by one, not through the renderer's bound).
+TEST(ScreenFootprint, HoldsAStretchedOrFlattenedSlime) {
+  const double r = 0.04;
+  const View views[] = {
+      {"hanging, 3.5 times its height", {0.0, -0.35, 0.15}, {0.0, 0.0, 0.12}, {0.0, 0.0, 0.16}, {0.3, -0.05, 0.35},
+       0.0, {0.55, 0.55, 3.5}},
+      {"pressed flat", {0.0, -0.22, 0.1}, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.3 * r}, {0.3, -0.05, 0.35}, 0.0,
+       {1.8, 1.8, 0.3}},
+      {"pulled sideways, varnished floor", {0.05, -0.3, 0.12}, {0.05, 0.0, r}, {0.06, 0.0, r}, {-0.2, 0.1, 0.2}, 0.3,
+       {3.0, 0.6, 0.6}},
+  };
+  ScreenFootprint footprint;
+  for (const View& view : views) {
+    const Coverage coverage = check(view, 160, 120, footprint, true);
+    EXPECT_GT(coverage.reachable, 0) << view.what;
+    EXPECT_EQ(coverage.missed, 0) << view.what << ": " << coverage.missed << " of " << coverage.reachable
+                                  << " pixels missed";
+    std::printf("%s: footprint %lld pixels for %lld reachable\n", view.what.c_str(),
+                static_cast<long long>(footprint.area()), coverage.reachable);
   }
 }
 
