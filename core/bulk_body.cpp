@@ -42,6 +42,16 @@ BulkBody buildBulkBody(const SlimeSettings& slime) {
     body.embedding.nodes.resize(count);
     body.embedding.weights.assign(count, glm::dvec4(1.0, 0.0, 0.0, 0.0));
     for (std::size_t i = 0; i < count; ++i) body.embedding.nodes[i] = Tetrahedron(static_cast<std::uint32_t>(i));
+    // Each drawn vertex in one body surface triangle that has it as a corner (for the floor contact).
+    body.embedding.verticesOfSurfaceTriangle.assign(mesh.surface.size(), {});
+    std::vector<bool> placed(count, false);
+    for (std::size_t s = 0; s < mesh.surface.size(); ++s)
+      for (int corner = 0; corner < 3; ++corner) {
+        const std::uint32_t vertex = mesh.surface[s][corner];
+        if (vertex >= count || placed[vertex]) continue;
+        placed[vertex] = true;
+        body.embedding.verticesOfSurfaceTriangle[s].push_back(vertex);
+      }
   }
   applyBulkMaterial(body, slime);
   return body;
@@ -168,7 +178,7 @@ void relaxBulk(BulkBody& body, double dt) {
   }
 }
 
-std::size_t resolveDrawnFloorContact(BulkBody& body) {
+std::size_t resolveDrawnFloorContact(BulkBody& body, double friction) {
   ParticleState& state = body.state;
   const SurfaceEmbedding& embedding = body.embedding;
   const std::vector<glm::dvec3>& x = state.positions;
@@ -196,8 +206,17 @@ std::size_t resolveDrawnFloorContact(BulkBody& body) {
       const double lift = -z / stiffness;
       for (int j = 0; j < 4; ++j) {
         if (w[j] <= 0.0 || state.inverseMasses[t[j]] == 0.0) continue;
+        glm::dvec3& velocity = state.velocities[t[j]];
         state.positions[t[j]].z += lift * w[j] * state.inverseMasses[t[j]];
-        state.velocities[t[j]].z = std::max(state.velocities[t[j]].z, 0.0);
+        // The floor's normal impulse on this node is what stops its fall; Coulomb's cone gives its
+        // sliding speed a change of at most μ times that (as resolveFloorContactAt).
+        const double normalSpeedChange = std::max(0.0, -velocity.z);
+        velocity.z += normalSpeedChange;
+        const double sliding = std::hypot(velocity.x, velocity.y);
+        const double budget = friction * normalSpeedChange;
+        const double keep = sliding <= budget ? 0.0 : 1.0 - budget / sliding;
+        velocity.x *= keep;
+        velocity.y *= keep;
       }
     }
   }

@@ -84,12 +84,13 @@ double bulkElasticEnergy(const BulkBody& body, const std::vector<glm::dvec3>& po
 void relaxBulk(BulkBody& body, double dt);
 
 // Lifts every drawn vertex that went below the floor back onto it by moving the nodes that carry it
-// with positive weight in proportion to w_j / m_j, and takes away those nodes' downward speed (a
-// position-level contact on the drawn surface, where a person sees it). Returns how many drawn
+// with positive weight in proportion to w_j / m_j, and takes away those nodes' downward speed with
+// Coulomb friction on their sliding (a position-level contact on the drawn surface, where a person
+// sees it; the nodes it holds sit just above the floor, where the nodes' own contact never acts). Returns how many drawn
 // vertices touched. (Its lifts squeeze the body by up to 1 % while it lands; the next substep's volume
 // projection gives that back. Projecting again right here, as shape or as speed, kept the resting
 // body from settling.)
-std::size_t resolveDrawnFloorContact(BulkBody& body);
+std::size_t resolveDrawnFloorContact(BulkBody& body, double friction);
 
 // ω_max of the undamped linearised body (power iteration on finite differences of the forces) and
 // the dampers' highest rate (Gershgorin bound), for the explicit step limit.

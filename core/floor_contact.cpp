@@ -19,7 +19,7 @@ std::size_t resolveFloorContact(ParticleState& state, double friction) {
   return touching;
 }
 
-bool dampTurningOnFloor(ParticleState& state, double rate, double dt) {
+bool dampTurningOnFloor(ParticleState& state, double rate, double dt, bool touching) {
   if (rate <= 0.0) return false;
   const std::size_t count = state.size();
   if (count == 0) return false;
@@ -45,7 +45,7 @@ bool dampTurningOnFloor(ParticleState& state, double rate, double dt) {
     sxx += mx * x, syy += my * y, szz += mz * z, sxy += mx * y, sxz += mx * z, syz += my * z;
     lowest = std::min(lowest, p.z);
   }
-  if (lowest > 0.0 || mass == 0.0) return false;
+  if ((lowest > 0.0 && !touching) || mass == 0.0) return false;
   const glm::dvec3 centre = glm::dvec3(rx, ry, rz) / mass;  // relative to origin
   const glm::dvec3 centreVelocity = glm::dvec3(px, py, pz) / mass;
   const glm::dvec3 spin = glm::dvec3(lx, ly, lz) - mass * glm::cross(centre, centreVelocity);

@@ -40,6 +40,8 @@ std::size_t resolveFloorContact(ParticleState& state, double friction);
 // kinetic energy, and leaves stretching, sliding and falling alone. It stands for what the surface
 // model lacks: a real slime's viscous bulk, which dissipates as it rocks or rolls on its flattened
 // contact patch. Returns whether the body touched the floor.
-bool dampTurningOnFloor(ParticleState& state, double rate, double dt);
+// `touching` says the body is on the floor though no point lies at z ≤ 0 (the bulk slime's nodes sit
+// just above it while its drawn surface touches).
+bool dampTurningOnFloor(ParticleState& state, double rate, double dt, bool touching = false);
 
 }  // namespace slime

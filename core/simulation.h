@@ -126,6 +126,7 @@ class Simulation {
   bool automaticSubsteps_ = true;
   double highestFrequency_ = 0.0;
   double highestDampingRate_ = 0.0;
+  double bulkDampingRate_ = 0.0;  // bulk: the dampers' Gershgorin rate, for symplectic_euler's cap
   std::vector<glm::dvec2> dampingShares_;  // per spring, for the substep length dampingDecayStep_
   double dampingDecayStep_ = -1.0;      // -1: recompute (after a grab, release or material change)
   DampedSymplecticEulerModel symplecticModel_;  // what symplectic_euler's fused substep reads

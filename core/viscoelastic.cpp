@@ -30,11 +30,13 @@ double energyDensity(const ViscoelasticMaterial& material, const glm::dmat3& f, 
   const glm::dmat3 cb = c * maxwellInverse;
   const double traceC = c[0][0] + c[1][1] + c[2][2];
   const double traceCB = cb[0][0] + cb[1][1] + cb[2][2];
-  const double volumeTerm = glm::determinant(f) - restVolumeRatio(material);
+  const double j = glm::determinant(f);
+  const double volumeTerm = j - restVolumeRatio(material);
   // The constant makes Ψ(I) = 0: λ'/2 (1 − α)².
   const double restVolumeTerm = 1.0 - restVolumeRatio(material);
-  return 0.5 * material.longTermShear * (traceC - 3.0) + 0.5 * material.maxwellShear * (traceCB - 3.0) +
-         0.5 * lambdaPrime * (volumeTerm * volumeTerm - restVolumeTerm * restVolumeTerm);
+  return 0.5 * material.longTermShear * (traceC - 3.0) +
+         0.5 * lambdaPrime * (volumeTerm * volumeTerm - restVolumeTerm * restVolumeTerm) +
+         material.maxwellShear * (0.5 * (traceCB - 3.0) - (j - 1.0));
 }
 
 glm::dmat3 relaxMaxwellBranch(const glm::dmat3& f, const glm::dmat3& maxwellInverse, double decay) {

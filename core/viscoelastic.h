@@ -5,9 +5,11 @@
 //
 // Energy density, with F = Ds·Dm⁻¹, C = FᵀF, J = det F and B_v the inverse of the Maxwell branch's
 // rest metric G_v (symmetric, det G_v = 1):
-//   Ψ = μ∞/2 (tr C − 3) + μ1/2 (tr(C·B_v) − 3) + λ'/2 (J − α)²,   α = 1 + (μ∞ + μ1)/λ'
-// (stable neo-Hookean, Smith, de Goes & Kim 2018; Macklin & Müller 2021). Its first Piola stress is
-//   P = μ∞ F + μ1 F B_v + λ'(J − α) cof F,
+//   Ψ = μ∞/2 (tr C − 3) + λ'/2 (J − α)²  +  μ1/2 (tr(C·B_v) − 3) − μ1 (J − 1),   α = 1 + μ∞/λ'
+// (stable neo-Hookean, Smith, de Goes & Kim 2018; Macklin & Müller 2021). Each branch is free of
+// stress at its own rest state: the elastic one at F = I, the Maxwell one at F = U_v (U_v² = G_v),
+// however far it has flowed. Its first Piola stress is
+//   P = μ∞ F + λ'(J − α) cof F + μ1 (F B_v − cof F),
 // and at small strain it is linear elasticity with shear modulus μ = μ∞ + μ1 and Lamé λ = λ' − μ.
 // The Maxwell branch's flow (once per step Δt, exact for a strain held over the step):
 //   G_v ← C + (G_v − C)·exp(−Δt/τ), then G_v ← G_v / det(G_v)^(1/3)  (the flow keeps the volume)
@@ -56,11 +58,9 @@ inline glm::dmat3 cofactor(const glm::dmat3& f) {
   return glm::dmat3(glm::cross(f[1], f[2]), glm::cross(f[2], f[0]), glm::cross(f[0], f[1]));
 }
 
-// λ' = λ + μ∞ + μ1 and α = 1 + (μ∞ + μ1)/λ' of the energy above.
+// λ' = λ + μ∞ + μ1 and α = 1 + μ∞/λ' of the energy above.
 inline double volumetricModulus(const ViscoelasticMaterial& m) { return m.lameLambda + m.longTermShear + m.maxwellShear; }
-inline double restVolumeRatio(const ViscoelasticMaterial& m) {
-  return 1.0 + (m.longTermShear + m.maxwellShear) / volumetricModulus(m);
-}
+inline double restVolumeRatio(const ViscoelasticMaterial& m) { return 1.0 + m.longTermShear / volumetricModulus(m); }
 
 // First Piola–Kirchhoff stress P of the material at F with the Maxwell inverse rest metric B_v.
 inline glm::dmat3 firstPiolaStress(const ViscoelasticMaterial& material, const glm::dmat3& f,
@@ -69,7 +69,7 @@ inline glm::dmat3 firstPiolaStress(const ViscoelasticMaterial& material, const g
   const glm::dmat3 cof = cofactor(f);
   const double j = glm::dot(f[0], cof[0]);
   glm::dmat3 p = material.longTermShear * f + (lambdaPrime * (j - restVolumeRatio(material))) * cof;
-  if (material.maxwellShear > 0.0) p += material.maxwellShear * (f * maxwellInverse);
+  if (material.maxwellShear > 0.0) p += material.maxwellShear * (f * maxwellInverse - cof);
   return p;
 }
 

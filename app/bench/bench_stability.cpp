@@ -12,6 +12,7 @@ constexpr double kMinVolumeRatio = 0.5, kMaxVolumeRatio = 2.0;
 
 Settings startingInTheFloor(Settings settings) {
   settings.slime.position.z = settings.slime.radius - 0.001;
+  settings.sim.substeps = 1;
   return settings;
 }
 
@@ -38,7 +39,8 @@ StabilityResult findLargestStableStep(const Settings& base, BenchProgress& progr
   {
     const Simulation probe(base);
     result.omegaMax = probe.highestFrequency();
-    const double meanMass = base.slime.mass / static_cast<double>(probe.positions().size());
+    result.predictedStep = probe.largestStableStep();
+    const double meanMass = base.slime.mass / static_cast<double>(probe.state().size());
     result.omegaEstimate = 2.48 * std::sqrt(base.slime.stiffness / meanMass);
   }
   Settings settings = base;
@@ -46,7 +48,7 @@ StabilityResult findLargestStableStep(const Settings& base, BenchProgress& progr
     settings.sim.dt = dt;
     ++result.runs;
     const bool ok = runsStably(settings);
-    progress.advance(1.0, base.sim.integrator + ", k = " + std::to_string(static_cast<int>(base.slime.stiffness)) + " N/m");
+    progress.advance(1.0, base.slime.model + " " + base.sim.integrator + ", dt = " + std::to_string(dt) + " s");
     return ok;
   };
   if (stable(kStabilityMaxStep)) {

@@ -134,34 +134,88 @@ TEST(BenchRender, QuickBruteForceIsLabelled) {
   EXPECT_NE(speedup["mode"].get<std::string>().find("quick"), std::string::npos);
 }
 
+// The bulk body at its coarsest resolution and the membrane at level 1: every section the charts and
+// docs read (cost with the quoted Jolt rows, both stability maps with the prediction beside them, both
+// accuracy runs with the integrator choice), and sane values.
 TEST(BenchPhysics, OneTinyLevelHasEveryField) {
   PhysicsBenchOptions options;
   options.levels = {1};
-  options.integrators = {"symplectic_euler"};
+  options.resolutions = {1};
+  options.integrators = {"symplectic_euler", "implicit_euler"};  // the bulk body runs only the first
   options.secondsPerMeasurement = 0.01;
   options.stabilityLevel = 1;
+  options.moduli = {1000.0};
   options.stiffnesses = {40.0};
   options.accuracyLevel = 1;
   options.steps = {1e-3};
   options.settleSeconds = 0.05;
+  options.bulletProgram = "/nonexistent/bullet_ball";  // a peer that is not there is left out, not an error
   options.jsonFile = outputPath("bench_physics.json");
   options.csvFile = outputPath("bench_physics.csv");
-  runPhysicsBench(defaultSettings(), options);
+  Settings settings = defaultSettings();
+  settings.slime.level = 1;  // the drawn level of the resolution rows
+  settings.slime.resolution = 1;
+  runPhysicsBench(settings, options);
 
   const json report = readJson(options.jsonFile);
-  ASSERT_EQ(report["cost"].size(), 1u);
-  EXPECT_GT(report["cost"][0]["ms_per_step"].get<double>(), 0.0);
-  ASSERT_EQ(report["stability"]["map"].size(), 1u);
-  const json& point = report["stability"]["map"][0];
-  EXPECT_GT(point["largest_stable_dt"].get<double>(), 0.0);
+  EXPECT_FALSE(report["date"].get<std::string>().empty());
+  int measured = 0, jolt = 0;
+  for (const json& row : report["cost"]) {
+    EXPECT_GT(row["cpu_ms_per_simulated_s"]["median"].get<double>(), 0.0) << row.dump();
+    if (row["source"] == "measured") {
+      ++measured;
+      EXPECT_TRUE(row["stable"].get<bool>()) << row.dump();
+      EXPECT_GT(row["simulated_points"].get<int>(), 0);
+      EXPECT_EQ(row["drawn_vertices"].get<int>(), 42);  // level 1
+    }
+    if (row["series"] == "jolt") ++jolt;
+  }
+  EXPECT_EQ(measured, 3);  // bulk at level 1, bulk at resolution 1 (the same run, listed twice), membrane
+  EXPECT_EQ(jolt, 4);
+  ASSERT_EQ(report["stability"]["bulk"].size(), 1u);
+  const json& point = report["stability"]["bulk"][0];
+  EXPECT_EQ(point["modulus"], 1000.0);
+  // (0 is a finding, not a failure: resolution 1 started 1 mm into the floor trips the guard even at 1 µs.)
+  EXPECT_GE(point["largest_stable_dt"].get<double>(), 0.0);
+  EXPECT_GT(point["runs"].get<int>(), 0);
+  EXPECT_GT(point["predicted_dt"].get<double>(), 0.0);
   EXPECT_GT(point["omega_max"].get<double>(), 0.0);
-  ASSERT_EQ(report["accuracy"]["runs"].size(), 1u);
-  const json& run = report["accuracy"]["runs"][0];
-  ASSERT_TRUE(run["stable"].get<bool>());
-  EXPECT_TRUE(std::isfinite(run["rms_error_mm"].get<double>()));
-  EXPECT_GE(run["rms_error_mm"].get<double>(), 0.0);
-  EXPECT_LE(run["rms_error_mm"].get<double>(), run["max_error_mm"].get<double>());
+  ASSERT_EQ(report["stability"]["membrane"].size(), 2u);
+  EXPECT_TRUE(report["stability"]["membrane"][1]["predicted_dt"].is_null());  // implicit Euler: no limit
+  for (const char* model : {"bulk", "membrane"}) {
+    const json& accuracy = report["accuracy"][model];
+    ASSERT_EQ(accuracy["runs"].size(), std::string(model) == "bulk" ? 2u : 4u) << model;  // h and automatic
+    for (const json& run : accuracy["runs"]) {
+      ASSERT_TRUE(run["stable"].get<bool>()) << run.dump();
+      EXPECT_TRUE(std::isfinite(run["rms_error_mm"].get<double>()));
+      EXPECT_GE(run["rms_error_mm"].get<double>(), 0.0);
+      EXPECT_LE(run["rms_error_mm"].get<double>(), run["max_error_mm"].get<double>());
+      EXPECT_GT(run["cpu_s_per_simulated_s"].get<double>(), 0.0);
+    }
+    EXPECT_LT(accuracy["reference"]["rms_error_mm_of_the_check"].get<double>(), 0.1) << model;
+    EXPECT_GE(accuracy["landing"]["rms_apart_mm"].get<double>(), 0.0) << model;
+    EXPECT_FALSE(accuracy["choice"].empty());
+  }
+  const std::string outcome = report["accuracy"]["bulk"]["default_integrator"]["outcome"];
+  EXPECT_TRUE(outcome == "confirmed" || outcome == "overturned") << outcome;
   EXPECT_GT(report["rest"]["aspect"].get<double>(), 0.0);
+  for (const char* table : {"bench_physics.csv", "bench_physics_stability.csv", "bench_physics_accuracy.csv"})
+    EXPECT_TRUE(std::ifstream(outputPath(table)).good()) << table;
+}
+
+// The choice reads the cheapest run that meets each error target, whatever its integrator.
+TEST(BenchPhysics, CheapestForAccuracyPicksTheCheapestRunWithinEachTarget) {
+  const json runs = json::array({
+      {{"integrator", "rk4"}, {"stable", true}, {"finished", true}, {"rms_error_mm", 0.001}, {"cpu_s_per_simulated_s", 2.0}, {"h", 1e-4}, {"automatic", false}},
+      {{"integrator", "symplectic_euler"}, {"stable", true}, {"finished", true}, {"rms_error_mm", 0.05}, {"cpu_s_per_simulated_s", 0.2}, {"h", 1e-3}, {"automatic", true}},
+      {{"integrator", "explicit_euler"}, {"stable", false}, {"finished", true}, {"cpu_s_per_simulated_s", 0.01}, {"h", 5e-3}, {"automatic", false}}});
+  const json choice = cheapestForAccuracy(runs, {0.01, 0.1});
+  ASSERT_EQ(choice.size(), 2u);
+  EXPECT_EQ(choice[0]["cheapest"]["integrator"], "rk4");
+  EXPECT_EQ(choice[1]["cheapest"]["integrator"], "symplectic_euler");
+  EXPECT_FALSE(choice[1]["by_integrator"].contains("explicit_euler"));  // unstable runs never count
+  EXPECT_EQ(bulkIntegrators({"xpbd", "rk4", "implicit_euler", "symplectic_euler"}),
+            (std::vector<std::string>{"rk4", "symplectic_euler"}));
 }
 
 TEST(BenchAccuracy, OneTinyLevelHasEveryField) {

@@ -145,6 +145,20 @@ TEST(Viscoelastic, RestFreeLinearAtSmallStrainAndTheEnergysDerivative) {
     }
 }
 
+// The Maxwell branch alone is free of stress at its flowed rest shape, however far it flowed (a
+// branch that kept a stress there would hold a pressed slime flat for good).
+TEST(Viscoelastic, TheMaxwellBranchIsStressFreeWhereItFlowed) {
+  ViscoelasticMaterial maxwellOnly;
+  maxwellOnly.maxwellShear = 800.0;
+  const glm::dmat3 u(1.6, 0.2, 0.0, 0.2, 0.9, -0.1, 0.0, -0.1, 0.8);  // symmetric, det 1 after scaling
+  const glm::dmat3 stretch = u / std::cbrt(glm::determinant(u));
+  const glm::dmat3 flowed = relaxMaxwellBranch(stretch, glm::dmat3(1.0), 0.0);  // fully flowed: B_v = U⁻²
+  const glm::dmat3 rotation = glm::dmat3(std::cos(0.3), std::sin(0.3), 0.0, -std::sin(0.3), std::cos(0.3), 0.0, 0.0, 0.0, 1.0);
+  const glm::dmat3 p = firstPiolaStress(maxwellOnly, rotation * stretch, flowed);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) EXPECT_NEAR(p[i][j], 0.0, 1e-9 * maxwellOnly.maxwellShear) << i << "," << j;
+}
+
 // Shear stress of the element at a shear strain γ held from t = 0: σ(t) = (μ∞ + μ1 e^(−t/τ)) γ,
 // the standard linear solid's relaxation; the flow is exact for a held strain, so any step gives it.
 TEST(Viscoelastic, RelaxationUnderAHeldShearMatchesTheClosedForm) {
