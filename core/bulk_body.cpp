@@ -1,5 +1,6 @@
 #include "core/bulk_body.h"
 
+#include "core/floor_contact.h"
 #include "core/volume.h"
 
 #include <glm/geometric.hpp>
@@ -206,17 +207,8 @@ std::size_t resolveDrawnFloorContact(BulkBody& body, double friction) {
       const double lift = -z / stiffness;
       for (int j = 0; j < 4; ++j) {
         if (w[j] <= 0.0 || state.inverseMasses[t[j]] == 0.0) continue;
-        glm::dvec3& velocity = state.velocities[t[j]];
         state.positions[t[j]].z += lift * w[j] * state.inverseMasses[t[j]];
-        // The floor's normal impulse on this node is what stops its fall; Coulomb's cone gives its
-        // sliding speed a change of at most μ times that (as resolveFloorContactAt).
-        const double normalSpeedChange = std::max(0.0, -velocity.z);
-        velocity.z += normalSpeedChange;
-        const double sliding = std::hypot(velocity.x, velocity.y);
-        const double budget = friction * normalSpeedChange;
-        const double keep = sliding <= budget ? 0.0 : 1.0 - budget / sliding;
-        velocity.x *= keep;
-        velocity.y *= keep;
+        stopFallWithFriction(state.velocities[t[j]], friction);
       }
     }
   }

@@ -15,11 +15,9 @@ namespace slime {
 
 // One dynamic point's contact; true when it touched the floor. Inline so that integrators can
 // apply it in their own last pass over the points.
-inline bool resolveFloorContactAt(glm::dvec3& position, glm::dvec3& velocity, double friction) {
-  const bool below = position.z < 0.0;
-  const bool pressingDown = position.z <= 0.0 && velocity.z < 0.0;
-  if (!below && !pressingDown) return false;
-  position.z = 0.0;
+// The floor stops a point's fall (normal impulse m max(0, −v_z)) and Coulomb's cone takes at most
+// μ times that off its sliding speed (static when |v_t| ≤ μ |Δv_n|).
+inline void stopFallWithFriction(glm::dvec3& velocity, double friction) {
   const double normalSpeedChange = std::max(0.0, -velocity.z);
   velocity.z = std::max(0.0, velocity.z);
   const double tangentialSpeed = std::hypot(velocity.x, velocity.y);
@@ -27,6 +25,14 @@ inline bool resolveFloorContactAt(glm::dvec3& position, glm::dvec3& velocity, do
   const double keep = tangentialSpeed <= frictionBudget ? 0.0 : 1.0 - frictionBudget / tangentialSpeed;
   velocity.x *= keep;
   velocity.y *= keep;
+}
+
+inline bool resolveFloorContactAt(glm::dvec3& position, glm::dvec3& velocity, double friction) {
+  const bool below = position.z < 0.0;
+  const bool pressingDown = position.z <= 0.0 && velocity.z < 0.0;
+  if (!below && !pressingDown) return false;
+  position.z = 0.0;
+  stopFallWithFriction(velocity, friction);
   return true;
 }
 

@@ -46,14 +46,14 @@ TEST(HeadlessViewer, StopsAfterTheRequestedNumberOfFrames) {
 // Progressive anti-aliasing (issue 15): a still view refines frame after frame up to 16 samples per
 // pixel at full resolution, and a change (here the slime moved) starts it again from one sample.
 TEST(HeadlessViewer, AStillImageRefinesToSixteenSamplesAndAChangeResetsIt) {
-  HeadlessGl backend(64, 48);
+  HeadlessGl backend(320, 240);  // room for the image beside the panel column
   Settings settings = smallScene();
   Viewer viewer(backend, settings, ViewerOptions{});
   ASSERT_TRUE(viewer.frame());
   EXPECT_EQ(viewer.stats().samplesPerPixel, 1);
   for (int frame = 0; frame < ViewerOptions{}.refineSamples + 2; ++frame) ASSERT_TRUE(viewer.frame());
   EXPECT_EQ(viewer.stats().samplesPerPixel, ViewerOptions{}.refineSamples);
-  EXPECT_EQ(viewer.stats().imageWidth, 64);
+  EXPECT_EQ(viewer.stats().imageWidth, 320 - static_cast<int>(std::lround(panelColumnWidth(320.0f))));
   for (int step = 0; step < 50; ++step) viewer.simulation().step();  // the slime falls a visible distance
   viewer.simulationAdvanced();
   ASSERT_TRUE(viewer.frame());

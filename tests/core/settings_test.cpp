@@ -184,6 +184,7 @@ TEST(Settings, SaveAndLoadRoundTripEveryKey) {
       case SettingType::Number: value = info.min + (info.max - info.min) * 0.37; break;
       case SettingType::Integer:
         value = info.onlyValues.empty() ? static_cast<int>(info.min + (info.max - info.min) / 3) : info.onlyValues[2];
+        if (value == info.value) value = static_cast<int>(info.max);  // a third of the way is the default
         break;
       case SettingType::Vector: value = json::array({info.min + 0.1 * (info.max - info.min), 0.5 * (info.min + info.max), info.max}); break;
       case SettingType::Choice: value = info.choices.back() == info.value ? info.choices.front() : info.choices.back(); break;

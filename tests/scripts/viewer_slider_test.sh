@@ -10,9 +10,9 @@ sleep 2
 xdotool mousemove --window "$WINDOW" 60 36 click 1      # close the Scene file section
 sleep 1
 screenshot 1
-xdotool mousemove --window "$WINDOW" 12 266 click 1     # stiffness slider (logarithmic 1..1000), near 1 N/m
+xdotool mousemove --window "$WINDOW" 12 312 click 1     # stiffness slider (logarithmic 1..1000), near 1 N/m
 sleep 1
-xdotool mousemove --window "$WINDOW" 12 197 click 1     # level slider at its left end: 0, held for Reload
+xdotool mousemove --window "$WINDOW" 12 220 click 1     # level slider at its left end: 0, held for Reload
 sleep 1
 screenshot 2
 # Ctrl+click a slider to type a value. (Dear ImGui 1.86 misses a key pressed and released within one
@@ -27,7 +27,7 @@ type_into() {  # X Y TEXT
   xdotool keyup --window "$WINDOW" Return
   sleep 1
 }
-type_into 60 266 "2000"     # stiffness 2000 N/m: outside 1..1000 N/m
+type_into 60 312 "2000"     # stiffness 2000 N/m: outside 1..1000 N/m
 screenshot 3
 quit_viewer
 
