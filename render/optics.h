@@ -3,28 +3,51 @@
 // per-channel absorption coefficient and the secondary-ray origin offset.
 #pragma once
 
+#include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <optional>
 
 namespace slime {
 
+// Inline: they run several times for every ray the tracer shades.
+
 // Mirror reflection of direction v about unit normal n: v_r = v − 2 (n·v) n.
-glm::vec3 reflect(const glm::vec3& v, const glm::vec3& n);
+inline glm::vec3 reflect(const glm::vec3& v, const glm::vec3& n) { return v - 2.0f * glm::dot(n, v) * n; }
 
 // Refraction of unit direction v through a surface with unit normal n facing the incoming side
 // (n·v < 0), from index etaFrom into index etaTo (Snell: etaFrom sin θi = etaTo sin θt):
 //   t = η v + (η cos θi − cos θt) n,  η = etaFrom / etaTo,  cos θt = √(1 − η² (1 − cos² θi)).
 // Empty when sin θt > 1: total internal reflection.
-std::optional<glm::vec3> refract(const glm::vec3& v, const glm::vec3& n, float etaFrom, float etaTo);
+inline std::optional<glm::vec3> refract(const glm::vec3& v, const glm::vec3& n, float etaFrom, float etaTo) {
+  const float eta = etaFrom / etaTo;
+  const float cosIncident = -glm::dot(n, v);
+  const float sin2Transmitted = eta * eta * std::max(0.0f, 1.0f - cosIncident * cosIncident);
+  if (sin2Transmitted > 1.0f) return std::nullopt;  // total internal reflection
+  const float cosTransmitted = std::sqrt(1.0f - sin2Transmitted);
+  return eta * v + (eta * cosIncident - cosTransmitted) * n;  // unit when v and n are
+}
 
 // Unpolarised dielectric Fresnel reflectance, the mean of the s and p terms:
 //   r_s = (η1 cos θi − η2 cos θt)/(η1 cos θi + η2 cos θt), r_p = (η2 cos θi − η1 cos θt)/(η2 cos θi + η1 cos θt),
 //   F = (r_s² + r_p²)/2; F = 1 under total internal reflection. cosIncident = |n·v|.
-float fresnelDielectric(float cosIncident, float etaFrom, float etaTo);
+inline float fresnelDielectric(float cosIncident, float etaFrom, float etaTo) {
+  cosIncident = std::clamp(cosIncident, 0.0f, 1.0f);
+  const float sinIncident = std::sqrt(std::max(0.0f, 1.0f - cosIncident * cosIncident));
+  const float sinTransmitted = etaFrom / etaTo * sinIncident;
+  if (sinTransmitted >= 1.0f) return 1.0f;
+  const float cosTransmitted = std::sqrt(std::max(0.0f, 1.0f - sinTransmitted * sinTransmitted));
+  const float rs = (etaFrom * cosIncident - etaTo * cosTransmitted) / (etaFrom * cosIncident + etaTo * cosTransmitted);
+  const float rp = (etaTo * cosIncident - etaFrom * cosTransmitted) / (etaTo * cosIncident + etaFrom * cosTransmitted);
+  return 0.5f * (rs * rs + rp * rp);
+}
 
 // Beer–Lambert transmittance per channel after a path of `length` metres: T = exp(−σ l).
-glm::vec3 beerLambert(const glm::vec3& sigma, float length);
+inline glm::vec3 beerLambert(const glm::vec3& sigma, float length) {
+  return {std::exp(-sigma.x * length), std::exp(-sigma.y * length), std::exp(-sigma.z * length)};
+}
 
 // The slime's per-channel absorption coefficient (1/m) from its colour and absorption k:
 //   σ_c = k · (−ln max(color_c, 1/1000)),
@@ -39,7 +62,9 @@ glm::vec3 absorptionCoefficients(const glm::vec3& color, float absorption);
 constexpr float kRayOffset = 1e-5f;
 
 // p moved by `offset` along n_g towards the side `direction` points to.
-glm::vec3 offsetRayOrigin(const glm::vec3& p, const glm::vec3& geometricNormal, const glm::vec3& direction,
-                          float offset = kRayOffset);
+inline glm::vec3 offsetRayOrigin(const glm::vec3& p, const glm::vec3& geometricNormal, const glm::vec3& direction,
+                                 float offset = kRayOffset) {
+  return glm::dot(direction, geometricNormal) >= 0.0f ? p + offset * geometricNormal : p - offset * geometricNormal;
+}
 
 }  // namespace slime

@@ -18,6 +18,10 @@
 
 #include <glm/geometric.hpp>
 
+#if defined(__AVX2__)
+#include <immintrin.h>
+#endif
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -56,6 +60,50 @@ FloorCacheKey floorCacheKey(const Camera& camera, const ShadingParameters& p, in
           zenith.z,          static_cast<double>(p.depth), p.shadows ? 1.0 : 0.0, pixelOffset.x, pixelOffset.y};
 }
 
+// Camera::rayDirection in float for the tiles: the ray through image point (x, y) (in pixels from
+// the top-left corner) points along forward + (2x/width − 1) right + (1 − 2y/height) up, with right
+// and up scaled by the field of view, normalised.
+struct PrimaryView {
+  PrimaryView(const Camera& camera, int width, int height)
+      : forward(camera.forward),
+        right(camera.right * (camera.tanHalfFov * camera.aspect)),
+        up(camera.up * camera.tanHalfFov),
+        width(static_cast<float>(width)),
+        height(static_cast<float>(height)) {}
+  glm::vec3 forward, right, up;
+  float width, height;
+};
+
+// The unit directions of the 8 primary rays through (x + i, y), i = 0..7, by lane. Every primary ray
+// of a frame comes from here, so a pixel's ray is the same whichever way its packet is then traced.
+void primaryDirections8(const PrimaryView& view, float x, float y, float* directionX, float* directionY,
+                        float* directionZ) {
+#if defined(__AVX2__)
+  const __m256 column = _mm256_add_ps(_mm256_set1_ps(x), _mm256_setr_ps(0, 1, 2, 3, 4, 5, 6, 7));
+  const __m256 across = _mm256_sub_ps(_mm256_mul_ps(_mm256_set1_ps(2.0f), _mm256_div_ps(column, _mm256_set1_ps(view.width))),
+                                      _mm256_set1_ps(1.0f));
+  const float down = 1.0f - 2.0f * (y / view.height);
+  __m256 d[3];
+  for (int c = 0; c < 3; ++c)
+    d[c] = _mm256_add_ps(_mm256_add_ps(_mm256_set1_ps(view.forward[c]), _mm256_mul_ps(across, _mm256_set1_ps(view.right[c]))),
+                         _mm256_set1_ps(down * view.up[c]));
+  const __m256 length2 = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(d[0], d[0]), _mm256_mul_ps(d[1], d[1])), _mm256_mul_ps(d[2], d[2]));
+  const __m256 inverse = _mm256_div_ps(_mm256_set1_ps(1.0f), _mm256_sqrt_ps(length2));
+  _mm256_storeu_ps(directionX, _mm256_mul_ps(d[0], inverse));
+  _mm256_storeu_ps(directionY, _mm256_mul_ps(d[1], inverse));
+  _mm256_storeu_ps(directionZ, _mm256_mul_ps(d[2], inverse));
+#else
+  const float down = 1.0f - 2.0f * (y / view.height);
+  for (int i = 0; i < 8; ++i) {
+    const float across = 2.0f * ((x + static_cast<float>(i)) / view.width) - 1.0f;
+    const glm::vec3 d = glm::normalize(view.forward + across * view.right + down * view.up);
+    directionX[i] = d.x;
+    directionY[i] = d.y;
+    directionZ[i] = d.z;
+  }
+#endif
+}
+
 }  // namespace
 
 struct Renderer::Impl {
@@ -81,6 +129,11 @@ struct Renderer::Impl {
   // The key changed this frame: every entry is stale. The tiles clear their own entries as they go,
   // in parallel, rather than the frame clearing 19 MB up front (a moving camera does so every frame).
   bool cachesStale = false;
+  // The key of the last frame and whether it had changed from the frame before: while the view keeps
+  // changing (the camera moves, or the image refines), filling the caches would only cost the frame
+  // their writes, so they are filled on the first frame after a single change or a stop.
+  FloorCacheKey lastView{};
+  bool lastViewValid = false, lastViewChanged = false;
   // The buffers the last frame wrote, its footprint, and whether it kept the caches (one sample per
   // pixel, finished): a pixel outside that footprint and this one already holds its copied colour
   // and bytes when the caller kept the same buffers (imageInPlace, bytesInPlace).
@@ -125,9 +178,8 @@ struct Renderer::Impl {
     FlushDenormals flush;
     const auto start = std::chrono::steady_clock::now();
     const float inverseSamples = 1.0f / static_cast<float>(samplesPerAxis * samplesPerAxis);
-    const glm::vec3 eye(camera.position), forward(camera.forward);
-    // Camera::rayDirection in float: forward + x right + y up, x and y scaled by the fov.
-    const glm::vec3 right(camera.right * (camera.tanHalfFov * camera.aspect)), up(camera.up * camera.tanHalfFov);
+    const glm::vec3 eye(camera.position);
+    const PrimaryView view(camera, image.width, image.height);
     for (int y = rowBegin; y < rowEnd; ++y) {
       for (int x0 = columnBegin; x0 < columnEnd; x0 += kPacket) {
         const int count = std::min(kPacket, columnEnd - x0);
@@ -139,7 +191,8 @@ struct Renderer::Impl {
           }
         }
         const bool outside = footprint && footprint->outside(x0, count, y);
-        if (outside && std::all_of(&reusable[first], &reusable[first] + count, [](std::uint8_t r) { return r != 0; })) {
+        if (outside && floorShadings &&
+            std::all_of(&reusable[first], &reusable[first] + count, [](std::uint8_t r) { return r != 0; })) {
           // Outside the last frame's footprint too, the last frame copied or stored exactly these colours.
           const bool inPlace = imageInPlace && lastFootprint.outside(x0, count, y);
           if (!inPlace)
@@ -152,30 +205,32 @@ struct Renderer::Impl {
         glm::vec3 sums[kPacket] = {};
         for (int sampleY = 0; sampleY < samplesPerAxis; ++sampleY) {
           for (int sampleX = 0; sampleX < samplesPerAxis; ++sampleX) {
-            // Stratified supersampling: the centre of each cell of an n × n grid in the pixel.
-            Ray rays[kPacket];
-            bool active[kPacket] = {};
-            SlimeHit hits[kPacket];
-            int activeCount = 0;
-            for (int i = 0; i < kPacket && x0 + i < columnEnd; ++i) {
-              // One sample: the caller's point of the pixel; more: the centre of each cell.
-              const float offsetX = samplesPerAxis == 1 ? pixelOffset.x : (sampleX + 0.5f) / samplesPerAxis;
-              const float offsetY = samplesPerAxis == 1 ? pixelOffset.y : (sampleY + 0.5f) / samplesPerAxis;
-              const float u = (x0 + i + offsetX) / image.width;
-              const float v = (y + offsetY) / image.height;
-              const glm::vec3 direction = forward + (2.0f * u - 1.0f) * right + (1.0f - 2.0f * v) * up;
-              rays[i] = Ray{eye, glm::normalize(direction), 0.0f, kInfinity};
-              active[i] = !outside && geometry.mayHit(rays[i]);  // outside the footprint nothing can
-              activeCount += active[i];
-            }
-            if (activeCount > 0) {
-              counts.slimeQueries += static_cast<std::uint64_t>(activeCount);
-              intersector.intersect8(rays, active, hits);
-            }
+            // One sample: the caller's point of the pixel; more: the centre of each cell of an n × n
+            // grid in the pixel (stratified supersampling).
+            const float offsetX = samplesPerAxis == 1 ? pixelOffset.x : (sampleX + 0.5f) / samplesPerAxis;
+            const float offsetY = samplesPerAxis == 1 ? pixelOffset.y : (sampleY + 0.5f) / samplesPerAxis;
+            float directionX[kPacket], directionY[kPacket], directionZ[kPacket];
+            primaryDirections8(view, x0 + offsetX, y + offsetY, directionX, directionY, directionZ);
             glm::vec3 colors[kPacket];
-            tracer.tracePrimary8(rays, hits, count, counts,
-                                 floorShadings ? floorShadings + static_cast<std::size_t>(y) * image.width + x0 : nullptr,
-                                 colors, outside);
+            if (outside) {
+              // Nothing here can meet the slime or its shadow: the floor or the sky, in lanes.
+              tracer.traceFloorOrSky8(eye, directionX, directionY, directionZ, count, counts, colors);
+            } else {
+              Ray rays[kPacket];
+              bool active[kPacket] = {};
+              SlimeHit hits[kPacket];
+              int activeCount = 0;
+              for (int i = 0; i < count; ++i) {
+                rays[i] = Ray{eye, {directionX[i], directionY[i], directionZ[i]}, 0.0f, kInfinity};
+                active[i] = geometry.mayHit(rays[i]);
+                activeCount += active[i];
+              }
+              if (activeCount > 0) {
+                counts.slimeQueries += static_cast<std::uint64_t>(activeCount);
+                intersector.intersect8(rays, active, hits);
+              }
+              tracer.tracePrimary8(rays, hits, count, counts, floorShadings ? floorShadings + first : nullptr, colors);
+            }
             for (int i = 0; i < count; ++i) sums[i] += colors[i];
           }
         }
@@ -185,7 +240,7 @@ struct Renderer::Impl {
           const bool finite = std::isfinite(color.x + color.y + color.z);
           counts.nonFinitePixels += !finite;
           image.at(x0 + i, y) = finite ? color : glm::vec3(0.0f);
-          if (outside) {
+          if (outside && floorShadings) {
             reusableColors[first + i] = image.at(x0 + i, y);
             reusable[first + i] = 1;
           }
@@ -229,26 +284,35 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
   const SlimeIntersector& intersector = brute ? static_cast<const SlimeIntersector&>(impl.brute) : impl.embree;
   const WhittedTracer tracer(impl.geometry, intersector, impl.floor, parameters);
 
-  FloorShading* floorShadings = nullptr;
-  const ScreenFootprint* footprint = nullptr;  // with the floor cache only
+  FloorShading* floorShadings = nullptr;  // the caches, with one sample per pixel while the view holds
   const bool lastKeptCaches = impl.lastKeptCaches;
   impl.lastKeptCaches = false;  // until this frame is finished
   impl.imageInPlace = impl.bytesInPlace = false;
+  // Outside the footprint a pixel sees only the floor or the sky, whatever its samples.
+  slimeFootprint(camera, impl.geometry, parameters, image.width, image.height, impl.footprint);
+  const ScreenFootprint* footprint = &impl.footprint;
   if (samplesPerAxis == 1) {
     const FloorCacheKey view = floorCacheKey(camera, parameters, image.width, image.height, pixelOffset);
+    const bool viewChanged = !impl.lastViewValid || view != impl.lastView;
+    const bool keepsMoving = viewChanged && impl.lastViewChanged;
+    impl.lastView = view;
+    impl.lastViewValid = true;
+    impl.lastViewChanged = viewChanged;
     impl.cachesStale = !impl.floorCacheValid || view != impl.floorCacheView;
-    if (impl.cachesStale) {
-      impl.floorCache.resize(image.pixels.size());
-      impl.reusableColors.resize(image.pixels.size());
-      impl.reusable.resize(image.pixels.size());
-      impl.floorCacheView = view;
-      impl.floorCacheValid = true;
+    if (impl.cachesStale && keepsMoving) {
+      impl.floorCacheValid = false;  // no caches this frame
+    } else {
+      if (impl.cachesStale) {
+        impl.floorCache.resize(image.pixels.size());
+        impl.reusableColors.resize(image.pixels.size());
+        impl.reusable.resize(image.pixels.size());
+        impl.floorCacheView = view;
+        impl.floorCacheValid = true;
+      }
+      floorShadings = impl.floorCache.data();
+      impl.imageInPlace = buffersKept && lastKeptCaches && !impl.cachesStale && impl.lastPixels == image.pixels.data();
+      impl.bytesInPlace = impl.imageInPlace && bytes && impl.lastBytes == bytes;
     }
-    floorShadings = impl.floorCache.data();
-    slimeFootprint(camera, impl.geometry, parameters, image.width, image.height, impl.footprint);
-    footprint = &impl.footprint;
-    impl.imageInPlace = buffersKept && lastKeptCaches && !impl.cachesStale && impl.lastPixels == image.pixels.data();
-    impl.bytesInPlace = impl.imageInPlace && bytes && impl.lastBytes == bytes;
   }
 
   for (TraceCounters& counts : impl.counters) counts = TraceCounters{};

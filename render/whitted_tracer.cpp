@@ -185,7 +185,11 @@ void WhittedTracer::lookUpFloors(const std::vector<PendingRay>& rays, std::vecto
 void WhittedTracer::shade(const PendingRay& ray, const FloorShading& floor, Wavefront& wavefront, TraceCounters& counters,
                           FloorShading* floorCache, glm::vec3* colors) const {
   const float tFloor = floorDistance(ray.ray);
-  if (ray.hit.valid() && ray.hit.t <= tFloor) {
+  if (ray.kind == Kind::Environment) {  // the floor (unshadowed, looked up with the generation's) or the sky
+    const glm::vec3 seen = tFloor == kInfinity ? sky(ray.ray.direction)
+                                               : glm::mix(floor.ambient + floor.lit, parameters_.skyHorizon, floor.haze);
+    colors[ray.pixel] += ray.factor * seen;
+  } else if (ray.hit.valid() && ray.hit.t <= tFloor) {
     shadeSlime(ray, wavefront, counters, colors);
   } else if (tFloor == kInfinity) {
     colors[ray.pixel] += ray.factor * sky(ray.ray.direction);
@@ -273,10 +277,14 @@ void WhittedTracer::shadeSlime(const PendingRay& pending, Wavefront& wavefront, 
       wavefront.next.push_back(child);
     }
   } else if (!entering && refracted && refractWeight > 0.0f) {
-    // Out of segments on the way out of the jelly: what lies beyond is the analytic floor or sky.
+    // Out of segments on the way out of the jelly: what lies beyond is the analytic floor or sky,
+    // looked up with the next generation's floors (no query, no shadow, no mirror).
     ++counters.rays.refraction;
-    const Ray leaving{offsetRayOrigin(point, facing, *refracted), *refracted, 0.0f, kInfinity};
-    pixel += pending.factor * absorbed * refractWeight * environment(leaving, child.path.travelled);
+    child.kind = Kind::Environment;
+    child.hitKnown = true;
+    child.factor = pending.factor * absorbed * refractWeight;
+    child.ray = Ray{offsetRayOrigin(point, facing, *refracted), *refracted, 0.0f, kInfinity};
+    wavefront.next.push_back(child);
   }
 }
 
@@ -421,65 +429,38 @@ __m256 lane(const float* values) { return _mm256_loadu_ps(values); }
 
 void WhittedTracer::floorShading8(const Ray* rays, const float* t, const float* distances, const bool* needed,
                                   FloorShading* shadings) const {
-  float x[8] = {}, y[8] = {}, footprintX[8] = {}, footprintY[8] = {};
 #if defined(__AVX2__) && defined(__FMA__)
-  // The same steps as floorFootprint and litFloor, 8 lanes at a time (within rounding of them).
-  const ShadingParameters& p = parameters_;
-  float directionX[8] = {}, directionY[8] = {}, directionZ[8] = {}, originX[8] = {}, originY[8] = {}, along[8] = {},
-        distance[8] = {};
+  // Ray by ray into lanes (an unneeded lane stays a harmless zero), then floorLanes8.
+  FloorRays8 lanesIn;
   for (int i = 0; i < 8; ++i) {
+    lanesIn.needed[i] = needed[i];
     if (!needed[i]) continue;
-    directionX[i] = rays[i].direction.x;
-    directionY[i] = rays[i].direction.y;
-    directionZ[i] = rays[i].direction.z;
-    originX[i] = rays[i].origin.x;
-    originY[i] = rays[i].origin.y;
-    along[i] = t[i];
-    distance[i] = distances[i];
+    lanesIn.originX[i] = rays[i].origin.x;
+    lanesIn.originY[i] = rays[i].origin.y;
+    lanesIn.directionX[i] = rays[i].direction.x;
+    lanesIn.directionY[i] = rays[i].direction.y;
+    lanesIn.directionZ[i] = rays[i].direction.z;
+    lanesIn.t[i] = t[i];
+    lanesIn.distance[i] = distances[i];
   }
-  const __m256 dx = lane(directionX), dy = lane(directionY), dz = lane(directionZ), d = lane(distance);
-  const __m256 px = _mm256_fmadd_ps(lane(along), dx, lane(originX)), py = _mm256_fmadd_ps(lane(along), dy, lane(originY));
-  const __m256 halfWidth = _mm256_mul_ps(_mm256_mul_ps(_mm256_set1_ps(0.5f), d), _mm256_set1_ps(p.pixelSpread));
-  const __m256 cosTheta = _mm256_max_ps(_mm256_andnot_ps(_mm256_set1_ps(-0.0f), dz), _mm256_set1_ps(1e-3f));
-  const __m256 inverseCos2 = _mm256_div_ps(_mm256_set1_ps(1.0f), _mm256_mul_ps(cosTheta, cosTheta));
-  const __m256 dx2 = _mm256_mul_ps(dx, dx), dy2 = _mm256_mul_ps(dy, dy), sin2 = _mm256_add_ps(dx2, dy2);
-  const __m256 scale = _mm256_div_ps(_mm256_mul_ps(halfWidth, halfWidth), sin2);
-  const __m256 oblique = _mm256_cmp_ps(sin2, _mm256_set1_ps(1e-12f), _CMP_GT_OQ);
-  const __m256 fx = _mm256_blendv_ps(_mm256_div_ps(halfWidth, cosTheta),
-                                     _mm256_sqrt_ps(_mm256_mul_ps(scale, _mm256_fmadd_ps(dx2, inverseCos2, dy2))), oblique);
-  const __m256 fy = _mm256_blendv_ps(halfWidth, _mm256_sqrt_ps(_mm256_mul_ps(scale, _mm256_fmadd_ps(dy2, inverseCos2, dx2))),
-                                     oblique);
-  _mm256_storeu_ps(x, px);
-  _mm256_storeu_ps(y, py);
-  _mm256_storeu_ps(footprintX, fx);
-  _mm256_storeu_ps(footprintY, fy);
-  glm::vec3 albedos[8];
-  floor_.albedo8(x, y, footprintX, footprintY, needed, albedos);
-
-  // litFloor: the haze, and the light's direction (its z) at each point; the floor's own highlight
-  // (floor.specular > 0) goes through litFloor one lane at a time.
-  float haze[8], lightZ[8];
-  _mm256_storeu_ps(haze, _mm256_sub_ps(_mm256_set1_ps(1.0f), exp8(_mm256_div_ps(_mm256_sub_ps(_mm256_setzero_ps(), d),
-                                                                                 _mm256_set1_ps(p.hazeDistance)))));
-  const __m256 toLightX = _mm256_sub_ps(_mm256_set1_ps(p.lightPosition.x), px);
-  const __m256 toLightY = _mm256_sub_ps(_mm256_set1_ps(p.lightPosition.y), py);
-  const __m256 toLightZ = _mm256_set1_ps(p.lightPosition.z);
-  const __m256 length2 = _mm256_fmadd_ps(toLightX, toLightX, _mm256_fmadd_ps(toLightY, toLightY, _mm256_mul_ps(toLightZ, toLightZ)));
-  _mm256_storeu_ps(lightZ, _mm256_mul_ps(toLightZ, _mm256_div_ps(_mm256_set1_ps(1.0f), _mm256_sqrt_ps(length2))));
+  FloorLanes8 lanes;
+  floorLanes8(lanesIn, lanes);
+  const ShadingParameters& p = parameters_;
   for (int i = 0; i < 8; ++i) {
     if (!needed[i]) continue;
-    if (p.floorSpecular > 0.0f) {
-      shadings[i] = litFloor({x[i], y[i], 0.0f}, rays[i].direction, distances[i], albedos[i]);
+    if (p.floorSpecular > 0.0f) {  // the floor's own highlight goes through litFloor one lane at a time
+      shadings[i] = litFloor({lanes.x[i], lanes.y[i], 0.0f}, rays[i].direction, distances[i], lanes.albedo[i]);
       continue;
     }
     FloorShading& shading = shadings[i];
     shading = FloorShading{};
     shading.filled = true;
-    shading.ambient = albedos[i] * p.ambientLight;
-    shading.haze = haze[i];
-    if (p.lightPosition.z > 0.0f) shading.lit = p.lightColor * (p.floorDiffuse * lightZ[i] * albedos[i]);
+    shading.ambient = lanes.albedo[i] * p.ambientLight;
+    shading.haze = lanes.haze[i];
+    if (p.lightPosition.z > 0.0f) shading.lit = p.lightColor * (p.floorDiffuse * lanes.lightZ[i] * lanes.albedo[i]);
   }
 #else
+  float x[8] = {}, y[8] = {}, footprintX[8] = {}, footprintY[8] = {};
   for (int i = 0; i < 8; ++i) {
     if (!needed[i]) continue;
     const glm::vec3 point = rays[i].origin + t[i] * rays[i].direction;
@@ -494,6 +475,94 @@ void WhittedTracer::floorShading8(const Ray* rays, const float* t, const float* 
   for (int i = 0; i < 8; ++i)
     if (needed[i]) shadings[i] = litFloor({x[i], y[i], 0.0f}, rays[i].direction, distances[i], albedos[i]);
 #endif
+}
+
+#if defined(__AVX2__) && defined(__FMA__)
+void WhittedTracer::floorLanes8(const FloorRays8& rays, FloorLanes8& lanes) const {
+  // The same steps as floorFootprint and litFloor, 8 lanes at a time (within rounding of them).
+  const ShadingParameters& p = parameters_;
+  const __m256 dx = lane(rays.directionX), dy = lane(rays.directionY), dz = lane(rays.directionZ), d = lane(rays.distance);
+  const __m256 along = lane(rays.t);
+  const __m256 px = _mm256_fmadd_ps(along, dx, lane(rays.originX)), py = _mm256_fmadd_ps(along, dy, lane(rays.originY));
+  const __m256 halfWidth = _mm256_mul_ps(_mm256_mul_ps(_mm256_set1_ps(0.5f), d), _mm256_set1_ps(p.pixelSpread));
+  const __m256 cosTheta = _mm256_max_ps(_mm256_andnot_ps(_mm256_set1_ps(-0.0f), dz), _mm256_set1_ps(1e-3f));
+  const __m256 inverseCos2 = _mm256_div_ps(_mm256_set1_ps(1.0f), _mm256_mul_ps(cosTheta, cosTheta));
+  const __m256 dx2 = _mm256_mul_ps(dx, dx), dy2 = _mm256_mul_ps(dy, dy), sin2 = _mm256_add_ps(dx2, dy2);
+  const __m256 scale = _mm256_div_ps(_mm256_mul_ps(halfWidth, halfWidth), sin2);
+  const __m256 oblique = _mm256_cmp_ps(sin2, _mm256_set1_ps(1e-12f), _CMP_GT_OQ);
+  const __m256 fx = _mm256_blendv_ps(_mm256_div_ps(halfWidth, cosTheta),
+                                     _mm256_sqrt_ps(_mm256_mul_ps(scale, _mm256_fmadd_ps(dx2, inverseCos2, dy2))), oblique);
+  const __m256 fy = _mm256_blendv_ps(halfWidth, _mm256_sqrt_ps(_mm256_mul_ps(scale, _mm256_fmadd_ps(dy2, inverseCos2, dx2))),
+                                     oblique);
+  float footprintX[8], footprintY[8];
+  _mm256_storeu_ps(lanes.x, px);
+  _mm256_storeu_ps(lanes.y, py);
+  _mm256_storeu_ps(footprintX, fx);
+  _mm256_storeu_ps(footprintY, fy);
+  floor_.albedo8(lanes.x, lanes.y, footprintX, footprintY, rays.needed, lanes.albedo);
+
+  // litFloor: the haze, and the light's direction (its z) at each point.
+  _mm256_storeu_ps(lanes.haze, _mm256_sub_ps(_mm256_set1_ps(1.0f), exp8(_mm256_div_ps(_mm256_sub_ps(_mm256_setzero_ps(), d),
+                                                                                       _mm256_set1_ps(p.hazeDistance)))));
+  const __m256 toLightX = _mm256_sub_ps(_mm256_set1_ps(p.lightPosition.x), px);
+  const __m256 toLightY = _mm256_sub_ps(_mm256_set1_ps(p.lightPosition.y), py);
+  const __m256 toLightZ = _mm256_set1_ps(p.lightPosition.z);
+  const __m256 length2 = _mm256_fmadd_ps(toLightX, toLightX, _mm256_fmadd_ps(toLightY, toLightY, _mm256_mul_ps(toLightZ, toLightZ)));
+  _mm256_storeu_ps(lanes.lightZ, _mm256_mul_ps(toLightZ, _mm256_div_ps(_mm256_set1_ps(1.0f), _mm256_sqrt_ps(length2))));
+}
+#endif
+
+void WhittedTracer::traceFloorOrSky8(const glm::vec3& eye, const float* directionX, const float* directionY,
+                                     const float* directionZ, int count, TraceCounters& counters, glm::vec3* colors) const {
+  const ShadingParameters& p = parameters_;
+  counters.rays.primary += static_cast<std::uint64_t>(count);
+#if defined(__AVX2__) && defined(__FMA__)
+  if (!(p.floorSpecular > 0.0f)) {
+    // floorDistance, floorShading8 and shadeFloorWith's sums (with the light unshadowed) in lanes:
+    // the same operations in the same order, so each pixel equals tracePrimary8's bit for bit.
+    FloorRays8 rays;
+    int floorLanes = 0;
+    for (int i = 0; i < 8; ++i) {
+      rays.needed[i] = i < count && directionZ[i] < 0.0f;
+      if (!rays.needed[i]) continue;
+      ++floorLanes;
+      rays.originX[i] = eye.x;
+      rays.originY[i] = eye.y;
+      rays.directionX[i] = directionX[i];
+      rays.directionY[i] = directionY[i];
+      rays.directionZ[i] = directionZ[i];
+      rays.t[i] = rays.distance[i] = std::max(0.0f, eye.z) / -directionZ[i];
+    }
+    FloorLanes8 lanes;
+    if (floorLanes > 0) floorLanes8(rays, lanes);
+    const bool lit = p.lightPosition.z > 0.0f;
+    const __m256 lightScale = _mm256_mul_ps(_mm256_set1_ps(p.floorDiffuse), lane(lanes.lightZ));
+    const __m256 haze = lane(lanes.haze), near = _mm256_sub_ps(_mm256_set1_ps(1.0f), haze);
+    float channels[3][8];
+    int shadowRays = 0;
+    for (int c = 0; c < 3; ++c) {
+      float albedo[8];
+      for (int i = 0; i < 8; ++i) albedo[i] = lanes.albedo[i][c];
+      const __m256 a = lane(albedo);
+      const __m256 ambient = _mm256_mul_ps(a, _mm256_set1_ps(p.ambientLight[c]));
+      const __m256 base = _mm256_add_ps(_mm256_mul_ps(near, ambient), _mm256_mul_ps(haze, _mm256_set1_ps(p.skyHorizon[c])));
+      const __m256 light = lit ? _mm256_mul_ps(_mm256_set1_ps(p.lightColor[c]), _mm256_mul_ps(lightScale, a)) : _mm256_setzero_ps();
+      _mm256_storeu_ps(channels[c], _mm256_add_ps(base, _mm256_mul_ps(near, light)));
+      float lights[8];
+      _mm256_storeu_ps(lights, light);
+      for (int i = 0; i < 8; ++i) shadowRays |= (rays.needed[i] && lights[i] != 0.0f) << i;
+    }
+    for (int i = 0; i < count; ++i)
+      colors[i] = rays.needed[i] ? glm::vec3(channels[0][i], channels[1][i], channels[2][i]) : sky({directionX[i], directionY[i], directionZ[i]});
+    if (p.shadows) counters.rays.shadow += static_cast<std::uint64_t>(__builtin_popcount(shadowRays));
+    return;
+  }
+#endif
+  Ray rays[8];
+  SlimeHit misses[8];
+  for (int i = 0; i < count; ++i) rays[i] = Ray{eye, {directionX[i], directionY[i], directionZ[i]}, 0.0f, kInfinity};
+  counters.rays.primary -= static_cast<std::uint64_t>(count);  // tracePrimary8 counts them
+  tracePrimary8(rays, misses, count, counters, nullptr, colors, true);
 }
 
 FloorShading WhittedTracer::litFloor(const glm::vec3& point, const glm::vec3& direction, float distance,
@@ -558,15 +627,6 @@ void WhittedTracer::lightTransmittance8(Ray* rays, const bool* active, glm::vec3
   }
   for (int i = 0; i < 8; ++i)
     if (walking[i]) visible[i] = glm::vec3(0.0f);  // more crossings than kMaxShadowCrossings: blocked
-}
-
-glm::vec3 WhittedTracer::environment(const Ray& ray, float travelled) const {
-  const float t = floorDistance(ray);
-  if (t == kInfinity) return sky(ray.direction);
-  glm::vec3 point = ray.origin + t * ray.direction;
-  point.z = 0.0f;
-  const FloorShading shading = floorShading(point, ray.direction, travelled + t);
-  return glm::mix(shading.ambient + shading.lit, parameters_.skyHorizon, shading.haze);
 }
 
 glm::vec3 WhittedTracer::sky(const glm::vec3& direction) const {

@@ -56,6 +56,13 @@ class WhittedTracer {
   void tracePrimary8(const Ray* rays, const SlimeHit* hits, int count, TraceCounters& counters,
                      FloorShading* floorCache, glm::vec3* colors, bool outOfReach = false) const;
 
+  // Up to `count` ≤ 8 primary rays from `eye` (unit directions by lane) that can neither meet the
+  // slime nor see its shadow (outside its ScreenFootprint): the floor or the sky, into colors[]. On a
+  // matte floor in lanes (AVX2), with the very operations of tracePrimary8, so a pixel shaded here
+  // equals one shaded there bit for bit (the footprint's invariant test demands it).
+  void traceFloorOrSky8(const glm::vec3& eye, const float* directionX, const float* directionY, const float* directionZ,
+                        int count, TraceCounters& counters, glm::vec3* colors) const;
+
   // One primary ray whose slime hit is known (tracePrimary8 with one ray).
   glm::vec3 tracePrimary(const Ray& ray, const SlimeHit& hit, TraceCounters& counters,
                          FloorShading* floorCache = nullptr) const;
@@ -63,7 +70,8 @@ class WhittedTracer {
   struct Wavefront;  // per-thread work lists (whitted_tracer.cpp)
 
  private:
-  enum class Kind { Primary, Reflection, Refraction };
+  // Environment: a ray out of segments leaving the jelly: it sees only the floor, unshadowed, or the sky.
+  enum class Kind { Primary, Reflection, Refraction, Environment };
   struct Path {
     int segment = 1;            // 1 for primary rays
     glm::vec3 weight{1.0f};     // product of the optical factors so far (decides whether a ray is worth tracing)
@@ -118,11 +126,23 @@ class WhittedTracer {
   // (needed[i]), the pattern looked up 8 at a time; writes shadings[i] of those only.
   void floorShading8(const Ray* rays, const float* t, const float* distances, const bool* needed,
                      FloorShading* shadings) const;
+  // Up to 8 rays reaching the floor, by lane (unneeded lanes stay zero), and what floorLanes8 finds there.
+  struct FloorRays8 {
+    float originX[8] = {}, originY[8] = {}, directionX[8] = {}, directionY[8] = {}, directionZ[8] = {};
+    float t[8] = {}, distance[8] = {};  // along the ray to the floor; from the eye (the footprint's cone)
+    bool needed[8] = {};
+  };
+  struct FloorLanes8 {
+    float x[8] = {}, y[8] = {};         // the floor point
+    float haze[8] = {}, lightZ[8] = {};  // the horizon haze's share; the light direction's z there
+    glm::vec3 albedo[8];                 // the pattern over the pixel's footprint
+  };
+  // floorFootprint, the pattern and litFloor's haze and light direction, 8 lanes at a time (AVX2 builds).
+  void floorLanes8(const FloorRays8& rays, FloorLanes8& lanes) const;
   // Half extents on the floor of the pixel cone's footprint, `distance` from the eye along `direction`.
   glm::vec2 floorFootprint(const glm::vec3& direction, float distance) const;
   // The floor's FloorShading at `point` once its albedo is known.
   FloorShading litFloor(const glm::vec3& point, const glm::vec3& direction, float distance, const glm::vec3& albedo) const;
-  glm::vec3 environment(const Ray& ray, float travelled) const;  // floor (unshadowed) or sky, no slime
   // One crossing of a shadow ray with the slime's surface at `hit`: `transmittance` takes what passes
   // it and the ray moves past it. False when the walk is over (blocked, or out of a convex slime).
   bool crossShadowSurface(Ray& ray, const SlimeHit& hit, glm::vec3& transmittance) const;
