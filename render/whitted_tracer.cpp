@@ -117,8 +117,22 @@ void WhittedTracer::tracePrimary8(const Ray* rays, const SlimeHit* hits, int cou
     findHits(wavefront.current, counters);
     lookUpFloors(wavefront.current, wavefront.floors);
     wavefront.next.clear();
-    for (std::size_t r = 0; r < wavefront.current.size(); ++r)
-      shade(wavefront.current[r], wavefront.floors[r], wavefront, counters, floorCache, colors);
+    // The rays that hit the slime are shaded 8 at a time, the others one by one.
+    const PendingRay* slimeHits[8];
+    int hitCount = 0;
+    for (std::size_t r = 0; r < wavefront.current.size(); ++r) {
+      const PendingRay& ray = wavefront.current[r];
+      if (ray.kind != Kind::Environment && ray.hit.valid() && ray.hit.t <= floorDistance(ray.ray)) {
+        slimeHits[hitCount++] = &ray;
+        if (hitCount == 8) {
+          shadeSlimes8(slimeHits, hitCount, wavefront, counters, colors);
+          hitCount = 0;
+        }
+        continue;
+      }
+      shade(ray, wavefront.floors[r], wavefront, counters, floorCache, colors);
+    }
+    if (hitCount > 0) shadeSlimes8(slimeHits, hitCount, wavefront, counters, colors);
     std::swap(wavefront.current, wavefront.next);
   }
   traceShadows(wavefront.shadows, counters, colors);
@@ -189,8 +203,6 @@ void WhittedTracer::shade(const PendingRay& ray, const FloorShading& floor, Wave
     const glm::vec3 seen = tFloor == kInfinity ? sky(ray.ray.direction)
                                                : glm::mix(floor.ambient + floor.lit, parameters_.skyHorizon, floor.haze);
     colors[ray.pixel] += ray.factor * seen;
-  } else if (ray.hit.valid() && ray.hit.t <= tFloor) {
-    shadeSlime(ray, wavefront, counters, colors);
   } else if (tFloor == kInfinity) {
     colors[ray.pixel] += ray.factor * sky(ray.ray.direction);
   } else if (floor.filled) {
@@ -201,90 +213,193 @@ void WhittedTracer::shade(const PendingRay& ray, const FloorShading& floor, Wave
   }
 }
 
-void WhittedTracer::shadeSlime(const PendingRay& pending, Wavefront& wavefront, TraceCounters& counters,
-                               glm::vec3* colors) const {
+namespace {
+
+// e^x lane by lane (8 lanes): Cephes' expf in AVX2 where the build has it, else libm.
+void expLanes(float* x);
+
+}  // namespace
+
+void WhittedTracer::shadeSlimes8(const PendingRay* const* pending, int count, Wavefront& wavefront, TraceCounters& counters,
+                                 glm::vec3* colors) const {
+  // shade() of up to 8 rays that hit the slime, as lanes: the arithmetic runs over arrays of 8 (which
+  // the compiler turns into vector instructions), only the queueing of children stays ray by ray.
+  //   I = local Phong (entering) + w_r I_reflected + w_t I_refracted, times Beer–Lambert from inside.
   const ShadingParameters& p = parameters_;
-  const Ray& ray = pending.ray;
-  const SlimeHit& hit = pending.hit;
-  const Path& path = pending.path;
-  glm::vec3& pixel = colors[pending.pixel];
-  const glm::vec3 point = ray.origin + hit.t * ray.direction;
-  const glm::vec3 outward = geometry_.geometricNormal(hit, point);
-  const bool entering = glm::dot(ray.direction, outward) < 0.0f;
+  constexpr int N = 8;
+  float ox[N], oy[N], oz[N], dx[N], dy[N], dz[N], t[N];
+  float gx[N], gy[N], gz[N];  // outward geometric normal
+  float sx[N], sy[N], sz[N];  // interpolated shading normal (smooth normals), before facing the ray
+  for (int i = 0; i < N; ++i) {
+    const PendingRay& ray = *pending[std::min(i, count - 1)];  // unused lanes repeat the last ray
+    ox[i] = ray.ray.origin.x;
+    oy[i] = ray.ray.origin.y;
+    oz[i] = ray.ray.origin.z;
+    dx[i] = ray.ray.direction.x;
+    dy[i] = ray.ray.direction.y;
+    dz[i] = ray.ray.direction.z;
+    t[i] = ray.hit.t;
+  }
+  float px[N], py[N], pz[N];
+  for (int i = 0; i < N; ++i) {
+    px[i] = ox[i] + t[i] * dx[i];
+    py[i] = oy[i] + t[i] * dy[i];
+    pz[i] = oz[i] + t[i] * dz[i];
+  }
+  for (int i = 0; i < N; ++i) {
+    const PendingRay& ray = *pending[std::min(i, count - 1)];
+    const glm::vec3 point{px[i], py[i], pz[i]};
+    const glm::vec3 outward = geometry_.geometricNormal(ray.hit, point);
+    const glm::vec3 shading = geometry_.shadingNormal(ray.hit, point, p.smoothNormals);
+    gx[i] = outward.x, gy[i] = outward.y, gz[i] = outward.z;
+    sx[i] = shading.x, sy[i] = shading.y, sz[i] = shading.z;
+  }
+
   // Normals facing the incoming ray: geometric (for offsets) and shading (for optics).
-  const glm::vec3 facing = entering ? outward : -outward;
-  glm::vec3 normal = geometry_.shadingNormal(hit, point, p.smoothNormals);
-  if (!entering) normal = -normal;
-  if (glm::dot(normal, ray.direction) >= 0.0f) normal = facing;  // interpolated normal behind a silhouette
-  const float cosIncident = -glm::dot(ray.direction, normal);
-  const float etaFrom = entering ? 1.0f : p.ior, etaTo = entering ? p.ior : 1.0f;
+  float fx[N], fy[N], fz[N], nx[N], ny[N], nz[N], cosIncident[N], etaFrom[N], etaTo[N];
+  bool entering[N];
+  for (int i = 0; i < N; ++i) {
+    entering[i] = dx[i] * gx[i] + dy[i] * gy[i] + dz[i] * gz[i] < 0.0f;
+    const float side = entering[i] ? 1.0f : -1.0f;
+    fx[i] = side * gx[i], fy[i] = side * gy[i], fz[i] = side * gz[i];
+    nx[i] = side * sx[i], ny[i] = side * sy[i], nz[i] = side * sz[i];
+    // An interpolated normal behind a silhouette: the geometric one.
+    const bool behind = nx[i] * dx[i] + ny[i] * dy[i] + nz[i] * dz[i] >= 0.0f;
+    nx[i] = behind ? fx[i] : nx[i];
+    ny[i] = behind ? fy[i] : ny[i];
+    nz[i] = behind ? fz[i] : nz[i];
+    cosIncident[i] = -(dx[i] * nx[i] + dy[i] * ny[i] + dz[i] * nz[i]);
+    etaFrom[i] = entering[i] ? 1.0f : p.ior;
+    etaTo[i] = entering[i] ? p.ior : 1.0f;
+  }
 
   // A ray that reaches the surface from inside has crossed the jelly: Beer–Lambert over its length.
-  const glm::vec3 absorbed = entering ? glm::vec3(1.0f) : beerLambert(p.slimeAbsorption, hit.t);
-  if (entering) {
-    // Local Phong: I = k_a I_a C + T_light I_l (k_d (N·L) C + k_s (R·V)^n).
-    pixel += pending.factor * (p.ambient * p.ambientLight * p.slimeColor);
-    const glm::vec3 toLight = glm::normalize(p.lightPosition - point);
-    const float cosLight = glm::dot(normal, toLight);
-    if (cosLight > 0.0f && glm::dot(facing, toLight) > 0.0f) {
-      const glm::vec3 lit = pending.factor * p.lightColor *
-          (p.diffuse * cosLight * p.slimeColor + p.specular * phongLobe(normal, toLight, -ray.direction, p.shininess));
-      if (p.shadows) addLight(offsetRayOrigin(point, facing, toLight), lit, pending.pixel, geometry_.isConvex(), wavefront, counters, colors);
-      else pixel += lit;
-    }
+  float absorbed[3][N];
+  for (int c = 0; c < 3; ++c) {
+    for (int i = 0; i < N; ++i) absorbed[c][i] = entering[i] ? 0.0f : -p.slimeAbsorption[c] * t[i];
+    expLanes(absorbed[c]);
   }
 
-  // Snell's law; an empty result is total internal reflection.
-  std::optional<glm::vec3> refracted = refract(ray.direction, normal, etaFrom, etaTo);
-  if (refracted && glm::dot(*refracted, facing) >= 0.0f) refracted = refract(ray.direction, facing, etaFrom, etaTo);
-  float reflectWeight = 0.0f, refractWeight = 0.0f;
-  if (p.optics == OpticsMode::Fresnel) {
-    const float fresnel = refracted ? fresnelDielectric(cosIncident, etaFrom, etaTo) : 1.0f;
-    reflectWeight = fresnel;
-    refractWeight = (1.0f - fresnel) * (entering ? p.transmission : 1.0f);
-  } else {
-    reflectWeight = p.specular;
-    refractWeight = refracted ? p.transmission : 0.0f;
-    if (!refracted) reflectWeight += p.transmission;
+  // Local Phong where the ray enters: I = k_a I_a C + T_light I_l (k_d (N·L) C + k_s (R·V)^n).
+  float lx[N], ly[N], lz[N], cosLight[N], lobeCosine[N];
+  bool lit[N];
+  for (int i = 0; i < N; ++i) {
+    lx[i] = p.lightPosition.x - px[i];
+    ly[i] = p.lightPosition.y - py[i];
+    lz[i] = p.lightPosition.z - pz[i];
+    const float inverse = 1.0f / std::sqrt(lx[i] * lx[i] + ly[i] * ly[i] + lz[i] * lz[i]);
+    lx[i] *= inverse, ly[i] *= inverse, lz[i] *= inverse;
+    cosLight[i] = nx[i] * lx[i] + ny[i] * ly[i] + nz[i] * lz[i];
+    lit[i] = entering[i] && cosLight[i] > 0.0f && fx[i] * lx[i] + fy[i] * ly[i] + fz[i] * lz[i] > 0.0f;
+    // Phong's lobe: R = reflect(−L, N), (R·V)^n with V = −d.
+    const float twice = 2.0f * -(nx[i] * lx[i] + ny[i] * ly[i] + nz[i] * lz[i]);
+    const float rx = -lx[i] - twice * nx[i], ry = -ly[i] - twice * ny[i], rz = -lz[i] - twice * nz[i];
+    lobeCosine[i] = -(rx * dx[i] + ry * dy[i] + rz * dz[i]);
   }
 
-  const glm::vec3 weight = path.weight * absorbed;
-  PendingRay child;
-  child.pixel = pending.pixel;
-  child.path.segment = path.segment + 1;
-  child.path.travelled = path.travelled + hit.t;
-  if (path.segment < p.depth) {
-    if (reflectWeight > 0.0f && largest(weight * reflectWeight) >= kMinRayWeight) {
-      glm::vec3 direction = reflect(ray.direction, normal);
-      if (glm::dot(direction, facing) <= 0.0f) direction = reflect(ray.direction, facing);
-      ++counters.rays.reflection;
-      child.kind = Kind::Reflection;
-      child.path.weight = weight * reflectWeight;
-      child.path.inside = !entering;
-      child.path.leavesSlime = entering;
-      child.factor = pending.factor * absorbed * reflectWeight;
-      child.ray = Ray{offsetRayOrigin(point, facing, direction), direction, 0.0f, kInfinity};
-      wavefront.next.push_back(child);
+  // Snell's law (refract()): an empty result is total internal reflection.
+  float tx[N], ty[N], tz[N], fresnel[N];
+  bool refracts[N], reversed[N];
+  for (int i = 0; i < N; ++i) {
+    const float eta = etaFrom[i] / etaTo[i];
+    const float sin2Transmitted = eta * eta * std::max(0.0f, 1.0f - cosIncident[i] * cosIncident[i]);
+    refracts[i] = !(sin2Transmitted > 1.0f);
+    const float cosTransmitted = std::sqrt(std::max(0.0f, 1.0f - sin2Transmitted));
+    const float along = eta * cosIncident[i] - cosTransmitted;
+    tx[i] = eta * dx[i] + along * nx[i];
+    ty[i] = eta * dy[i] + along * ny[i];
+    tz[i] = eta * dz[i] + along * nz[i];
+    // A transmitted ray on the incoming side (a smooth normal far from the facet's): refract about
+    // the facet instead, below.
+    reversed[i] = refracts[i] && tx[i] * fx[i] + ty[i] * fy[i] + tz[i] * fz[i] >= 0.0f;
+  }
+  for (int i = 0; i < count; ++i) {
+    if (!reversed[i]) continue;
+    const std::optional<glm::vec3> again =
+        refract({dx[i], dy[i], dz[i]}, {fx[i], fy[i], fz[i]}, etaFrom[i], etaTo[i]);
+    refracts[i] = again.has_value();
+    if (again) tx[i] = again->x, ty[i] = again->y, tz[i] = again->z;
+  }
+  for (int i = 0; i < N; ++i) {
+    // fresnelDielectric(cos θi, η_from, η_to); 1 under total internal reflection.
+    const float cosine = std::clamp(cosIncident[i], 0.0f, 1.0f);
+    const float sinTransmitted = etaFrom[i] / etaTo[i] * std::sqrt(std::max(0.0f, 1.0f - cosine * cosine));
+    const float cosTransmitted = std::sqrt(std::max(0.0f, 1.0f - sinTransmitted * sinTransmitted));
+    const float rs = (etaFrom[i] * cosine - etaTo[i] * cosTransmitted) / (etaFrom[i] * cosine + etaTo[i] * cosTransmitted);
+    const float rp = (etaTo[i] * cosine - etaFrom[i] * cosTransmitted) / (etaTo[i] * cosine + etaFrom[i] * cosTransmitted);
+    fresnel[i] = refracts[i] && sinTransmitted < 1.0f ? 0.5f * (rs * rs + rp * rp) : 1.0f;
+  }
+
+  // Ray by ray: the light, the children.
+  for (int i = 0; i < count; ++i) {
+    const PendingRay& ray = *pending[i];
+    const Path& path = ray.path;
+    glm::vec3& pixel = colors[ray.pixel];
+    const glm::vec3 point{px[i], py[i], pz[i]}, facing{fx[i], fy[i], fz[i]}, normal{nx[i], ny[i], nz[i]};
+    const glm::vec3 direction = ray.ray.direction;
+    const glm::vec3 inside = entering[i] ? glm::vec3(1.0f) : glm::vec3(absorbed[0][i], absorbed[1][i], absorbed[2][i]);
+    if (entering[i]) {
+      pixel += ray.factor * (p.ambient * p.ambientLight * p.slimeColor);
+      if (lit[i]) {
+        // (R·V)^n; cos^n < 2^-12 (invisible) once n (1 − cos) ≳ 8.3: no pow there.
+        const float cosine = lobeCosine[i];
+        const float lobe = cosine <= 0.0f || p.shininess * (1.0f - cosine) > 8.5f ? 0.0f : std::pow(cosine, p.shininess);
+        const glm::vec3 toLight{lx[i], ly[i], lz[i]};
+        const glm::vec3 light = ray.factor * p.lightColor * (p.diffuse * cosLight[i] * p.slimeColor + p.specular * lobe);
+        if (p.shadows) addLight(offsetRayOrigin(point, facing, toLight), light, ray.pixel, geometry_.isConvex(), wavefront, counters, colors);
+        else pixel += light;
+      }
     }
-    if (refracted && refractWeight > 0.0f && largest(weight * refractWeight) >= kMinRayWeight) {
+
+    float reflectWeight = 0.0f, refractWeight = 0.0f;
+    if (p.optics == OpticsMode::Fresnel) {
+      reflectWeight = fresnel[i];
+      refractWeight = (1.0f - fresnel[i]) * (entering[i] ? p.transmission : 1.0f);
+    } else {
+      reflectWeight = p.specular;
+      refractWeight = refracts[i] ? p.transmission : 0.0f;
+      if (!refracts[i]) reflectWeight += p.transmission;
+    }
+    const glm::vec3 weight = path.weight * inside;
+    PendingRay child;
+    child.pixel = ray.pixel;
+    child.path.segment = path.segment + 1;
+    child.path.travelled = path.travelled + t[i];
+    if (path.segment < p.depth) {
+      if (reflectWeight > 0.0f && largest(weight * reflectWeight) >= kMinRayWeight) {
+        glm::vec3 reflected = reflect(direction, normal);
+        if (glm::dot(reflected, facing) <= 0.0f) reflected = reflect(direction, facing);
+        ++counters.rays.reflection;
+        child.kind = Kind::Reflection;
+        child.path.weight = weight * reflectWeight;
+        child.path.inside = !entering[i];
+        child.path.leavesSlime = entering[i];
+        child.factor = ray.factor * inside * reflectWeight;
+        child.ray = Ray{offsetRayOrigin(point, facing, reflected), reflected, 0.0f, kInfinity};
+        wavefront.next.push_back(child);
+      }
+      if (refracts[i] && refractWeight > 0.0f && largest(weight * refractWeight) >= kMinRayWeight) {
+        const glm::vec3 refracted{tx[i], ty[i], tz[i]};
+        ++counters.rays.refraction;
+        child.kind = Kind::Refraction;
+        child.path.weight = weight * refractWeight;
+        child.path.inside = entering[i];
+        child.path.leavesSlime = !entering[i];
+        child.factor = ray.factor * inside * refractWeight;
+        child.ray = Ray{offsetRayOrigin(point, facing, refracted), refracted, 0.0f, kInfinity};
+        wavefront.next.push_back(child);
+      }
+    } else if (!entering[i] && refracts[i] && refractWeight > 0.0f) {
+      // Out of segments on the way out of the jelly: what lies beyond is the analytic floor or sky,
+      // looked up with the next generation's floors (no query, no shadow, no mirror).
+      const glm::vec3 refracted{tx[i], ty[i], tz[i]};
       ++counters.rays.refraction;
-      child.kind = Kind::Refraction;
-      child.path.weight = weight * refractWeight;
-      child.path.inside = entering;
-      child.path.leavesSlime = !entering;
-      child.factor = pending.factor * absorbed * refractWeight;
-      child.ray = Ray{offsetRayOrigin(point, facing, *refracted), *refracted, 0.0f, kInfinity};
+      child.kind = Kind::Environment;
+      child.hitKnown = true;
+      child.factor = ray.factor * inside * refractWeight;
+      child.ray = Ray{offsetRayOrigin(point, facing, refracted), refracted, 0.0f, kInfinity};
       wavefront.next.push_back(child);
     }
-  } else if (!entering && refracted && refractWeight > 0.0f) {
-    // Out of segments on the way out of the jelly: what lies beyond is the analytic floor or sky,
-    // looked up with the next generation's floors (no query, no shadow, no mirror).
-    ++counters.rays.refraction;
-    child.kind = Kind::Environment;
-    child.hitKnown = true;
-    child.factor = pending.factor * absorbed * refractWeight;
-    child.ray = Ray{offsetRayOrigin(point, facing, *refracted), *refracted, 0.0f, kInfinity};
-    wavefront.next.push_back(child);
   }
 }
 
@@ -426,6 +541,18 @@ __m256 lane(const float* values) { return _mm256_loadu_ps(values); }
 
 }  // namespace
 #endif
+
+namespace {
+
+void expLanes(float* x) {
+#if defined(__AVX2__) && defined(__FMA__)
+  _mm256_storeu_ps(x, exp8(_mm256_loadu_ps(x)));
+#else
+  for (int i = 0; i < 8; ++i) x[i] = std::exp(x[i]);
+#endif
+}
+
+}  // namespace
 
 void WhittedTracer::floorShading8(const Ray* rays, const float* t, const float* distances, const bool* needed,
                                   FloorShading* shadings) const {

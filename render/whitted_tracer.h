@@ -105,7 +105,9 @@ class WhittedTracer {
   // `floor`: the ray's floor shading if lookUpFloors found it (else computed here as needed).
   void shade(const PendingRay& ray, const FloorShading& floor, Wavefront& wavefront, TraceCounters& counters,
              FloorShading* floorCache, glm::vec3* colors) const;
-  void shadeSlime(const PendingRay& ray, Wavefront& wavefront, TraceCounters& counters, glm::vec3* colors) const;
+  // Up to 8 rays of a generation that hit the slime (their hit before the floor), shaded together.
+  void shadeSlimes8(const PendingRay* const* rays, int count, Wavefront& wavefront, TraceCounters& counters,
+                    glm::vec3* colors) const;
   // The floor at distance t along `ray`, its radiance times `factor` into pixel `pixel`.
   void shadeFloor(const Ray& ray, float t, const Path& path, const glm::vec3& factor, int pixel, Wavefront& wavefront,
                   TraceCounters& counters, FloorShading* floorCache, glm::vec3* colors) const;
