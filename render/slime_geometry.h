@@ -11,6 +11,7 @@
 #include <glm/vec4.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace slime {
@@ -60,6 +61,16 @@ struct SlimeGeometry {
     const float tClosest = std::clamp(along, ray.tNear, ray.tFar);
     const glm::vec3 offset = ray.origin + tClosest * ray.direction - boundCenter;
     return offset.x * offset.x + offset.y * offset.y + offset.z * offset.z <= radius * radius;
+  }
+
+  // How far along `ray` (from an origin inside the bounding sphere) it leaves that sphere, with the
+  // slack of mayHit; 0 when the origin lies outside.
+  float boundExitDistance(const Ray& ray) const {
+    const float radius = boundRadius * 1.0001f + 1e-6f;
+    const glm::vec3 fromCenter = ray.origin - boundCenter;
+    const float along = fromCenter.x * ray.direction.x + fromCenter.y * ray.direction.y + fromCenter.z * ray.direction.z;
+    const float excess = fromCenter.x * fromCenter.x + fromCenter.y * fromCenter.y + fromCenter.z * fromCenter.z - radius * radius;
+    return std::max(0.0f, -along + std::sqrt(std::max(0.0f, along * along - excess)));
   }
 
   // Unit geometric normal (outward) at a hit point: the triangle's, computed once per frame by update.
