@@ -154,18 +154,24 @@ glm::vec3 FloorTexture::planks(glm::vec2 p, glm::vec2 footprint) const {
 }
 
 void FloorTexture::albedo8(const float* x, const float* y, const float* footprintX, const float* footprintY,
-                           const bool* active, glm::vec3* out) const {
+                           const bool* active, float (*channels)[8]) const {
 #if defined(__AVX2__)
   if (pattern_ == Pattern::Planks) {
-    glm::vec3 lanes[8];
+    float lanes[3][8];
     planks8(x, y, footprintX, footprintY, lanes);
-    for (int i = 0; i < 8; ++i)
-      if (active[i]) out[i] = std::abs(x[i]) < 1e5f && std::abs(y[i]) < 1e5f ? lanes[i] : mean_;
+    for (int i = 0; i < 8; ++i) {
+      if (!active[i]) continue;
+      const bool near = std::abs(x[i]) < 1e5f && std::abs(y[i]) < 1e5f;
+      for (int c = 0; c < 3; ++c) channels[c][i] = near ? lanes[c][i] : mean_[c];
+    }
     return;
   }
 #endif
-  for (int i = 0; i < 8; ++i)
-    if (active[i]) out[i] = albedo({x[i], y[i]}, {footprintX[i], footprintY[i]});
+  for (int i = 0; i < 8; ++i) {
+    if (!active[i]) continue;
+    const glm::vec3 albedo = this->albedo({x[i], y[i]}, {footprintX[i], footprintY[i]});
+    for (int c = 0; c < 3; ++c) channels[c][i] = albedo[c];
+  }
 }
 
 #if defined(__AVX2__)
@@ -220,7 +226,7 @@ struct Lanes {
 
 // planks() for 8 lookups: the same pattern, lane by lane (see there for what each step draws).
 void FloorTexture::planks8(const float* x, const float* y, const float* footprintX, const float* footprintY,
-                           glm::vec3* out) const {
+                           float (*channels)[8]) const {
   using L = Lanes;
   constexpr float kLength = 6.0f, kSeam = 0.03f, kGrainPerBoard = 11.0f;
   constexpr float kDarkestGrainDensity = 0.7f, kGrainDensityRange = 0.6f, kGrainPeriod = 1.0f / kGrainPerBoard;
@@ -265,12 +271,10 @@ void FloorTexture::planks8(const float* x, const float* y, const float* footprin
                                         _mm256_mul_ps(hx, L::all(1.0f / kLength)), L::all(kSeam / kLength));
   const __m256 seam = _mm256_sub_ps(L::all(1.0f), _mm256_mul_ps(_mm256_sub_ps(L::all(1.0f), longSeam), _mm256_sub_ps(L::all(1.0f), joint)));
 
-  alignas(32) float channels[3][8];
   for (int c = 0; c < 3; ++c) {
     const __m256 color = _mm256_mul_ps(_mm256_mul_ps(L::mix(L::all(colorA_[c]), L::all(colorB_[c]), shade), brightness), grainFactor);
-    _mm256_store_ps(channels[c], L::mix(color, L::all(colorB_[c] * 0.35f), seam));
+    _mm256_storeu_ps(channels[c], L::mix(color, L::all(colorB_[c] * 0.35f), seam));
   }
-  for (int i = 0; i < 8; ++i) out[i] = {channels[0][i], channels[1][i], channels[2][i]};
 }
 #endif
 

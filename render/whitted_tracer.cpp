@@ -597,16 +597,17 @@ void WhittedTracer::floorShading8(const Ray* rays, const float* t, const float* 
   const ShadingParameters& p = parameters_;
   for (int i = 0; i < 8; ++i) {
     if (!needed[i]) continue;
+    const glm::vec3 albedo{lanes.albedo[0][i], lanes.albedo[1][i], lanes.albedo[2][i]};
     if (p.floorSpecular > 0.0f) {  // the floor's own highlight goes through litFloor one lane at a time
-      shadings[i] = litFloor({lanes.x[i], lanes.y[i], 0.0f}, rays[i].direction, distances[i], lanes.albedo[i]);
+      shadings[i] = litFloor({lanes.x[i], lanes.y[i], 0.0f}, rays[i].direction, distances[i], albedo);
       continue;
     }
     FloorShading& shading = shadings[i];
     shading = FloorShading{};
     shading.filled = true;
-    shading.ambient = lanes.albedo[i] * p.ambientLight;
+    shading.ambient = albedo * p.ambientLight;
     shading.haze = lanes.haze[i];
-    if (p.lightPosition.z > 0.0f) shading.lit = p.lightColor * (p.floorDiffuse * lanes.lightZ[i] * lanes.albedo[i]);
+    if (p.lightPosition.z > 0.0f) shading.lit = p.lightColor * (p.floorDiffuse * lanes.lightZ[i] * albedo);
   }
 #else
   float x[8] = {}, y[8] = {}, footprintX[8] = {}, footprintY[8] = {};
@@ -619,10 +620,11 @@ void WhittedTracer::floorShading8(const Ray* rays, const float* t, const float* 
     footprintX[i] = footprint.x;
     footprintY[i] = footprint.y;
   }
-  glm::vec3 albedos[8];
+  float albedos[3][8];
   floor_.albedo8(x, y, footprintX, footprintY, needed, albedos);
   for (int i = 0; i < 8; ++i)
-    if (needed[i]) shadings[i] = litFloor({x[i], y[i], 0.0f}, rays[i].direction, distances[i], albedos[i]);
+    if (needed[i])
+      shadings[i] = litFloor({x[i], y[i], 0.0f}, rays[i].direction, distances[i], {albedos[0][i], albedos[1][i], albedos[2][i]});
 #endif
 }
 
@@ -669,37 +671,35 @@ void WhittedTracer::traceFloorOrSky8(const glm::vec3& eye, const float* directio
   if (!(p.floorSpecular > 0.0f)) {
     // floorDistance, floorShading8 and shadeFloorWith's sums (with the light unshadowed) in lanes:
     // the same operations in the same order, so each pixel equals tracePrimary8's bit for bit.
+    // floorDistance in lanes; the lanes that do not see the floor (or are past `count`) stay zero.
     FloorRays8 rays;
-    int floorLanes = 0;
-    for (int i = 0; i < 8; ++i) {
-      rays.needed[i] = i < count && directionZ[i] < 0.0f;
-      if (!rays.needed[i]) continue;
-      ++floorLanes;
-      rays.originX[i] = eye.x;
-      rays.originY[i] = eye.y;
-      rays.directionX[i] = directionX[i];
-      rays.directionY[i] = directionY[i];
-      rays.directionZ[i] = directionZ[i];
-      rays.t[i] = rays.distance[i] = std::max(0.0f, eye.z) / -directionZ[i];
-    }
+    const __m256 dz = lane(directionZ);
+    const __m256 sees = _mm256_and_ps(_mm256_cmp_ps(dz, _mm256_setzero_ps(), _CMP_LT_OQ),
+                                      _mm256_cmp_ps(_mm256_setr_ps(0, 1, 2, 3, 4, 5, 6, 7), _mm256_set1_ps(static_cast<float>(count)), _CMP_LT_OQ));
+    const int floorMask = _mm256_movemask_ps(sees);
+    for (int i = 0; i < 8; ++i) rays.needed[i] = (floorMask >> i) & 1;
+    const __m256 t = _mm256_and_ps(sees, _mm256_div_ps(_mm256_set1_ps(std::max(0.0f, eye.z)), _mm256_sub_ps(_mm256_setzero_ps(), dz)));
+    _mm256_storeu_ps(rays.originX, _mm256_and_ps(sees, _mm256_set1_ps(eye.x)));
+    _mm256_storeu_ps(rays.originY, _mm256_and_ps(sees, _mm256_set1_ps(eye.y)));
+    _mm256_storeu_ps(rays.directionX, _mm256_and_ps(sees, lane(directionX)));
+    _mm256_storeu_ps(rays.directionY, _mm256_and_ps(sees, lane(directionY)));
+    _mm256_storeu_ps(rays.directionZ, _mm256_and_ps(sees, dz));
+    _mm256_storeu_ps(rays.t, t);
+    _mm256_storeu_ps(rays.distance, t);
     FloorLanes8 lanes;
-    if (floorLanes > 0) floorLanes8(rays, lanes);
+    if (floorMask != 0) floorLanes8(rays, lanes);
     const bool lit = p.lightPosition.z > 0.0f;
     const __m256 lightScale = _mm256_mul_ps(_mm256_set1_ps(p.floorDiffuse), lane(lanes.lightZ));
     const __m256 haze = lane(lanes.haze), near = _mm256_sub_ps(_mm256_set1_ps(1.0f), haze);
     float channels[3][8];
     int shadowRays = 0;
     for (int c = 0; c < 3; ++c) {
-      float albedo[8];
-      for (int i = 0; i < 8; ++i) albedo[i] = lanes.albedo[i][c];
-      const __m256 a = lane(albedo);
+      const __m256 a = lane(lanes.albedo[c]);
       const __m256 ambient = _mm256_mul_ps(a, _mm256_set1_ps(p.ambientLight[c]));
       const __m256 base = _mm256_add_ps(_mm256_mul_ps(near, ambient), _mm256_mul_ps(haze, _mm256_set1_ps(p.skyHorizon[c])));
       const __m256 light = lit ? _mm256_mul_ps(_mm256_set1_ps(p.lightColor[c]), _mm256_mul_ps(lightScale, a)) : _mm256_setzero_ps();
       _mm256_storeu_ps(channels[c], _mm256_add_ps(base, _mm256_mul_ps(near, light)));
-      float lights[8];
-      _mm256_storeu_ps(lights, light);
-      for (int i = 0; i < 8; ++i) shadowRays |= (rays.needed[i] && lights[i] != 0.0f) << i;
+      shadowRays |= floorMask & _mm256_movemask_ps(_mm256_cmp_ps(light, _mm256_setzero_ps(), _CMP_NEQ_UQ));
     }
     for (int i = 0; i < count; ++i)
       colors[i] = rays.needed[i] ? glm::vec3(channels[0][i], channels[1][i], channels[2][i]) : sky({directionX[i], directionY[i], directionZ[i]});

@@ -137,7 +137,7 @@ class WhittedTracer {
   struct FloorLanes8 {
     float x[8] = {}, y[8] = {};         // the floor point
     float haze[8] = {}, lightZ[8] = {};  // the horizon haze's share; the light direction's z there
-    glm::vec3 albedo[8];                 // the pattern over the pixel's footprint
+    float albedo[3][8] = {};             // the pattern over the pixel's footprint, by channel
   };
   // floorFootprint, the pattern and litFloor's haze and light direction, 8 lanes at a time (AVX2 builds).
   void floorLanes8(const FloorRays8& rays, FloorLanes8& lanes) const;

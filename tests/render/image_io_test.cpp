@@ -35,8 +35,10 @@ TEST(ImageIo, TableEncoderIsExactlyTheCurve) {
   const auto curve = [](float x) { return static_cast<int>(std::lround(linearToSrgb(x) * 255.0f)); };
   const std::uint32_t one = std::bit_cast<std::uint32_t>(1.0f);
   int mismatches = 0, steps = 0;
+  std::vector<float> checked;  // for the encoder of whole pixels, below
   const auto check = [&](std::uint32_t bits) {
     const float x = std::bit_cast<float>(bits);
+    checked.push_back(x);
     if (encodeSrgb8(x) != curve(x) && ++mismatches <= 5)
       ADD_FAILURE() << "x = " << x << ": table " << int(encodeSrgb8(x)) << ", curve " << curve(x);
   };
@@ -68,6 +70,30 @@ TEST(ImageIo, TableEncoderIsExactlyTheCurve) {
   EXPECT_EQ(rgba[17], curve(0.5f));
   EXPECT_EQ(rgba[18], curve(0.9f));
   EXPECT_EQ(rgba[19], 255);
+
+  // Whole pixels (8 at a time in AVX2 builds, with gathers) give every value's own code, NaN,
+  // infinities and negatives included, with 3 channels and with 4.
+  for (float special : {-0.5f, -0.0f, 7.0f, std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(),
+                        -std::numeric_limits<float>::infinity(), std::numeric_limits<float>::denorm_min()})
+    checked.push_back(special);
+  Image values;
+  values.resize(static_cast<int>((checked.size() + 2) / 3), 1);
+  for (std::size_t k = 0; k < checked.size(); ++k) values.pixels[k / 3][static_cast<int>(k % 3)] = checked[k];
+  for (int channels : {3, 4}) {
+    std::vector<std::uint8_t> bytes;
+    toSrgb8(values, channels, bytes);
+    int wrong = 0;
+    for (std::size_t k = 0; k < checked.size(); ++k) {
+      const std::size_t at = (k / 3) * static_cast<std::size_t>(channels) + k % 3;
+      if (bytes[at] != encodeSrgb8(checked[k]) && ++wrong <= 5)
+        ADD_FAILURE() << channels << " channels, x = " << checked[k] << ": " << int(bytes[at]) << ", alone "
+                      << int(encodeSrgb8(checked[k]));
+    }
+    EXPECT_EQ(wrong, 0) << channels << " channels";
+    if (channels == 4) {
+      for (std::size_t pixel = 0; pixel < values.pixels.size(); ++pixel) ASSERT_EQ(bytes[4 * pixel + 3], 255) << pixel;
+    }
+  }
 }
 
 TEST(ImageIo, FailedWriteLeavesNoFile) {
