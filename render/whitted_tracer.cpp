@@ -1,5 +1,6 @@
 #include "render/whitted_tracer.h"
 
+#include "render/lanes.h"
 #include "render/optics.h"
 
 #include <glm/common.hpp>
@@ -244,130 +245,119 @@ void expLanes(float* x);
 
 void WhittedTracer::shadeSlimes8(const PendingRay* const* pending, int count, Wavefront& wavefront, TraceCounters& counters,
                                  glm::vec3* colors) const {
-  // shade() of up to 8 rays that hit the slime, as lanes: the arithmetic runs over arrays of 8 (which
-  // the compiler turns into vector instructions), only the queueing of children stays ray by ray.
+  // shade() of up to 8 rays that hit the slime, as lanes (render/lanes.h): the formulas run for all
+  // of them at once, only the queueing of children stays ray by ray.
   //   I = local Phong (entering) + w_r I_reflected + w_t I_refracted, times Beer–Lambert from inside.
   const ShadingParameters& p = parameters_;
   constexpr int N = 8;
-  float ox[N], oy[N], oz[N], dx[N], dy[N], dz[N], t[N];
-  float gx[N], gy[N], gz[N];  // outward geometric normal
-  float sx[N], sy[N], sz[N];  // interpolated shading normal (smooth normals), before facing the ray
+  float values[10][N];  // origin, direction, t, then the point's geometric and shading normals
   for (int i = 0; i < N; ++i) {
     const PendingRay& ray = *pending[std::min(i, count - 1)];  // unused lanes repeat the last ray
-    ox[i] = ray.ray.origin.x;
-    oy[i] = ray.ray.origin.y;
-    oz[i] = ray.ray.origin.z;
-    dx[i] = ray.ray.direction.x;
-    dy[i] = ray.ray.direction.y;
-    dz[i] = ray.ray.direction.z;
-    t[i] = ray.hit.t;
+    values[0][i] = ray.ray.origin.x;
+    values[1][i] = ray.ray.origin.y;
+    values[2][i] = ray.ray.origin.z;
+    values[3][i] = ray.ray.direction.x;
+    values[4][i] = ray.ray.direction.y;
+    values[5][i] = ray.ray.direction.z;
+    values[6][i] = ray.hit.t;
   }
-  float px[N], py[N], pz[N];
-  for (int i = 0; i < N; ++i) {
-    px[i] = ox[i] + t[i] * dx[i];
-    py[i] = oy[i] + t[i] * dy[i];
-    pz[i] = oz[i] + t[i] * dz[i];
-  }
+  const Lanes t = Lanes::load(values[6]);
+  const Lanes3 d{Lanes::load(values[3]), Lanes::load(values[4]), Lanes::load(values[5])};
+  const Lanes3 point = Lanes3{Lanes::load(values[0]), Lanes::load(values[1]), Lanes::load(values[2])} + t * d;
+  float points[3][N], normals[6][N];
+  point.x.store(points[0]);
+  point.y.store(points[1]);
+  point.z.store(points[2]);
   for (int i = 0; i < N; ++i) {
     const PendingRay& ray = *pending[std::min(i, count - 1)];
-    const glm::vec3 point{px[i], py[i], pz[i]};
-    const glm::vec3 outward = geometry_.geometricNormal(ray.hit, point);
-    const glm::vec3 shading = geometry_.shadingNormal(ray.hit, point, p.smoothNormals);
-    gx[i] = outward.x, gy[i] = outward.y, gz[i] = outward.z;
-    sx[i] = shading.x, sy[i] = shading.y, sz[i] = shading.z;
+    const glm::vec3 at{points[0][i], points[1][i], points[2][i]};
+    const glm::vec3 outward = geometry_.geometricNormal(ray.hit, at);
+    const glm::vec3 shading = geometry_.shadingNormal(ray.hit, at, p.smoothNormals);
+    for (int c = 0; c < 3; ++c) {
+      normals[c][i] = outward[c];
+      normals[3 + c][i] = shading[c];
+    }
   }
+  const Lanes3 outward{Lanes::load(normals[0]), Lanes::load(normals[1]), Lanes::load(normals[2])};
+  const Lanes3 smooth{Lanes::load(normals[3]), Lanes::load(normals[4]), Lanes::load(normals[5])};
 
-  // Normals facing the incoming ray: geometric (for offsets) and shading (for optics).
-  float fx[N], fy[N], fz[N], nx[N], ny[N], nz[N], cosIncident[N], etaFrom[N], etaTo[N];
-  bool entering[N];
-  for (int i = 0; i < N; ++i) {
-    entering[i] = dx[i] * gx[i] + dy[i] * gy[i] + dz[i] * gz[i] < 0.0f;
-    const float side = entering[i] ? 1.0f : -1.0f;
-    fx[i] = side * gx[i], fy[i] = side * gy[i], fz[i] = side * gz[i];
-    nx[i] = side * sx[i], ny[i] = side * sy[i], nz[i] = side * sz[i];
-    // An interpolated normal behind a silhouette: the geometric one.
-    const bool behind = nx[i] * dx[i] + ny[i] * dy[i] + nz[i] * dz[i] >= 0.0f;
-    nx[i] = behind ? fx[i] : nx[i];
-    ny[i] = behind ? fy[i] : ny[i];
-    nz[i] = behind ? fz[i] : nz[i];
-    cosIncident[i] = -(dx[i] * nx[i] + dy[i] * ny[i] + dz[i] * nz[i]);
-    etaFrom[i] = entering[i] ? 1.0f : p.ior;
-    etaTo[i] = entering[i] ? p.ior : 1.0f;
-  }
+  // Normals facing the incoming ray: geometric (for offsets) and shading (for optics); an
+  // interpolated normal behind a silhouette gives way to the geometric one.
+  const LaneMask entering = dot(d, outward) < 0.0f;
+  const Lanes3 facing = select(entering, outward, -outward);
+  const Lanes3 turned = select(entering, smooth, -smooth);
+  const Lanes3 normal = select(dot(turned, d) >= 0.0f, facing, turned);
+  const Lanes cosIncident = -dot(d, normal);
+  const Lanes etaFrom = select(entering, 1.0f, p.ior), etaTo = select(entering, p.ior, 1.0f);
 
   // A ray that reaches the surface from inside has crossed the jelly: Beer–Lambert over its length.
   float absorbed[3][N];
   for (int c = 0; c < 3; ++c) {
-    for (int i = 0; i < N; ++i) absorbed[c][i] = entering[i] ? 0.0f : -p.slimeAbsorption[c] * t[i];
+    select(entering, 0.0f, -p.slimeAbsorption[c] * t).store(absorbed[c]);
     expLanes(absorbed[c]);
   }
 
-  // Local Phong where the ray enters: I = k_a I_a C + T_light I_l (k_d (N·L) C + k_s (R·V)^n).
-  float lx[N], ly[N], lz[N], cosLight[N], lobeCosine[N];
-  bool lit[N];
-  for (int i = 0; i < N; ++i) {
-    lx[i] = p.lightPosition.x - px[i];
-    ly[i] = p.lightPosition.y - py[i];
-    lz[i] = p.lightPosition.z - pz[i];
-    const float inverse = 1.0f / std::sqrt(lx[i] * lx[i] + ly[i] * ly[i] + lz[i] * lz[i]);
-    lx[i] *= inverse, ly[i] *= inverse, lz[i] *= inverse;
-    cosLight[i] = nx[i] * lx[i] + ny[i] * ly[i] + nz[i] * lz[i];
-    lit[i] = entering[i] && cosLight[i] > 0.0f && fx[i] * lx[i] + fy[i] * ly[i] + fz[i] * lz[i] > 0.0f;
-    // Phong's lobe: R = reflect(−L, N), (R·V)^n with V = −d.
-    const float twice = 2.0f * -(nx[i] * lx[i] + ny[i] * ly[i] + nz[i] * lz[i]);
-    const float rx = -lx[i] - twice * nx[i], ry = -ly[i] - twice * ny[i], rz = -lz[i] - twice * nz[i];
-    lobeCosine[i] = -(rx * dx[i] + ry * dy[i] + rz * dz[i]);
-  }
+  // Local Phong where the ray enters: I = k_a I_a C + T_light I_l (k_d (N·L) C + k_s (R·V)^n), with
+  // Phong's lobe R = reflect(−L, N), V = −d.
+  const Lanes3 toLightUnnormalized =
+      Lanes3{Lanes(p.lightPosition.x), Lanes(p.lightPosition.y), Lanes(p.lightPosition.z)} - point;
+  const Lanes3 toLight = (1.0f / sqrt(dot(toLightUnnormalized, toLightUnnormalized))) * toLightUnnormalized;
+  const Lanes cosLight = dot(normal, toLight);
+  const LaneMask lit = entering && cosLight > 0.0f && dot(facing, toLight) > 0.0f;
+  const Lanes3 mirrored = -toLight - (-2.0f * cosLight) * normal;
+  const Lanes lobeCosine = -dot(mirrored, d);
 
-  // Snell's law (refract()): an empty result is total internal reflection.
-  float tx[N], ty[N], tz[N], fresnel[N];
-  bool refracts[N], reversed[N];
-  for (int i = 0; i < N; ++i) {
-    const float eta = etaFrom[i] / etaTo[i];
-    const float sin2Transmitted = eta * eta * std::max(0.0f, 1.0f - cosIncident[i] * cosIncident[i]);
-    refracts[i] = !(sin2Transmitted > 1.0f);
-    const float cosTransmitted = std::sqrt(std::max(0.0f, 1.0f - sin2Transmitted));
-    const float along = eta * cosIncident[i] - cosTransmitted;
-    tx[i] = eta * dx[i] + along * nx[i];
-    ty[i] = eta * dy[i] + along * ny[i];
-    tz[i] = eta * dz[i] + along * nz[i];
-    // A transmitted ray on the incoming side (a smooth normal far from the facet's): refract about
-    // the facet instead, below.
-    reversed[i] = refracts[i] && tx[i] * fx[i] + ty[i] * fy[i] + tz[i] * fz[i] >= 0.0f;
-  }
-  for (int i = 0; i < count; ++i) {
-    if (!reversed[i]) continue;
-    const std::optional<glm::vec3> again =
-        refract({dx[i], dy[i], dz[i]}, {fx[i], fy[i], fz[i]}, etaFrom[i], etaTo[i]);
-    refracts[i] = again.has_value();
-    if (again) tx[i] = again->x, ty[i] = again->y, tz[i] = again->z;
-  }
-  for (int i = 0; i < N; ++i) {
-    // fresnelDielectric(cos θi, η_from, η_to); 1 under total internal reflection.
-    const float cosine = std::clamp(cosIncident[i], 0.0f, 1.0f);
-    const float sinTransmitted = etaFrom[i] / etaTo[i] * std::sqrt(std::max(0.0f, 1.0f - cosine * cosine));
-    const float cosTransmitted = std::sqrt(std::max(0.0f, 1.0f - sinTransmitted * sinTransmitted));
-    const float rs = (etaFrom[i] * cosine - etaTo[i] * cosTransmitted) / (etaFrom[i] * cosine + etaTo[i] * cosTransmitted);
-    const float rp = (etaTo[i] * cosine - etaFrom[i] * cosTransmitted) / (etaTo[i] * cosine + etaFrom[i] * cosTransmitted);
-    fresnel[i] = refracts[i] && sinTransmitted < 1.0f ? 0.5f * (rs * rs + rp * rp) : 1.0f;
-  }
+  // Snell's law (refract()): no transmitted ray under total internal reflection.
+  const Lanes eta = etaFrom / etaTo;
+  const Lanes sin2Transmitted = eta * eta * max(1.0f - cosIncident * cosIncident, 0.0f);
+  const LaneMask refractsLanes = !(sin2Transmitted > 1.0f);
+  const Lanes cosTransmittedRay = sqrt(max(1.0f - sin2Transmitted, 0.0f));
+  const Lanes3 transmittedLanes = eta * d + (eta * cosIncident - cosTransmittedRay) * normal;
+  // A transmitted ray on the incoming side (a smooth normal far from the facet's): refract about the
+  // facet instead, below, ray by ray (rare).
+  const LaneMask reversed = refractsLanes && dot(transmittedLanes, facing) >= 0.0f;
+
+  // fresnelDielectric(cos θi, η_from, η_to): 1 under total internal reflection.
+  const Lanes cosine = min(max(cosIncident, 0.0f), 1.0f);
+  const Lanes sinTransmitted = eta * sqrt(max(1.0f - cosine * cosine, 0.0f));
+  const Lanes cosTransmitted = sqrt(max(1.0f - sinTransmitted * sinTransmitted, 0.0f));
+  const Lanes rs = (etaFrom * cosine - etaTo * cosTransmitted) / (etaFrom * cosine + etaTo * cosTransmitted);
+  const Lanes rp = (etaTo * cosine - etaFrom * cosTransmitted) / (etaTo * cosine + etaFrom * cosTransmitted);
+  const Lanes fresnelLanes = select(sinTransmitted < 1.0f, 0.5f * (rs * rs + rp * rp), 1.0f);
+
+  float lanes[15][N];
+  facing.x.store(lanes[0]), facing.y.store(lanes[1]), facing.z.store(lanes[2]);
+  normal.x.store(lanes[3]), normal.y.store(lanes[4]), normal.z.store(lanes[5]);
+  toLight.x.store(lanes[6]), toLight.y.store(lanes[7]), toLight.z.store(lanes[8]);
+  transmittedLanes.x.store(lanes[9]), transmittedLanes.y.store(lanes[10]), transmittedLanes.z.store(lanes[11]);
+  cosLight.store(lanes[12]), lobeCosine.store(lanes[13]), fresnelLanes.store(lanes[14]);
 
   // Ray by ray: the light, the children.
   for (int i = 0; i < count; ++i) {
     const PendingRay& ray = *pending[i];
     const Path& path = ray.path;
     glm::vec3& pixel = colors[ray.pixel];
-    const glm::vec3 point{px[i], py[i], pz[i]}, facing{fx[i], fy[i], fz[i]}, normal{nx[i], ny[i], nz[i]};
+    const glm::vec3 point{points[0][i], points[1][i], points[2][i]}, facing{lanes[0][i], lanes[1][i], lanes[2][i]},
+        normal{lanes[3][i], lanes[4][i], lanes[5][i]};
     const glm::vec3 direction = ray.ray.direction;
-    const glm::vec3 inside = entering[i] ? glm::vec3(1.0f) : glm::vec3(absorbed[0][i], absorbed[1][i], absorbed[2][i]);
-    if (entering[i]) {
+    const bool enters = entering[i];
+    bool refracted = refractsLanes[i];
+    glm::vec3 transmitted{lanes[9][i], lanes[10][i], lanes[11][i]};
+    if (reversed[i]) {
+      const std::optional<glm::vec3> again = refract(direction, facing, enters ? 1.0f : p.ior, enters ? p.ior : 1.0f);
+      refracted = again.has_value();
+      if (again) transmitted = *again;
+    }
+    const float fresnel = refracted ? lanes[14][i] : 1.0f;
+    const glm::vec3 inside = enters ? glm::vec3(1.0f) : glm::vec3(absorbed[0][i], absorbed[1][i], absorbed[2][i]);
+    if (enters) {
       pixel += ray.factor * (p.ambient * p.ambientLight * p.slimeColor);
       if (lit[i]) {
         // (R·V)^n; cos^n < 2^-12 (invisible) once n (1 − cos) ≳ 8.3: no pow there.
-        const float cosine = lobeCosine[i];
+        const float cosine = lanes[13][i];
         const float lobe = cosine <= 0.0f || p.shininess * (1.0f - cosine) > 8.5f ? 0.0f : std::pow(cosine, p.shininess);
-        const glm::vec3 toLight{lx[i], ly[i], lz[i]};
-        const glm::vec3 light = ray.factor * p.lightColor * (p.diffuse * cosLight[i] * p.slimeColor + p.specular * lobe);
+        const glm::vec3 toLight{lanes[6][i], lanes[7][i], lanes[8][i]};
+        const glm::vec3 light = ray.factor * p.lightColor * (p.diffuse * lanes[12][i] * p.slimeColor + p.specular * lobe);
         if (p.shadows) addLight(offsetRayOrigin(point, facing, toLight), light, ray.pixel, geometry_.isConvex(), wavefront, counters, colors);
         else pixel += light;
       }
@@ -375,18 +365,18 @@ void WhittedTracer::shadeSlimes8(const PendingRay* const* pending, int count, Wa
 
     float reflectWeight = 0.0f, refractWeight = 0.0f;
     if (p.optics == OpticsMode::Fresnel) {
-      reflectWeight = fresnel[i];
-      refractWeight = (1.0f - fresnel[i]) * (entering[i] ? p.transmission : 1.0f);
+      reflectWeight = fresnel;
+      refractWeight = (1.0f - fresnel) * (enters ? p.transmission : 1.0f);
     } else {
       reflectWeight = p.specular;
-      refractWeight = refracts[i] ? p.transmission : 0.0f;
-      if (!refracts[i]) reflectWeight += p.transmission;
+      refractWeight = refracted ? p.transmission : 0.0f;
+      if (!refracted) reflectWeight += p.transmission;
     }
     const glm::vec3 weight = path.weight * inside;
     PendingRay child;
     child.pixel = ray.pixel;
     child.path.segment = path.segment + 1;
-    child.path.travelled = path.travelled + t[i];
+    child.path.travelled = path.travelled + ray.hit.t;
     if (path.segment < p.depth) {
       if (reflectWeight > 0.0f && largest(weight * reflectWeight) >= kMinRayWeight) {
         glm::vec3 reflected = reflect(direction, normal);
@@ -394,32 +384,30 @@ void WhittedTracer::shadeSlimes8(const PendingRay* const* pending, int count, Wa
         ++counters.rays.reflection;
         child.kind = Kind::Reflection;
         child.path.weight = weight * reflectWeight;
-        child.path.inside = !entering[i];
-        child.path.leavesSlime = entering[i];
+        child.path.inside = !enters;
+        child.path.leavesSlime = enters;
         child.factor = ray.factor * inside * reflectWeight;
         child.ray = Ray{offsetRayOrigin(point, facing, reflected), reflected, 0.0f, kInfinity};
         wavefront.next.push_back(child);
       }
-      if (refracts[i] && refractWeight > 0.0f && largest(weight * refractWeight) >= kMinRayWeight) {
-        const glm::vec3 refracted{tx[i], ty[i], tz[i]};
+      if (refracted && refractWeight > 0.0f && largest(weight * refractWeight) >= kMinRayWeight) {
         ++counters.rays.refraction;
         child.kind = Kind::Refraction;
         child.path.weight = weight * refractWeight;
-        child.path.inside = entering[i];
-        child.path.leavesSlime = !entering[i];
+        child.path.inside = enters;
+        child.path.leavesSlime = !enters;
         child.factor = ray.factor * inside * refractWeight;
-        child.ray = Ray{offsetRayOrigin(point, facing, refracted), refracted, 0.0f, kInfinity};
+        child.ray = Ray{offsetRayOrigin(point, facing, transmitted), transmitted, 0.0f, kInfinity};
         wavefront.next.push_back(child);
       }
-    } else if (!entering[i] && refracts[i] && refractWeight > 0.0f) {
+    } else if (!enters && refracted && refractWeight > 0.0f) {
       // Out of segments on the way out of the jelly: what lies beyond is the analytic floor or sky,
       // looked up with the next generation's floors (no query, no shadow, no mirror).
-      const glm::vec3 refracted{tx[i], ty[i], tz[i]};
       ++counters.rays.refraction;
       child.kind = Kind::Environment;
       child.hitKnown = true;
       child.factor = ray.factor * inside * refractWeight;
-      child.ray = Ray{offsetRayOrigin(point, facing, refracted), refracted, 0.0f, kInfinity};
+      child.ray = Ray{offsetRayOrigin(point, facing, transmitted), transmitted, 0.0f, kInfinity};
       wavefront.next.push_back(child);
     }
   }
