@@ -21,6 +21,7 @@ struct LaneMask {
   friend LaneMask operator||(LaneMask a, LaneMask b) { return {_mm256_or_ps(a.bits, b.bits)}; }
   friend LaneMask operator!(LaneMask a) { return {_mm256_xor_ps(a.bits, _mm256_castsi256_ps(_mm256_set1_epi32(-1)))}; }
   bool operator[](int i) const { return (_mm256_movemask_ps(bits) >> i) & 1; }
+  unsigned mask() const { return static_cast<unsigned>(_mm256_movemask_ps(bits)); }  // lane i: bit i
 };
 
 struct Lanes {
@@ -61,6 +62,11 @@ struct LaneMask {
   friend LaneMask operator||(LaneMask a, LaneMask b) { return combine(a, b, [](bool x, bool y) { return x || y; }); }
   friend LaneMask operator!(LaneMask a) { return combine(a, a, [](bool x, bool) { return !x; }); }
   bool operator[](int i) const { return bits[i]; }
+  unsigned mask() const {  // lane i: bit i
+    unsigned result = 0;
+    for (int i = 0; i < 8; ++i) result |= static_cast<unsigned>(bits[i]) << i;
+    return result;
+  }
   template <typename F>
   static LaneMask combine(LaneMask a, LaneMask b, F f) {
     LaneMask r;

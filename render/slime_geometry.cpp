@@ -1,47 +1,48 @@
 #include "render/slime_geometry.h"
 
+#include "render/lanes.h"
+
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
 
 namespace slime {
 namespace {
 
-// For each edge shared by two triangles: (a, b, opposite in one triangle, opposite in the other).
-std::vector<glm::u32vec4> buildEdgeQuads(const std::vector<Triangle>& triangles) {
-  std::unordered_map<std::uint64_t, glm::u32vec3> firstSide;  // edge key → (a, b, opposite)
-  std::vector<glm::u32vec4> quads;
-  firstSide.reserve(triangles.size() * 2);
-  quads.reserve(triangles.size() * 3 / 2);
-  for (const Triangle& t : triangles) {
-    const std::uint32_t corners[3] = {t.x, t.y, t.z};
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t a = corners[k], b = corners[(k + 1) % 3], opposite = corners[(k + 2) % 3];
-      const std::uint64_t key = (static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
-      const auto found = firstSide.find(key);
-      if (found == firstSide.end()) {
-        firstSide.emplace(key, glm::u32vec3(a, b, opposite));
-      } else {
-        quads.emplace_back(found->second.x, found->second.y, found->second.z, opposite);
-        firstSide.erase(found);
-      }
-    }
+constexpr std::size_t kClusterSize = 16;  // vertices per cluster at most: two lanes' worth
+
+// Splits vertices [begin, end) of `order` at the median of their longest extent until each part holds
+// kClusterSize or fewer, appending each part's start to `begins`.
+void splitClusters(const std::vector<glm::vec3>& positions, std::vector<std::uint32_t>& order, std::size_t begin,
+                   std::size_t end, std::vector<std::uint32_t>& begins) {
+  if (end - begin <= kClusterSize) {
+    begins.push_back(static_cast<std::uint32_t>(begin));
+    return;
   }
-  // An edge with one triangle (an open mesh) leaves the surface non-closed: never call it convex.
-  if (!firstSide.empty()) quads.clear();
-  return quads;
+  glm::vec3 low(kInfinity), high(-kInfinity);
+  for (std::size_t i = begin; i < end; ++i) {
+    low = glm::min(low, positions[order[i]]);
+    high = glm::max(high, positions[order[i]]);
+  }
+  const glm::vec3 extent = high - low;
+  const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+  const std::size_t middle = begin + (end - begin) / 2;
+  std::nth_element(order.begin() + static_cast<std::ptrdiff_t>(begin), order.begin() + static_cast<std::ptrdiff_t>(middle),
+                   order.begin() + static_cast<std::ptrdiff_t>(end),
+                   [&](std::uint32_t a, std::uint32_t b) { return positions[a][axis] < positions[b][axis]; });
+  splitClusters(positions, order, begin, middle, begins);
+  splitClusters(positions, order, middle, end, begins);
 }
 
 }  // namespace
 
 bool SlimeGeometry::update(const std::vector<glm::dvec3>& newPositions, const std::vector<Triangle>& newTriangles) {
   const bool topologyChanged = newTriangles != triangles || newPositions.size() != vertexCount();
-  if (topologyChanged) {
-    triangles = newTriangles;
-    edgeQuads = buildEdgeQuads(triangles);
-  }
+  if (topologyChanged) triangles = newTriangles;
   positions.resize(newPositions.size() + 1);
   glm::vec3 low(kInfinity), high(-kInfinity);
   for (std::size_t i = 0; i < newPositions.size(); ++i) {
@@ -52,6 +53,7 @@ bool SlimeGeometry::update(const std::vector<glm::dvec3>& newPositions, const st
     high = glm::max(high, positions[i]);
   }
   positions.back() = glm::vec3(0.0f);
+  if (topologyChanged) buildClusters();
 
   // Vertex normals: the sum of the faces' cross products, i.e. area-weighted face normals.
   // The faces' own unit normals are kept too: a hit then costs a lookup, not three vertex loads.
@@ -99,18 +101,91 @@ bool SlimeGeometry::update(const std::vector<glm::dvec3>& newPositions, const st
     boundRadius = sphereRadius;
   }
 
-  // Convex when, across every edge, the far vertex of one triangle lies below the other's plane.
-  const float tolerance = kConvexTolerance * boundRadius;
-  convex = !edgeQuads.empty() && boundRadius > 0.0f;
-  for (std::size_t i = 0; convex && i < edgeQuads.size(); ++i) {
-    const glm::u32vec4& q = edgeQuads[i];
-    const glm::vec3 a = positions[q.x], b = positions[q.y], c = positions[q.z], far = positions[q.w];
-    const glm::vec3 normal = glm::cross(b - a, c - a);  // outward for the triangle (a, b, c)
-    const float length = glm::length(normal);
-    if (!(length > 0.0f)) continue;  // a collapsed triangle says nothing
-    if (glm::dot(far - a, normal) > tolerance * length) convex = false;
-  }
+  findSupportingTriangles();
   return topologyChanged;
+}
+
+void SlimeGeometry::buildClusters() {
+  const std::size_t count = vertexCount();
+  clusterOrder.resize(count);
+  for (std::size_t i = 0; i < count; ++i) clusterOrder[i] = static_cast<std::uint32_t>(i);
+  clusterBegin.clear();
+  if (count > 0) splitClusters(positions, clusterOrder, 0, count, clusterBegin);
+  clusterBegin.push_back(static_cast<std::uint32_t>(count));
+}
+
+void SlimeGeometry::findSupportingTriangles() {
+  supporting.assign(triangles.size(), 0);
+  convex = false;
+  if (vertexCount() == 0 || clusterBegin.size() < 2 || !(boundRadius > 0.0f)) return;
+  // Each cluster's bounding sphere (centroid, farthest member), and each group of 8 consecutive
+  // clusters' (neighbours in the median splits), padded with empty spheres far below every plane
+  // (radius −∞) to whole lanes.
+  const std::size_t clusters = clusterBegin.size() - 1, padded = (clusters + 63) / 64 * 64, groups = padded / 8;
+  for (auto& values : clusterSpheres) values.assign(padded, 0.0f);
+  for (auto& values : groupSpheres) values.assign((groups + 7) / 8 * 8, 0.0f);
+  std::fill(clusterSpheres[3].begin() + static_cast<std::ptrdiff_t>(clusters), clusterSpheres[3].end(), -kInfinity);
+  std::fill(groupSpheres[3].begin(), groupSpheres[3].end(), -kInfinity);
+  for (std::size_t k = 0; k < clusters; ++k) {
+    glm::vec3 centre(0.0f);
+    for (std::uint32_t i = clusterBegin[k]; i < clusterBegin[k + 1]; ++i) centre += positions[clusterOrder[i]];
+    centre /= static_cast<float>(clusterBegin[k + 1] - clusterBegin[k]);
+    float radius2 = 0.0f;
+    for (std::uint32_t i = clusterBegin[k]; i < clusterBegin[k + 1]; ++i) {
+      const glm::vec3 d = positions[clusterOrder[i]] - centre;
+      radius2 = std::max(radius2, glm::dot(d, d));
+    }
+    for (int c = 0; c < 3; ++c) clusterSpheres[c][k] = centre[c];
+    clusterSpheres[3][k] = std::sqrt(radius2);
+  }
+  // The vertices cluster by cluster in kClusterSize slots (two lanes' worth), the empty slots NaN
+  // (never above a plane).
+  for (auto& values : clusterVertices) values.assign(clusters * kClusterSize, std::nanf(""));
+  for (std::size_t k = 0; k < clusters; ++k)
+    for (std::uint32_t i = clusterBegin[k]; i < clusterBegin[k + 1]; ++i)
+      for (int c = 0; c < 3; ++c) clusterVertices[c][k * kClusterSize + (i - clusterBegin[k])] = positions[clusterOrder[i]][c];
+  for (std::size_t g = 0; g * 8 < clusters; ++g) {
+    const std::size_t first = g * 8, last = std::min(clusters, first + 8);
+    glm::vec3 centre(0.0f);
+    for (std::size_t k = first; k < last; ++k) centre += glm::vec3(clusterSpheres[0][k], clusterSpheres[1][k], clusterSpheres[2][k]);
+    centre /= static_cast<float>(last - first);
+    float radius = 0.0f;
+    for (std::size_t k = first; k < last; ++k)
+      radius = std::max(radius, glm::length(glm::vec3(clusterSpheres[0][k], clusterSpheres[1][k], clusterSpheres[2][k]) - centre) +
+                                    clusterSpheres[3][k]);
+    for (int c = 0; c < 3; ++c) groupSpheres[c][g] = centre[c];
+    groupSpheres[3][g] = radius * 1.0001f + 1e-7f;  // rounding: the group's sphere must hold its clusters'
+  }
+  // A triangle supports the slime when no vertex rises more than the tolerance above its plane:
+  // groups, then clusters, whose sphere lies wholly below are passed over, eight at a time.
+  const float tolerance = kConvexTolerance * boundRadius;
+  const auto above = [](const std::vector<float>* spheres, std::size_t k, const glm::vec3& n, float level) {
+    const Lanes height = Lanes::load(&spheres[0][k]) * n.x + Lanes::load(&spheres[1][k]) * n.y +
+                         Lanes::load(&spheres[2][k]) * n.z + Lanes::load(&spheres[3][k]);
+    return (height > level).mask();
+  };
+  const auto supportsSlime = [&](std::size_t f) {
+    const glm::vec3 n = faceNormals[f];
+    const float level = glm::dot(n, positions[triangles[f].x]) + tolerance;  // the plane, lifted by the tolerance
+    for (std::size_t g = 0; g < groupSpheres[0].size(); g += 8) {
+      for (unsigned groupBits = above(groupSpheres, g, n, level); groupBits != 0; groupBits &= groupBits - 1) {
+        const std::size_t group = g + static_cast<std::size_t>(__builtin_ctz(groupBits));
+        for (unsigned bits = above(clusterSpheres, 8 * group, n, level); bits != 0; bits &= bits - 1) {
+          const std::size_t first = (8 * group + static_cast<std::size_t>(__builtin_ctz(bits))) * kClusterSize;
+          for (std::size_t i = first; i < first + kClusterSize; i += 8) {
+            const Lanes height = Lanes::load(&clusterVertices[0][i]) * n.x + Lanes::load(&clusterVertices[1][i]) * n.y +
+                                 Lanes::load(&clusterVertices[2][i]) * n.z;
+            if ((height > level).mask() != 0) return false;
+          }
+        }
+      }
+    }
+    return true;
+  };
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), 256), [&](const tbb::blocked_range<std::size_t>& range) {
+    for (std::size_t f = range.begin(); f < range.end(); ++f) supporting[f] = supportsSlime(f) ? 1 : 0;
+  });
+  convex = std::all_of(supporting.begin(), supporting.end(), [](std::uint8_t s) { return s != 0; });
 }
 
 void SlimeGeometry::setAnalyticSphere(bool enabled, float radius) {

@@ -8,10 +8,10 @@
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
-#include <glm/vec4.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 namespace slime {
@@ -27,25 +27,44 @@ struct SlimeGeometry {
   float meshBoundRadius = 0.0f;
   bool sphereRequested = false;      // slime.shape == sphere
   bool analyticSphere = false;       // ... and there is a slime: the exact sphere below replaces the mesh
-  // Every edge's dihedral angle is convex (within kConvexTolerance): a ray leaving the outside of
-  // the surface cannot meet it again, so such rays need no intersection query (see whitted_tracer.h).
+  // Per triangle: its plane supports the slime, i.e. no vertex stands above it (within
+  // kConvexTolerance). A ray that leaves the surface through such a triangle heads into the half
+  // space above its plane, where there is no slime: it cannot meet the slime again and needs no
+  // query (see whitted_tracer.h). A resting slime has a few dozen triangles that do not support it
+  // (the facets of its tetrahedra), a pulled or pressed one whole regions; every other one still does.
+  std::vector<std::uint8_t> supporting;
+  // Every triangle supports the slime: the slime is convex (a straight line crosses it once at most).
   bool convex = false;
-  // Per unique edge: the two vertices opposite it in its two triangles, and the edge's own two.
-  std::vector<glm::u32vec4> edgeQuads;
+  // The vertices in small spatial clusters (median splits of the first frame of a topology), and each
+  // cluster's bounding sphere this frame: a triangle's plane is tested against a cluster's sphere
+  // before its vertices.
+  std::vector<std::uint32_t> clusterOrder;   // vertex indices, cluster after cluster
+  std::vector<std::uint32_t> clusterBegin;   // cluster k holds clusterOrder[clusterBegin[k], clusterBegin[k + 1])
+  std::vector<float> clusterSpheres[4];      // centre x, y, z and radius per cluster, padded to a multiple of 64
+  std::vector<float> groupSpheres[4];        // the same for each 8 consecutive clusters, padded to a multiple of 8
+  std::vector<float> clusterVertices[3];     // x, y, z of the vertices, 16 slots a cluster (NaN where empty)
   glm::vec3 sphereCenter{0.0f};
   float sphereRadius = 0.0f;
 
-  // A vertex may stand this far (relative to the bounding radius) above the plane of a neighbouring
-  // triangle and still count as convex: 2e-3·R is 80 µm on the default slime, a quarter of a pixel
+  // A vertex may stand this far (relative to the bounding radius) above the plane of a triangle and
+  // still count as below it: 2e-3·R is 80 µm on the default slime, a quarter of a pixel
   // of the default view; dents shallower than that are not seen in reflections anyway.
   static constexpr float kConvexTolerance = 2e-3f;
 
   bool isConvex() const { return analyticSphere || convex; }
+  // Whether triangle `primitive`'s plane supports the slime (always, for the analytic sphere).
+  bool supports(std::uint32_t primitive) const {
+    return analyticSphere || convex || (primitive < supporting.size() && supporting[primitive] != 0);
+  }
 
   std::size_t vertexCount() const { return positions.empty() ? 0 : positions.size() - 1; }
 
   // Copies the physics state; recomputes normals and bounds. Returns true when the topology changed.
   bool update(const std::vector<glm::dvec3>& newPositions, const std::vector<Triangle>& newTriangles);
+
+  // The clusters of a new topology (buildClusters), and this frame's supporting triangles and convexity.
+  void buildClusters();
+  void findSupportingTriangles();
 
   // Makes the analytic sphere (centre of the vertices, `radius`) the slime, or the mesh again.
   void setAnalyticSphere(bool enabled, float radius);

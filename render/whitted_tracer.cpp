@@ -172,8 +172,9 @@ void WhittedTracer::findHits(std::vector<PendingRay>& rays, TraceCounters& count
     if (ray.hitKnown) continue;
     ray.hitKnown = true;
     ray.hit = SlimeHit{};
-    // A ray leaving a convex slime's outside cannot meet it again; others only if they reach its bounds.
-    if ((ray.path.leavesSlime && convex) || !geometry_.mayHit(ray.ray)) continue;
+    // A ray leaving through a supporting triangle cannot meet the slime again; others only if they
+    // reach its bounds.
+    if (ray.path.leavesSlime || !geometry_.mayHit(ray.ray)) continue;
     packet[size] = ray.ray;
     const float beyond = ray.path.inside && convex ? geometry_.boundExitDistance(ray.ray) + kReverseMargin : 0.0f;
     if (beyond > 0.0f && beyond < kMaxReverseDistance) {
@@ -358,7 +359,8 @@ void WhittedTracer::shadeSlimes8(const PendingRay* const* pending, int count, Wa
         const float lobe = cosine <= 0.0f || p.shininess * (1.0f - cosine) > 8.5f ? 0.0f : std::pow(cosine, p.shininess);
         const glm::vec3 toLight{lanes[6][i], lanes[7][i], lanes[8][i]};
         const glm::vec3 light = ray.factor * p.lightColor * (p.diffuse * lanes[12][i] * p.slimeColor + p.specular * lobe);
-        if (p.shadows) addLight(offsetRayOrigin(point, facing, toLight), light, ray.pixel, geometry_.isConvex(), wavefront, counters, colors);
+        // Towards the light out of a supporting triangle, nothing of the slime is in the way.
+        if (p.shadows) addLight(offsetRayOrigin(point, facing, toLight), light, ray.pixel, geometry_.supports(ray.hit.primitive), wavefront, counters, colors);
         else pixel += light;
       }
     }
@@ -385,7 +387,7 @@ void WhittedTracer::shadeSlimes8(const PendingRay* const* pending, int count, Wa
         child.kind = Kind::Reflection;
         child.path.weight = weight * reflectWeight;
         child.path.inside = !enters;
-        child.path.leavesSlime = enters;
+        child.path.leavesSlime = enters && geometry_.supports(ray.hit.primitive);
         child.factor = ray.factor * inside * reflectWeight;
         child.ray = Ray{offsetRayOrigin(point, facing, reflected), reflected, 0.0f, kInfinity};
         wavefront.next.push_back(child);
@@ -395,7 +397,7 @@ void WhittedTracer::shadeSlimes8(const PendingRay* const* pending, int count, Wa
         child.kind = Kind::Refraction;
         child.path.weight = weight * refractWeight;
         child.path.inside = enters;
-        child.path.leavesSlime = !enters;
+        child.path.leavesSlime = !enters && geometry_.supports(ray.hit.primitive);
         child.factor = ray.factor * inside * refractWeight;
         child.ray = Ray{offsetRayOrigin(point, facing, transmitted), transmitted, 0.0f, kInfinity};
         wavefront.next.push_back(child);
@@ -738,7 +740,7 @@ bool WhittedTracer::crossShadowSurface(Ray& ray, const SlimeHit& hit, glm::vec3&
     transmittance = glm::vec3(0.0f);
     return false;
   }
-  if (!entering && geometry_.isConvex()) return false;  // out of a convex slime for good
+  if (!entering && geometry_.supports(hit.primitive)) return false;  // out through a supporting triangle: for good
   ray.origin = offsetRayOrigin(hitPoint, outward, ray.direction);
   ray.tFar = std::max(0.0f, ray.tFar - hit.t);
   return true;

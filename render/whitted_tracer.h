@@ -1,7 +1,8 @@
 // Whitted ray tracing (SPEC §4) shared by both back-ends: only SlimeIntersector differs. The floor
 // z = 0 and the sky are analytic, so a ray is tested against the slime only when it can reach the
-// slime's bounding sphere; every other ray costs a plane test or nothing. When the slime is convex
-// (SlimeGeometry::isConvex) a ray leaving its outside cannot meet it again and is not tested either.
+// slime's bounding sphere; every other ray costs a plane test or nothing. A ray leaving the slime
+// through a triangle whose plane has the whole slime below it (SlimeGeometry::supports) cannot meet
+// it again and is not tested either.
 //
 // At a slime surface: I = local Phong + w_r I_reflected + w_t I_refracted, with
 //   fresnel mode: w_r = F (dielectric Fresnel), w_t = (1 − F)·k_t entering, (1 − F) leaving;
@@ -77,7 +78,7 @@ class WhittedTracer {
     glm::vec3 weight{1.0f};     // product of the optical factors so far (decides whether a ray is worth tracing)
     float travelled = 0.0f;     // distance from the eye to the ray origin (footprint cone)
     bool inside = false;        // the ray runs inside the slime
-    bool leavesSlime = false;   // the ray starts on the slime's surface heading outwards
+    bool leavesSlime = false;   // the ray leaves the slime's surface outwards through a supporting triangle
   };
   // A ray of the wavefront: its radiance times `factor` adds to pixel `pixel` of the packet.
   struct PendingRay {

@@ -3,13 +3,13 @@
 #include "app/bench/bench_embree_replay.h"
 #include "app/bench/bench_ray_log.h"
 #include "app/bench/bench_timing.h"
-#include "core/scenario.h"
 #include "core/simulation.h"
 
 #include <glm/common.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -18,39 +18,11 @@ namespace {
 
 using nlohmann::json;
 
-constexpr double kFrameSeconds = 1.0 / 60.0;  // one displayed frame
-constexpr double kSettleSeconds = 0.4;        // the ball lands and settles before the grab
+constexpr double kFrameSeconds = kStretchFrameSeconds;  // one displayed frame
+constexpr double kSettleSeconds = kStretchSettleSeconds;  // the ball lands and settles before the grab
 constexpr double kStretchSeconds = 0.3;       // the top is pulled up over this time...
 constexpr double kHoldSeconds = 0.1;          // ...then held
 constexpr double kStretchHeight = 0.05;       // m, the pull (more than half the ball's diameter)
-
-// Positions at every displayed frame of a drop, settle and grab-and-stretch at the top.
-std::vector<std::vector<glm::dvec3>> stretchTrajectory(Settings settings, std::vector<Triangle>& triangles) {
-  const double radius = settings.slime.radius;
-  const glm::dvec3 centre{settings.slime.position.x, settings.slime.position.y, radius};
-  settings.slime.position = centre + glm::dvec3(0.0, 0.0, 0.005);
-  const glm::dvec3 top = centre + glm::dvec3(0.0, 0.0, radius);
-  const json events = {
-      {"events",
-       {{{"t", kSettleSeconds}, {"grab", {{"point", {top.x, top.y, top.z}}, {"radius", 0.6 * radius}}}},
-        {{"t", kSettleSeconds},
-         {"drag", {{"to", {top.x, top.y, top.z + kStretchHeight}}, {"duration", kStretchSeconds}}}}}}};
-  ScenarioPlayer player(parseScenario(events, "bench stretch"));
-  Simulation simulation(settings);
-  triangles = simulation.triangles();
-  std::vector<std::vector<glm::dvec3>> frames{simulation.positions()};
-  const double end = kSettleSeconds + kStretchSeconds + kHoldSeconds;
-  double nextFrame = kFrameSeconds;
-  while (simulation.time() < end) {
-    player.advanceTo(simulation.time(), simulation, settings);
-    simulation.step();
-    if (simulation.time() + 1e-12 >= nextFrame) {
-      frames.push_back(simulation.positions());
-      nextFrame += kFrameSeconds;
-    }
-  }
-  return frames;
-}
 
 // Bounding box extents (height / width) say how far the stretched slime is from round.
 double aspectOf(const std::vector<glm::dvec3>& positions) {
@@ -72,6 +44,37 @@ double medianReplayMs(const EmbreeReplay& replay, const RayLog& log, int threads
 
 }  // namespace
 
+void stretchTrajectory(Settings settings, std::vector<std::vector<glm::dvec3>>& frames, std::vector<Triangle>& triangles) {
+  const double radius = settings.slime.radius;
+  settings.slime.position = glm::dvec3(settings.slime.position.x, settings.slime.position.y, radius + 0.005);
+  Simulation simulation(settings);
+  triangles = simulation.triangles();
+  frames.assign(1, simulation.positions());
+  double nextFrame = kFrameSeconds;
+  const auto runUntil = [&](double end, const auto& beforeStep) {
+    while (simulation.time() < end - 1e-12) {
+      beforeStep();
+      simulation.step();
+      if (simulation.time() + 1e-12 >= nextFrame) {
+        frames.push_back(simulation.positions());
+        nextFrame += kFrameSeconds;
+      }
+    }
+  };
+  runUntil(kSettleSeconds, [] {});
+  // The grab takes the top of the slime as it has settled (a sagging slime's top is well below the
+  // ball's), and the hand rises steadily, then holds.
+  const std::vector<glm::dvec3>& settled = simulation.positions();
+  const glm::dvec3 top = *std::max_element(settled.begin(), settled.end(),
+                                           [](const glm::dvec3& a, const glm::dvec3& b) { return a.z < b.z; });
+  if (!simulation.grab(top, 0.6 * radius)) throw std::runtime_error("bench stretch: the grab at the slime's top found no surface");
+  const double start = simulation.time();
+  runUntil(kSettleSeconds + kStretchSeconds + kHoldSeconds, [&] {
+    const double pulled = std::min(1.0, (simulation.time() - start) / kStretchSeconds);
+    simulation.dragTo(top + glm::dvec3(0.0, 0.0, pulled * kStretchHeight));
+  });
+}
+
 CsvTable makeBvhTable() {
   return CsvTable{{"level", "faces", "method", "build_ms", "update_ms", "update_ms_max", "trace_round_ms",
                    "trace_deformed_ms", "trace_deformed_over_high"},
@@ -85,7 +88,8 @@ json runBvhBench(const Settings& baseSettings, const BvhBenchOptions& options, B
   const std::string label = "bvh level " + std::to_string(options.level);
   std::vector<Triangle> triangles;
   progress.advance(0.0, label + ": simulating the stretch");
-  const std::vector<std::vector<glm::dvec3>> frames = stretchTrajectory(settings, triangles);
+  std::vector<std::vector<glm::dvec3>> frames;
+  stretchTrajectory(settings, frames, triangles);
   progress.advance(10.0, label + ": recording rays");
   const std::vector<glm::dvec3>& round = frames.front();
   const std::vector<glm::dvec3>& stretched = frames.back();

@@ -7,9 +7,14 @@
 
 #include "app/bench/bench_progress.h"
 #include "app/bench/bench_report.h"
+#include "core/icosphere.h"
 #include "core/settings.h"
 
+#include <glm/vec3.hpp>
+
 #include <nlohmann/json.hpp>
+
+#include <vector>
 
 namespace slime {
 
@@ -19,6 +24,14 @@ struct BvhBenchOptions {
   int replays = 10;  // timed replays of the frame's queries per method
   int threads = 0;   // 0: all cores
 };
+
+// The default slime handled as a person does: dropped from just above the floor, landed and settled
+// for kStretchSettleSeconds, then grabbed at its top and pulled up 5 cm over 0.3 s and held 0.1 s. Its
+// drawn surface at every displayed frame, kStretchFrameSeconds apart (frame 0: the start), into the
+// positions of `frames`; its triangles into `triangles`.
+constexpr double kStretchFrameSeconds = 1.0 / 60.0;
+constexpr double kStretchSettleSeconds = 0.4;
+void stretchTrajectory(Settings settings, std::vector<std::vector<glm::dvec3>>& frames, std::vector<Triangle>& triangles);
 
 // One JSON entry per update method; also appends rows to `table` (columns set by makeBvhTable).
 nlohmann::json runBvhBench(const Settings& settings, const BvhBenchOptions& options, BenchProgress& progress,

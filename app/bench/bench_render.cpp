@@ -44,8 +44,8 @@ int faceCount(int level) { return 20 << (2 * level); }
 // Still: the view of a person watching or dragging the slime (the renderer reuses what the slime
 // cannot change). Moving: the camera turns by a thousandth of a degree every frame, as when orbiting,
 // so every pixel is traced every frame. Deforming: the camera moves as in Moving and the slime takes
-// one of two pulled-up shapes in turn (deformedSlime), as while a person drags it: every pixel is
-// traced and the BVH refitted every frame.
+// the plan's shapes in turn (two frames of the physics pulling it up by its top), as while a person
+// drags it: every pixel is traced and the BVH refitted every frame.
 enum class CameraMotion { Still, Moving, Deforming };
 
 struct FramePlan {
@@ -54,6 +54,8 @@ struct FramePlan {
   int minFrames = 1;       // timed frames at least, whatever the budget
   double budgetMs = 0.0;   // stop once the timed frames took this long (0: no budget)
   CameraMotion motion = CameraMotion::Still;
+  // Deforming: the shapes the frames take in turn (without them, the still mesh every frame).
+  const std::vector<TriangleMesh>* shapes = nullptr;
 };
 
 struct FrameTiming {
@@ -62,22 +64,8 @@ struct FrameTiming {
   double refitMs = 0.0;
 };
 
-// The two shapes of the deforming frames (even and odd frames): the top lifted by 10 % and 12 % of the radius.
-constexpr double kDeformLifts[2] = {0.10, 0.12};
-
-// The resting slime with its top pulled up by `lift` (metres at the apex), as a grab lifts it: each
-// vertex of the upper half rises by lift·s², s its height above the centre over the radius.
-TriangleMesh deformedSlime(const TriangleMesh& resting, double radius, double lift) {
-  TriangleMesh mesh = resting;
-  double centre = 0.0;
-  for (const glm::dvec3& p : resting.positions) centre += p.z;
-  centre /= static_cast<double>(std::max<std::size_t>(1, resting.positions.size()));
-  for (glm::dvec3& p : mesh.positions) {
-    const double s = std::clamp((p.z - centre) / radius, 0.0, 1.0);
-    p.z += lift * s * s;
-  }
-  return mesh;
-}
+// The headline's deforming frames: the slime this long into stretchTrajectory (0.2 s into the pull).
+constexpr double kHeadlinePullSeconds = kStretchSettleSeconds + 0.2;
 
 // The plan's frames, updateSlime every frame as the viewer does. A deforming frame costs its refit too
 // (the viewer refits before it traces); the others as before.
@@ -89,9 +77,8 @@ FrameTiming timeFrames(Renderer& renderer, const Settings& stillSettings, const 
   std::vector<double> samples, refits;
   FrameTiming timing;
   double spent = 0.0;
-  std::vector<TriangleMesh> shapes;
-  if (plan.motion == CameraMotion::Deforming)
-    for (double lift : kDeformLifts) shapes.push_back(deformedSlime(mesh, settings.slime.radius, lift * settings.slime.radius));
+  const std::vector<TriangleMesh> shapes =
+      plan.motion == CameraMotion::Deforming && plan.shapes ? *plan.shapes : std::vector<TriangleMesh>{};
   for (int frame = 0; frame < plan.warmup + plan.frames; ++frame) {
     if (plan.motion != CameraMotion::Still) settings.camera.yaw = stillSettings.camera.yaw + (frame % 2 ? 1e-3 : -1e-3);
     const TriangleMesh& shape = shapes.empty() ? mesh : shapes[frame % 2];
@@ -214,13 +201,24 @@ json measureHeadline(const Settings& base, int width, int height, int threads, c
   settings.camera.height = height;
   settings.render.threads = threads;
   settings.slime.level = options.headlineLevel;
-  const TriangleMesh mesh = restingSlime(settings.slime, options.headlineLevel);
   const std::string what = "headline " + std::to_string(width) + "x" + std::to_string(height);
+  // The slime as the viewer shows it, from the physics: landed (the still and moving frames) and
+  // two frames of it being pulled up by its top (the deforming frames, 1/60 s apart).
+  std::vector<std::vector<glm::dvec3>> trajectory;
+  TriangleMesh mesh;
+  stretchTrajectory(settings, trajectory, mesh.triangles);
+  const auto frameAt = [&](double seconds) {
+    const auto index = std::min(trajectory.size() - 1, static_cast<std::size_t>(std::lround(seconds / kStretchFrameSeconds)));
+    return TriangleMesh{trajectory[index], mesh.triangles};
+  };
+  mesh = frameAt(kStretchSettleSeconds);
+  const std::vector<TriangleMesh> pulled{frameAt(kHeadlinePullSeconds), frameAt(kHeadlinePullSeconds + kStretchFrameSeconds)};
   const auto plan = [&](CameraMotion motion) {
     FramePlan p;
     p.warmup = options.warmup;
     p.frames = options.frames;
     p.motion = motion;
+    if (motion == CameraMotion::Deforming) p.shapes = &pulled;
     return p;
   };
   Renderer stillRenderer(settings);
@@ -234,7 +232,7 @@ json measureHeadline(const Settings& base, int width, int height, int threads, c
 
   Settings view = settings;
   view.camera.yaw = settings.camera.yaw - 1e-3;  // timeFrames' even frames
-  const TriangleMesh shape = deformedSlime(mesh, settings.slime.radius, kDeformLifts[0] * settings.slime.radius);
+  const TriangleMesh& shape = pulled[0];
   const RayLog log = recordSlimeQueries(view, shape.positions, shape.triangles, width, height);
   EmbreeReplay replay(threads, BvhUpdate::Refit);
   replay.build(shape.positions, shape.triangles);
