@@ -33,6 +33,9 @@ class Stopwatch {
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
+// ScenarioPlayer fires the events due within this of the simulated time (core/scenario.cpp).
+constexpr double kScenarioTimeTolerance = 1e-9;
+
 }  // namespace
 
 Viewer::Viewer(ViewerBackend& backend, const Settings& settings, ViewerOptions options)
@@ -75,24 +78,25 @@ bool Viewer::frame() {
   // 28.5 fps with the physics beside the trace, 29.6 beside the panels). So that nothing is shared
   // meanwhile, the steps hand back what they did (PhysicsOutcome) and the panels' requests wait;
   // both are applied after the join. A scenario's "set" events edit the settings the trace reads, so
-  // with a scenario playing the steps run first, alone.
+  // while one is still to come the steps run first, alone; a scenario's grabs and drags run beside
+  // the panels, as the mouse's do.
   refitSlime();
   const glm::dvec3 target = grabTargetFor();
   PanelRequests requests;
-  if (scenario_ && !scenario_->finished()) {
+  if (scenarioSetPending()) {
     applyPhysicsOutcome(stepPhysics(input.elapsedSeconds, target));
     refitSlime();
     traceImage();
     uploadImage();
-    requests = drawPanelsAndOverlay(grabbedCentre());
+    requests = drawPanelsAndOverlay(grabMarks());
     present();
   } else {
     traceImage();
     uploadImage();
-    const glm::dvec3 held = grabbedCentre();
+    const GrabMarks marks = grabMarks();
     PhysicsOutcome outcome;
     std::thread physics([this, &input, &target, &outcome] { outcome = stepPhysics(input.elapsedSeconds, target); });
-    requests = drawPanelsAndOverlay(held);
+    requests = drawPanelsAndOverlay(marks);
     present();
     physics.join();
     applyPhysicsOutcome(outcome);
@@ -220,10 +224,7 @@ Viewer::PhysicsOutcome Viewer::stepPhysics(double wallSeconds, const glm::dvec3&
       const double progress = static_cast<double>(done + 1) / steps;
       simulation_.dragTo(grabTargetDrawn_ + (target - grabTargetDrawn_) * progress);
     }
-    if (scenario_ && !scenario_->finished()) {
-      scenario_->advanceTo(simulation_.time(), simulation_, settings_);
-      sceneChanged_ = true;  // a "set" event may have changed what is drawn
-    }
+    if (scenario_ && !scenario_->finished()) playScenarioAt(simulation_.time(), outcome);
     simulation_.step();
     if (physicsTime.milliseconds() > kPhysicsBudgetMs) {  // out of time: give up the rest of the backlog
       clock_.reset();
@@ -234,16 +235,47 @@ Viewer::PhysicsOutcome Viewer::stepPhysics(double wallSeconds, const glm::dvec3&
   outcome.steps = done;
   if (grab_.active() && done > 0) grabTargetDrawn_ = target;
   if (done > 0) outcome.metrics = simulation_.metrics();
+  outcome.grabbing = simulation_.grabbing();
   outcome.milliseconds = physicsTime.milliseconds();
   return outcome;
+}
+
+// Fires the scenario's events due at `time` and notes what the report counts: the grabs and presses
+// that took hold (a grab always finds the surface point nearest to its point; a press that ends at
+// once never holds), and "set" events, which change what is drawn.
+void Viewer::playScenarioAt(double time, PhysicsOutcome& outcome) {
+  scenario_->advanceTo(time, simulation_, settings_);
+  const std::vector<ScenarioEvent>& events = options_.scenario->events;  // the player's, in its order
+  for (; scenarioEventsFired_ < events.size(); ++scenarioEventsFired_) {
+    const ScenarioEvent& event = events[scenarioEventsFired_];
+    if (event.time > time + kScenarioTimeTolerance) break;
+    const ScenarioEvent::Kind kind = event.kind;
+    if (kind == ScenarioEvent::Kind::Set) outcome.settingsEdited = true;
+    if ((kind == ScenarioEvent::Kind::Grab || kind == ScenarioEvent::Kind::Press) && simulation_.grabbing()) {
+      ++outcome.scenarioGrabs;
+      outcome.heightAtGrab = simulation_.metrics().height;
+    }
+  }
+}
+
+bool Viewer::scenarioSetPending() const {
+  if (!options_.scenario) return false;
+  const std::vector<ScenarioEvent>& events = options_.scenario->events;
+  return std::any_of(events.begin() + static_cast<std::ptrdiff_t>(scenarioEventsFired_), events.end(),
+                     [](const ScenarioEvent& event) { return event.kind == ScenarioEvent::Kind::Set; });
 }
 
 void Viewer::applyPhysicsOutcome(const PhysicsOutcome& outcome) {
   if (outcome.steps > 0) {
     slimeMoved_ = true;
     metrics_ = outcome.metrics;
-    if (grab_.active()) peakHeightWhileGrabbing_ = std::max(peakHeightWhileGrabbing_, metrics_.height);
+    if (outcome.grabbing) peakHeightWhileGrabbing_ = std::max(peakHeightWhileGrabbing_, metrics_.height);
   }
+  if (outcome.scenarioGrabs > 0) {
+    grabCount_ += outcome.scenarioGrabs;
+    heightAtGrab_ = outcome.heightAtGrab;
+  }
+  if (outcome.settingsEdited) sceneChanged_ = true;
   stats_.physicsSteps = outcome.steps;
   stats_.stages.physics = outcome.milliseconds;
   stats_.recordSimulatedTime(outcome.steps * settings_.sim.dt, outcome.wallSeconds);
@@ -330,7 +362,18 @@ void Viewer::uploadImage() {
 
 // --- panels ----------------------------------------------------------------------------------------
 
-PanelRequests Viewer::drawPanelsAndOverlay(const glm::dvec3& heldCentre) {
+Viewer::GrabMarks Viewer::grabMarks() const {
+  GrabMarks marks;
+  const glm::ivec2 size = viewSize();
+  if (grab_.active() && size.x > 0 && size.y > 0)
+    marks.target = grab_.target(makeCamera(settings_.camera, size.x, size.y), size);
+  else if (simulation_.grabbing())  // a scenario's grab
+    marks.target = simulation_.grabTarget();
+  if (marks.target) marks.held = grabbedCentre();
+  return marks;
+}
+
+PanelRequests Viewer::drawPanelsAndOverlay(const GrabMarks& marks) {
   const Stopwatch uiTime;
   // The panels edit a draft; while an invalid edit is shown the draft keeps it, but the camera is
   // always the live one.
@@ -347,11 +390,11 @@ PanelRequests Viewer::drawPanelsAndOverlay(const glm::dvec3& heldCentre) {
 
   // The grab spot: a ring at the grab target, a line from where the grabbed points are.
   const glm::ivec2 size = viewSize();
-  if (grab_.active() && size.x > 0 && size.y > 0) {
+  if (marks.target && size.x > 0 && size.y > 0) {
     const Camera camera = makeCamera(settings_.camera, size.x, size.y);
     ImDrawList* overlay = ImGui::GetForegroundDrawList();
-    const auto target = projectToWindow(camera, grab_.target(camera, size), size);
-    const auto held = projectToWindow(camera, heldCentre, size);
+    const auto target = projectToWindow(camera, *marks.target, size);
+    const auto held = projectToWindow(camera, marks.held, size);
     const float left = columnWidth_;
     if (target && held)
       overlay->AddLine(ImVec2(left + float(held->x), float(held->y)), ImVec2(left + float(target->x), float(target->y)),
@@ -554,7 +597,7 @@ void Viewer::writeReport() const {
       {"steps", simulation_.stepCount()},
       {"dropped_seconds", clock_.droppedSeconds()},
       {"grabs", grabCount_},
-      {"grabbing", grab_.active()},
+      {"grabbing", simulation_.grabbing()},
       {"height_at_grab", heightAtGrab_},
       {"peak_height_while_grabbing", peakHeightWhileGrabbing_},
       {"metrics",

@@ -80,10 +80,16 @@ class Viewer {
   struct PhysicsOutcome {
     int steps = 0;
     double milliseconds = 0.0;
-    double wallSeconds = 0.0;  // the frame time the steps were for
-    SlimeMetrics metrics;      // after the steps, if there were any
+    double wallSeconds = 0.0;     // the frame time the steps were for
+    SlimeMetrics metrics;         // after the steps, if there were any
+    bool grabbing = false;        // the slime is held (by the mouse or the scenario) after the steps
+    int scenarioGrabs = 0;        // the scenario's grabs and presses that took hold during the steps
+    double heightAtGrab = 0.0;    // the slime's height when the last of them took hold
+    bool settingsEdited = false;  // a scenario "set" event fired
   };
   PhysicsOutcome stepPhysics(double wallSeconds, const glm::dvec3& target);  // touches simulation_ only
+  void playScenarioAt(double time, PhysicsOutcome& outcome);
+  bool scenarioSetPending() const;  // a "set" event of the scenario is still to come
   void applyPhysicsOutcome(const PhysicsOutcome& outcome);
   void refitSlime();
   bool motionWouldShow() const;         // the slime moved visibly since it was last drawn
@@ -91,7 +97,13 @@ class Viewer {
   void traceImage();
   bool refineImage(glm::ivec2 size);    // traces one more sample of a still image; true if it shows
   void uploadImage();
-  PanelRequests drawPanelsAndOverlay(const glm::dvec3& heldCentre);  // reads, never edits, the slime
+  // Where the grab ring and its line go: the target and the grabbed surface, whoever holds the slime.
+  struct GrabMarks {
+    std::optional<glm::dvec3> target;  // empty when nothing is held
+    glm::dvec3 held{0.0};
+  };
+  GrabMarks grabMarks() const;
+  PanelRequests drawPanelsAndOverlay(const GrabMarks& marks);  // reads, never edits, the slime
   void applyPanelRequests(const PanelRequests& requests);
   void present();
 
@@ -136,6 +148,7 @@ class Viewer {
   FrameStats stats_;
   SlimeMetrics metrics_;
   std::optional<ScenarioPlayer> scenario_;
+  std::size_t scenarioEventsFired_ = 0;  // options_.scenario's events the player has fired so far
 
   bool quit_ = false;
   bool singleStepPending_ = false;
