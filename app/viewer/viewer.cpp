@@ -58,6 +58,7 @@ Viewer::Viewer(ViewerBackend& backend, const Settings& settings, ViewerOptions o
   ImGui_ImplOpenGL3_Init("#version 330 core");
   metrics_ = simulation_.metrics();
   columnWidth_ = panelColumnWidth(static_cast<float>(backend_.windowSize().x));
+  if (keepsFrameRecords() && options_.maxFrames > 0) frameRecords_.reserve(options_.maxFrames);
 }
 
 Viewer::~Viewer() {
@@ -102,8 +103,7 @@ bool Viewer::frame() {
     applyPhysicsOutcome(outcome);
   }
   applyPanelRequests(requests);
-  stats_.recordStages(imageTraced_);
-  stats_.recordFrame(frameTime.milliseconds());
+  finishFrame(frameTime.milliseconds());
   return !quit_;
 }
 
@@ -116,6 +116,13 @@ int Viewer::run() {
               static_cast<long long>(stats_.frames), seconds, seconds > 0.0 ? stats_.frames / seconds : 0.0,
               simulation_.time(), static_cast<long long>(simulation_.stepCount()));
   writeReport();
+  if (!options_.frameLogPath.empty()) {
+    if (!writeFrameLogCsv(frameRecords_, options_.frameLogPath)) {
+      std::fprintf(stderr, "slime view: cannot write the frame log %s\n", options_.frameLogPath.c_str());
+      return 1;
+    }
+    std::printf("slime view: wrote %s (%zu frames)\n", options_.frameLogPath.c_str(), frameRecords_.size());
+  }
   return 0;
 }
 
@@ -302,20 +309,27 @@ bool Viewer::motionWouldShow() const {
                                             settings_.camera.fov, size.y) >= kInvisibleMotionPixels;
 }
 
-glm::ivec2 Viewer::tracedImageSize() const {
+glm::ivec2 Viewer::fullImageSize() const {
   const glm::ivec2 view = viewSize(), window = backend_.windowSize();
   const glm::ivec2 full = backend_.framebufferSize();
   if (full.x <= 0 || full.y <= 0 || view.x <= 0 || window.x <= 0) return {0, 0};  // minimised: nothing to show
-  const glm::ivec2 framebuffer{full.x * view.x / window.x, full.y};
+  return {full.x * view.x / window.x, full.y};
+}
+
+glm::ivec2 Viewer::tracedImageSize() const {
+  const glm::ivec2 full = fullImageSize();
+  if (full.x <= 0) return {0, 0};
   // Full resolution while the user moves things too (issue 15); render.scale is the user's own choice.
   const double scale = settings_.render.scale;
-  return {std::max(1, static_cast<int>(std::lround(framebuffer.x * scale))),
-          std::max(1, static_cast<int>(std::lround(framebuffer.y * scale)))};
+  if (scale >= 1.0) return full;
+  return {std::max(1, static_cast<int>(std::lround(full.x * scale))),
+          std::max(1, static_cast<int>(std::lround(full.y * scale)))};
 }
 
 void Viewer::traceImage() {
   imageTraced_ = false;
   const glm::ivec2 size = tracedImageSize();
+  tracedAtFullSize_ = size == fullImageSize();
   if (size.x <= 0) return;
   const Stopwatch traceTime;
   if (!sceneChanged_ && size == glm::ivec2(image_.width, image_.height)) {  // nothing new: refine it
@@ -339,6 +353,7 @@ void Viewer::traceImage() {
   stats_.threadUse = render.traceMs > 0.0 && render.threads > 0 ? render.busyMs / (render.traceMs * render.threads) : 0.0;
   stats_.imageWidth = size.x;
   stats_.imageHeight = size.y;
+  stats_.renderScale = static_cast<double>(size.y) / fullImageSize().y;
   sceneChanged_ = false;
   imageTraced_ = true;
 }
@@ -420,6 +435,25 @@ void Viewer::applyPanelRequests(const PanelRequests& requests) {
     columnWidth_ = requests.columnWidth;
     sceneChanged_ = true;
   }
+}
+
+void Viewer::finishFrame(double frameMs) {
+  stats_.recordStages(imageTraced_, tracedAtFullSize_);
+  stats_.recordFrame(frameMs);
+  if (!keepsFrameRecords()) return;
+  FrameRecord record;
+  record.endSeconds = stats_.totalFrameMs / 1000.0;
+  record.frameMs = frameMs;
+  record.stages = stats_.stages;
+  if (!imageTraced_) record.stages.trace = record.stages.refit = 0.0;
+  record.traced = imageTraced_;
+  record.fullResolution = imageTraced_ && tracedAtFullSize_;
+  record.imageWidth = image_.width;
+  record.imageHeight = image_.height;
+  record.scale = stats_.renderScale;
+  record.grabbed = simulation_.grabbing();
+  record.simulatedSeconds = simulation_.time();
+  frameRecords_.push_back(record);
 }
 
 namespace {
@@ -579,6 +613,22 @@ glm::dvec3 Viewer::slimeCentre() const {
   return sum / static_cast<double>(positions.size());
 }
 
+namespace {
+
+nlohmann::json summaryJson(const FrameSummary& summary) {
+  const StageTimes& stages = summary.meanStages;
+  return {{"frames", summary.frames},
+          {"mean_fps", summary.meanFps},
+          {"median_frame_ms", summary.medianFrameMs},
+          {"mean_stage_ms",
+           {{"physics", stages.physics}, {"refit", stages.refit}, {"trace", stages.trace},
+            {"upload", stages.upload}, {"ui", stages.ui}}},
+          {"traced_full_resolution_frames", summary.fullResolutionFrames},
+          {"traced_reduced_resolution_frames", summary.reducedResolutionFrames}};
+}
+
+}  // namespace
+
 void Viewer::writeReport() const {
   if (options_.reportPath.empty()) return;
   const glm::ivec2 framebuffer = backend_.framebufferSize();
@@ -589,6 +639,11 @@ void Viewer::writeReport() const {
       {"mean_fps", stats_.meanFps()},
       {"median_frame_ms_recent", stats_.medianRecentFrameMs()},
       {"traced_frames", stats_.tracedFrames},
+      {"traced_full_resolution_frames", stats_.fullResolutionFrames},
+      {"traced_reduced_resolution_frames", stats_.reducedResolutionFrames},
+      {"while_grabbed", summaryJson(summarizeFrames(frameRecords_, [](const FrameRecord& frame) {
+         return frame.grabbed;
+       }))},
       {"mean_stage_ms",
        {{"physics", meanStages.physics}, {"refit", meanStages.refit}, {"trace", meanStages.trace},
         {"upload", meanStages.upload}, {"ui", meanStages.ui}}},

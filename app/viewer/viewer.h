@@ -9,6 +9,7 @@
 #pragma once
 
 #include "app/viewer/camera_controller.h"
+#include "app/viewer/frame_log.h"
 #include "app/viewer/frame_stats.h"
 #include "app/viewer/gl_blit.h"
 #include "app/viewer/interaction.h"
@@ -33,6 +34,7 @@ struct ViewerOptions {
   int maxFrames = 0;                                // quit after this many frames; 0 = until Esc
   std::string screenshotOnExit;                     // PNG of the last frame, if set
   std::string reportPath;                           // JSON summary written at exit, if set
+  std::string frameLogPath;                         // CSV of every frame (frame_log.h) at exit, if set
   std::string screenshotPrefix = "slime-screenshot";  // F12 writes <prefix>-<n>.png
   std::optional<Scenario> scenario;                 // timed grab/drag/press/set events to replay
   std::string scenePath = "slime-scene.json";       // where Ctrl+S saves and Ctrl+O loads (panel field)
@@ -93,7 +95,8 @@ class Viewer {
   void applyPhysicsOutcome(const PhysicsOutcome& outcome);
   void refitSlime();
   bool motionWouldShow() const;         // the slime moved visibly since it was last drawn
-  glm::ivec2 tracedImageSize() const;   // the image this frame traces; {0, 0} when minimised
+  glm::ivec2 fullImageSize() const;     // the view's framebuffer pixels; {0, 0} when minimised
+  glm::ivec2 tracedImageSize() const;   // ... scaled by render.scale
   void traceImage();
   bool refineImage(glm::ivec2 size);    // traces one more sample of a still image; true if it shows
   void uploadImage();
@@ -106,6 +109,7 @@ class Viewer {
   PanelRequests drawPanelsAndOverlay(const GrabMarks& marks);  // reads, never edits, the slime
   void applyPanelRequests(const PanelRequests& requests);
   void present();
+  void finishFrame(double frameMs);     // stats, the frame log
 
   // Helpers of the steps.
   void handleButton(const MouseButtonEvent& event, const FrameInput& input);
@@ -121,6 +125,7 @@ class Viewer {
   glm::dvec3 grabbedCentre() const;  // where the grabbed points are now
   bool interacting() const { return wallClock_ - lastInteraction_ < kRefineAfterSeconds; }
   void writeReport() const;
+  bool keepsFrameRecords() const { return !options_.frameLogPath.empty() || !options_.reportPath.empty(); }
 
   ViewerBackend& backend_;
   ViewerOptions options_;
@@ -146,6 +151,7 @@ class Viewer {
   GrabInteraction grab_;
   PhysicsClock clock_;
   FrameStats stats_;
+  std::vector<FrameRecord> frameRecords_;  // every frame, when a frame log or report is wanted
   SlimeMetrics metrics_;
   std::optional<ScenarioPlayer> scenario_;
   std::size_t scenarioEventsFired_ = 0;  // options_.scenario's events the player has fired so far
@@ -155,7 +161,8 @@ class Viewer {
   bool slimeMoved_ = true;         // the mesh changed since the last refit
   std::vector<glm::dvec3> drawnPositions_;  // the vertices as the renderer last got them
   bool sceneChanged_ = true;       // camera, settings or size changed since the last trace
-  bool imageTraced_ = false;       // this frame traced a new image
+  bool imageTraced_ = false;       // this frame traced an image (a new one, or a refinement sample)
+  bool tracedAtFullSize_ = false;  // ... at the full size of the view
   glm::dvec3 grabTargetDrawn_{0.0};  // the target the grabbed points were last pulled to
   double wallClock_ = 0.0;
   double lastInteraction_ = -1e9;

@@ -103,11 +103,15 @@ TEST(HeadlessViewer, AScenarioGrabTakesHoldAndTheReportCountsIt) {
   ASSERT_NE(grab, scenario.events.end());
   const std::filesystem::path report =
       std::filesystem::path(SLIME_TEST_OUTPUT_DIR) / "viewer_scenario_report.json";
+  const std::filesystem::path frameLog =
+      std::filesystem::path(SLIME_TEST_OUTPUT_DIR) / "viewer_scenario_frames.csv";
   std::filesystem::remove(report);
+  std::filesystem::remove(frameLog);
   constexpr double kSecondsPerFrame = 1.0 / 30.0;
   ViewerOptions options;
   options.scenario = scenario;
   options.reportPath = report.string();
+  options.frameLogPath = frameLog.string();
   options.maxFrames = static_cast<int>(std::ceil((grab->time + 0.5) / kSecondsPerFrame));
   SteppingHeadlessGl backend(320, 240, kSecondsPerFrame);
   Viewer viewer(backend, smallScene(), options);
@@ -121,6 +125,22 @@ TEST(HeadlessViewer, AScenarioGrabTakesHoldAndTheReportCountsIt) {
   EXPECT_GT(restingHeight, 0.05);  // the settled bun (5.9 cm at the default radius), not 0
   EXPECT_LT(restingHeight, 0.065);
   EXPECT_GT(result["peak_height_while_grabbing"].get<double>(), 1.15 * restingHeight);
+
+  // No target frame rate (the default): every traced frame at full resolution, the drag included.
+  EXPECT_EQ(result["traced_reduced_resolution_frames"], 0);
+  EXPECT_EQ(result["traced_full_resolution_frames"], result["traced_frames"]);
+  const nlohmann::json& grabbed = result["while_grabbed"];
+  EXPECT_GE(grabbed["frames"].get<int>(), 12);  // the last half second, at 30 frames a second
+  EXPECT_GT(grabbed["mean_fps"].get<double>(), 0.0);
+  EXPECT_GT(grabbed["mean_stage_ms"]["trace"].get<double>(), 0.0);
+
+  // The frame log: a header, then one line per frame; the slime is held in the last ones.
+  std::ifstream log(frameLog);
+  std::string line, last;
+  int lines = 0;
+  while (std::getline(log, line)) ++lines, last = line;
+  EXPECT_EQ(lines, 1 + options.maxFrames);
+  EXPECT_EQ(last.substr(last.rfind(',') - 2, 3), ",1,") << "the last frame is not marked grabbed: " << last;
 }
 
 // A scenario's "set" event edits the settings the trace reads: it is applied, and the frame it fires
