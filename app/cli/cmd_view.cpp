@@ -1,6 +1,6 @@
 // `slime view` (and `slime` alone): the interactive window. Besides the scene options it takes the
 // camera options of `snapshot`, and a few for tests and scripts: --frames, --screenshot-on-exit, --report,
-// --frame-log.
+// --frame-log; and --target-fps, the adaptive resolution's target (off by default).
 #include "app/cli/commands.h"
 #include "app/cli/snapshot.h"
 #include "app/viewer/viewer.h"
@@ -87,6 +87,10 @@ void registerViewCommand(CLI::App& root, int& exitCode) {
                       "at exit");
   command->add_option("--frame-log", options->viewer.frameLogPath,
                       "Write every frame (wall time, stages, traced size, grabbed) as CSV at exit");
+  command->add_option("--target-fps", options->viewer.targetFps,
+                      "Adaptive resolution: trace smaller while frames miss this rate as the view moves "
+                      "(0 = off, the default: always full resolution)")
+      ->check(CLI::Range(0.0, AdaptiveResolution::kMaximumTargetFps));
   command->add_option("--screenshot-prefix", options->viewer.screenshotPrefix, "F12 writes <prefix>-<n>.png");
   command->callback([options, &exitCode] {
     Settings settings = loadSettings(options->scene);

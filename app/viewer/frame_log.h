@@ -20,7 +20,7 @@ struct FrameRecord {
   bool fullResolution = false;    // ... at the full size of the view
   int imageWidth = 0;             // the image shown (traced now or earlier)
   int imageHeight = 0;
-  double scale = 1.0;             // traced size / full size: render.scale
+  double scale = 1.0;             // traced size / full size: render.scale × the adaptive factor
   bool grabbed = false;           // the slime was held, by the mouse or a scenario, at the frame's end
   double simulatedSeconds = 0.0;  // simulation time at the frame's end
 };

@@ -58,6 +58,8 @@ Viewer::Viewer(ViewerBackend& backend, const Settings& settings, ViewerOptions o
   ImGui_ImplOpenGL3_Init("#version 330 core");
   metrics_ = simulation_.metrics();
   columnWidth_ = panelColumnWidth(static_cast<float>(backend_.windowSize().x));
+  resolution_.setTargetFps(options_.targetFps);
+  stats_.targetFps = resolution_.targetFps();
   if (keepsFrameRecords() && options_.maxFrames > 0) frameRecords_.reserve(options_.maxFrames);
 }
 
@@ -319,15 +321,16 @@ glm::ivec2 Viewer::fullImageSize() const {
 glm::ivec2 Viewer::tracedImageSize() const {
   const glm::ivec2 full = fullImageSize();
   if (full.x <= 0) return {0, 0};
-  // Full resolution while the user moves things too (issue 15); render.scale is the user's own choice.
-  const double scale = settings_.render.scale;
+  // Full resolution while the user moves things too (issue 15). render.scale is the user's own choice;
+  // the adaptive factor is the fallback for frames over their budget, 1 unless a target is set.
+  const double scale = settings_.render.scale * resolution_.scale();
   if (scale >= 1.0) return full;
   return {std::max(1, static_cast<int>(std::lround(full.x * scale))),
           std::max(1, static_cast<int>(std::lround(full.y * scale)))};
 }
 
 void Viewer::traceImage() {
-  imageTraced_ = false;
+  imageTraced_ = newImageTraced_ = false;
   const glm::ivec2 size = tracedImageSize();
   tracedAtFullSize_ = size == fullImageSize();
   if (size.x <= 0) return;
@@ -355,7 +358,7 @@ void Viewer::traceImage() {
   stats_.imageHeight = size.y;
   stats_.renderScale = static_cast<double>(size.y) / fullImageSize().y;
   sceneChanged_ = false;
-  imageTraced_ = true;
+  imageTraced_ = newImageTraced_ = true;
 }
 
 // Progressive anti-aliasing: once nothing has moved for kRefineAfterSeconds, each frame traces the
@@ -364,6 +367,7 @@ void Viewer::traceImage() {
 // already average their own samples.
 bool Viewer::refineImage(glm::ivec2 size) {
   if (interacting() || refinement_.converged() || settings_.render.spp > 1) return false;
+  if (resolution_.scale() < 1.0) return false;  // the adaptive resolution returns to full first
   sampleImage_.resize(size.x, size.y);
   renderer_.render(frameSettings(size), sampleImage_, nullptr, /*buffersKept=*/false, refinement_.nextOffset());
   return refinement_.add(sampleImage_, image_, &imageBytes_);
@@ -435,11 +439,16 @@ void Viewer::applyPanelRequests(const PanelRequests& requests) {
     columnWidth_ = requests.columnWidth;
     sceneChanged_ = true;
   }
+  if (requests.targetFps >= 0 && requests.targetFps != resolution_.targetFps()) {
+    resolution_.setTargetFps(requests.targetFps);
+    stats_.targetFps = resolution_.targetFps();
+  }
 }
 
 void Viewer::finishFrame(double frameMs) {
   stats_.recordStages(imageTraced_, tracedAtFullSize_);
   stats_.recordFrame(frameMs);
+  resolution_.update(frameMs, newImageTraced_ ? stats_.stages.trace : 0.0, newImageTraced_);
   if (!keepsFrameRecords()) return;
   FrameRecord record;
   record.endSeconds = stats_.totalFrameMs / 1000.0;
@@ -641,6 +650,7 @@ void Viewer::writeReport() const {
       {"traced_frames", stats_.tracedFrames},
       {"traced_full_resolution_frames", stats_.fullResolutionFrames},
       {"traced_reduced_resolution_frames", stats_.reducedResolutionFrames},
+      {"adaptive_resolution", {{"target_fps", resolution_.targetFps()}, {"scale", resolution_.scale()}}},
       {"while_grabbed", summaryJson(summarizeFrames(frameRecords_, [](const FrameRecord& frame) {
          return frame.grabbed;
        }))},

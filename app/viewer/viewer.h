@@ -8,6 +8,7 @@
 // and take effect from the next one.
 #pragma once
 
+#include "app/viewer/adaptive_resolution.h"
 #include "app/viewer/camera_controller.h"
 #include "app/viewer/frame_log.h"
 #include "app/viewer/frame_stats.h"
@@ -35,6 +36,7 @@ struct ViewerOptions {
   std::string screenshotOnExit;                     // PNG of the last frame, if set
   std::string reportPath;                           // JSON summary written at exit, if set
   std::string frameLogPath;                         // CSV of every frame (frame_log.h) at exit, if set
+  double targetFps = 0.0;  // adaptive resolution's target (adaptive_resolution.h); 0: off, always full size
   std::string screenshotPrefix = "slime-screenshot";  // F12 writes <prefix>-<n>.png
   std::optional<Scenario> scenario;                 // timed grab/drag/press/set events to replay
   std::string scenePath = "slime-scene.json";       // where Ctrl+S saves and Ctrl+O loads (panel field)
@@ -96,7 +98,7 @@ class Viewer {
   void refitSlime();
   bool motionWouldShow() const;         // the slime moved visibly since it was last drawn
   glm::ivec2 fullImageSize() const;     // the view's framebuffer pixels; {0, 0} when minimised
-  glm::ivec2 tracedImageSize() const;   // ... scaled by render.scale
+  glm::ivec2 tracedImageSize() const;   // ... scaled by render.scale and the adaptive resolution
   void traceImage();
   bool refineImage(glm::ivec2 size);    // traces one more sample of a still image; true if it shows
   void uploadImage();
@@ -109,7 +111,7 @@ class Viewer {
   PanelRequests drawPanelsAndOverlay(const GrabMarks& marks);  // reads, never edits, the slime
   void applyPanelRequests(const PanelRequests& requests);
   void present();
-  void finishFrame(double frameMs);     // stats, the frame log
+  void finishFrame(double frameMs);     // stats, the adaptive resolution, the frame log
 
   // Helpers of the steps.
   void handleButton(const MouseButtonEvent& event, const FrameInput& input);
@@ -151,6 +153,7 @@ class Viewer {
   GrabInteraction grab_;
   PhysicsClock clock_;
   FrameStats stats_;
+  AdaptiveResolution resolution_;
   std::vector<FrameRecord> frameRecords_;  // every frame, when a frame log or report is wanted
   SlimeMetrics metrics_;
   std::optional<ScenarioPlayer> scenario_;
@@ -162,6 +165,7 @@ class Viewer {
   std::vector<glm::dvec3> drawnPositions_;  // the vertices as the renderer last got them
   bool sceneChanged_ = true;       // camera, settings or size changed since the last trace
   bool imageTraced_ = false;       // this frame traced an image (a new one, or a refinement sample)
+  bool newImageTraced_ = false;    // ... a new one: the view changed
   bool tracedAtFullSize_ = false;  // ... at the full size of the view
   glm::dvec3 grabTargetDrawn_{0.0};  // the target the grabbed points were last pulled to
   double wallClock_ = 0.0;

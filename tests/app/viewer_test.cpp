@@ -143,6 +143,31 @@ TEST(HeadlessViewer, AScenarioGrabTakesHoldAndTheReportCountsIt) {
   EXPECT_EQ(last.substr(last.rfind(',') - 2, 3), ",1,") << "the last frame is not marked grabbed: " << last;
 }
 
+// With a target frame rate the frames cannot meet (240 fps), the falling slime's frames go over budget
+// while it moves: the image is traced smaller, and the report counts those frames. Once a frame needs
+// no new image (the slime rests, or creeps too little to show) it is traced at full resolution again.
+TEST(HeadlessViewer, FramesOverTheTargetWhileTheSlimeMovesAreTracedSmaller) {
+  ViewerOptions options;
+  options.targetFps = 240.0;
+  const std::filesystem::path report =
+      std::filesystem::path(SLIME_TEST_OUTPUT_DIR) / "viewer_adaptive_report.json";
+  options.reportPath = report.string();
+  SteppingHeadlessGl backend(320, 240, 1.0 / 30.0);
+  Viewer viewer(backend, smallScene(), options);
+  const int fullWidth = 320 - static_cast<int>(std::lround(panelColumnWidth(320.0f)));
+  int smallest = fullWidth;
+  for (int frame = 0; frame < 30; ++frame) {  // the first second: it falls, lands and jiggles
+    ASSERT_TRUE(viewer.frame());
+    smallest = std::min(smallest, viewer.stats().imageWidth);
+  }
+  EXPECT_LT(smallest, fullWidth);
+  EXPECT_GE(smallest, static_cast<int>(AdaptiveResolution::kMinimumScale * fullWidth) - 1);
+  EXPECT_GT(viewer.stats().reducedResolutionFrames, 0);
+  for (int frame = 0; frame < 150 && viewer.stats().renderScale < 1.0; ++frame) ASSERT_TRUE(viewer.frame());
+  EXPECT_EQ(viewer.stats().renderScale, 1.0) << "still reduced after 5 s: the slime rests by then";
+  EXPECT_EQ(viewer.stats().imageWidth, fullWidth);
+}
+
 // A scenario's "set" event edits the settings the trace reads: it is applied, and the frame it fires
 // in traces the scene anew. Without gravity the slime hangs still, so until then the image refines.
 TEST(HeadlessViewer, AScenarioSetEventIsAppliedAndDrawnAtOnce) {
