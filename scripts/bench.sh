@@ -53,6 +53,23 @@ else
   "$slime" bench material --resolutions 1-4 --json "$out/material.json" --csv "$out/material.csv"
   if [ -x "$bin/app/bench/bullet_ball" ]; then "$bin/app/bench/bullet_ball" --levels 4,6 --seconds 2 --json "$out/bullet.json"; fi
   "$bin/app/bench/micro_bench" --benchmark_out="$out/micro.json" --benchmark_out_format=json
+  # The viewer over a scripted drag at 1280×720 (issue 15): every frame's time from the frame log, at
+  # full resolution (the default) and with the adaptive resolution's 30 fps target. It needs a display:
+  # Xvfb when there is none (software OpenGL draws the panels either way).
+  viewer_drag() {  # viewer_drag NAME [extra options]
+    local name=$1
+    shift
+    local run=("$slime" view --size 1280x720 --scenario tests/scenarios/drag_top_in_circles_6s.json --frames 400
+               --report "$out/$name.json" --frame-log "$out/$name.csv" "$@")
+    if [ -n "${DISPLAY:-}" ]; then "${run[@]}"
+    else xvfb-run -a -s "-screen 0 1400x900x24" "${run[@]}"; fi
+  }
+  if [ -n "${DISPLAY:-}" ] || command -v xvfb-run >/dev/null; then
+    viewer_drag viewer_drag
+    viewer_drag viewer_drag_adaptive --target-fps 30
+  else
+    echo "bench: no DISPLAY and no xvfb-run (apt-get install xvfb): skipping the viewer drag" >&2
+  fi
 fi
 
 # Charts: every scripts/plots/*.gp (but _style.gp) reads $out/*.csv and writes $out/<name>.png.

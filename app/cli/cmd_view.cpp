@@ -1,5 +1,6 @@
 // `slime view` (and `slime` alone): the interactive window. Besides the scene options it takes the
-// camera options of `snapshot`, and a few for tests and scripts: --frames, --screenshot-on-exit, --report.
+// camera options of `snapshot`, and a few for tests and scripts: --frames, --screenshot-on-exit, --report,
+// --frame-log; and --target-fps, the adaptive resolution's target (off by default).
 #include "app/cli/commands.h"
 #include "app/cli/snapshot.h"
 #include "app/viewer/viewer.h"
@@ -10,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <filesystem>
 #include <fstream>
 
 namespace slime {
@@ -53,6 +55,18 @@ void applyCameraOptions(const ViewCommandOptions& options, Settings& settings) {
   validateSettings(settings);
 }
 
+// A file the viewer writes at exit: checked before the window opens, so a typo does not cost the run.
+void checkOutputFile(const char* option, const std::string& path) {
+  if (path.empty()) return;
+  namespace fs = std::filesystem;
+  const fs::path parent = fs::path(path).parent_path();
+  if (!parent.empty() && !fs::is_directory(parent))
+    throw SettingsError(std::string(option) + " " + path + ": the directory " + parent.string() +
+                        " does not exist");
+  if (fs::is_directory(path))
+    throw SettingsError(std::string(option) + " " + path + ": is a directory; expected a file name");
+}
+
 }  // namespace
 
 void registerViewCommand(CLI::App& root, int& exitCode) {
@@ -68,11 +82,21 @@ void registerViewCommand(CLI::App& root, int& exitCode) {
   command->add_option("--frames", options->viewer.maxFrames, "Quit after N frames (for scripts and tests)")
       ->check(CLI::NonNegativeNumber);
   command->add_option("--screenshot-on-exit", options->viewer.screenshotOnExit, "Write the last frame to this PNG");
-  command->add_option("--report", options->viewer.reportPath, "Write a JSON summary (frames, fps, metrics, settings) at exit");
+  command->add_option("--report", options->viewer.reportPath,
+                      "Write a JSON summary (frames, fps, stages, resolution, grabs, metrics, settings) "
+                      "at exit");
+  command->add_option("--frame-log", options->viewer.frameLogPath,
+                      "Write every frame (wall time, stages, traced size, grabbed) as CSV at exit");
+  command->add_option("--target-fps", options->viewer.targetFps,
+                      "Adaptive resolution: trace smaller while frames miss this rate as the view moves "
+                      "(0 = off, the default: always full resolution)")
+      ->check(CLI::Range(0.0, AdaptiveResolution::kMaximumTargetFps));
   command->add_option("--screenshot-prefix", options->viewer.screenshotPrefix, "F12 writes <prefix>-<n>.png");
   command->callback([options, &exitCode] {
     Settings settings = loadSettings(options->scene);
     applyCameraOptions(*options, settings);
+    checkOutputFile("--report", options->viewer.reportPath);
+    checkOutputFile("--frame-log", options->viewer.frameLogPath);
     if (!options->scene.scenarioFile.empty()) options->viewer.scenario = loadScenario(options->scene.scenarioFile);
     Window window("Slime", settings.camera.width, settings.camera.height);
     Viewer viewer(window, settings, options->viewer);

@@ -31,6 +31,8 @@ struct FrameStats {
   int samplesPerPixel = 1;               // samples averaged in the image shown (progressive anti-aliasing)
   int imageWidth = 0;                    // traced image size of the last frame
   int imageHeight = 0;
+  double renderScale = 1.0;              // its size / the full size (render.scale × the adaptive factor)
+  double targetFps = 0.0;                // the adaptive resolution's target; 0: off
   std::array<float, kHistory> frameHistoryMs{};  // ring buffer of frame times
   int historyNext = 0;                   // where the next frame time goes
   std::int64_t frames = 0;
@@ -38,9 +40,12 @@ struct FrameStats {
   double simulationSpeed = 1.0;          // simulated seconds per wall second, smoothed
   StageTimes stageSums;                  // every frame's stages summed (trace, refit: traced frames only)
   std::int64_t tracedFrames = 0;         // frames that traced an image
+  std::int64_t fullResolutionFrames = 0;     // ... at the full size of the view
+  std::int64_t reducedResolutionFrames = 0;  // ... smaller (render.scale or the adaptive resolution)
 
-  // Adds the frame's stages to the sums; `traced`: this frame traced (and refitted) an image.
-  void recordStages(bool traced) {
+  // Adds the frame's stages to the sums; `traced`: this frame traced (and refitted) an image,
+  // `fullResolution`: at the full size of the view.
+  void recordStages(bool traced, bool fullResolution = true) {
     stageSums.physics += stages.physics;
     stageSums.upload += stages.upload;
     stageSums.ui += stages.ui;
@@ -48,6 +53,7 @@ struct FrameStats {
     stageSums.refit += stages.refit;
     stageSums.trace += stages.trace;
     ++tracedFrames;
+    ++(fullResolution ? fullResolutionFrames : reducedResolutionFrames);
   }
 
   // Mean milliseconds per frame of each stage (trace and refit: per traced frame).

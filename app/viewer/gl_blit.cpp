@@ -9,15 +9,20 @@
 namespace slime {
 namespace {
 
-// One triangle that covers the viewport; texture v runs downwards because the image's top row is first.
+// Two triangles that make the viewport's rectangle (six vertices: llvmpipe draws a pair of triangles
+// that form an axis-aligned rectangle as one rectangle); texture v runs downwards because the image's
+// top row is first.
 constexpr const char* kVertexShader = R"(#version 330 core
 out vec2 uv;
+const vec2 kCorners[6] = vec2[6](vec2(0.0, 0.0), vec2(1.0, 0.0), vec2(0.0, 1.0),
+                                 vec2(0.0, 1.0), vec2(1.0, 0.0), vec2(1.0, 1.0));
 void main() {
-  vec2 corner = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
+  vec2 corner = kCorners[gl_VertexID];
   uv = vec2(corner.x, 1.0 - corner.y);
   gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);
 }
 )";
+constexpr int kRectangleVertices = 6;
 
 // The texture holds sRGB bytes already; the default framebuffer stores what it is given.
 constexpr const char* kFragmentShader = R"(#version 330 core
@@ -103,7 +108,7 @@ void GlBlit::draw(glm::ivec2 framebufferSize, int left) const {
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
   glUniform1i(glGetUniformLocation(program_, "image"), 0);
   glBindVertexArray(vertexArray_);
-  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glDrawArrays(GL_TRIANGLES, 0, kRectangleVertices);
   glBindVertexArray(0);
   glUseProgram(0);
 }

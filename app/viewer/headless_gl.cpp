@@ -43,23 +43,19 @@ HeadlessGl::HeadlessGl(int width, int height) : size_(width, height) {
   context_ = context;
   if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) failEgl("eglMakeCurrent (surfaceless)");
 
-  // There is no window, so the frame is drawn into an FBO and read back from it.
+  // There is no window, so the frame is drawn into an FBO and read back from it. Colour only, as the
+  // window (window.cpp): nothing drawn uses depth or stencil.
   glGenFramebuffers(1, &framebuffer_);
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
   glGenRenderbuffers(1, &colorBuffer_);
   glBindRenderbuffer(GL_RENDERBUFFER, colorBuffer_);
   glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colorBuffer_);
-  glGenRenderbuffers(1, &depthBuffer_);
-  glBindRenderbuffer(GL_RENDERBUFFER, depthBuffer_);
-  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, width, height);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, depthBuffer_);
   if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     throw std::runtime_error("headless GL: the framebuffer object is incomplete");
 }
 
 HeadlessGl::~HeadlessGl() {
-  glDeleteRenderbuffers(1, &depthBuffer_);
   glDeleteRenderbuffers(1, &colorBuffer_);
   glDeleteFramebuffers(1, &framebuffer_);
   eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);

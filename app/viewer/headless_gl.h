@@ -28,7 +28,6 @@ class HeadlessGl final : public ViewerBackend {
   void* context_ = nullptr;  // EGLContext
   unsigned framebuffer_ = 0;
   unsigned colorBuffer_ = 0;
-  unsigned depthBuffer_ = 0;
 };
 
 }  // namespace slime

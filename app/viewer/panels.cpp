@@ -5,10 +5,12 @@
 
 #include <algorithm>
 #include <cfloat>
+#include <cmath>
 #include <cstring>
 #include <string>
 #include <string_view>
 
+#include "app/viewer/adaptive_resolution.h"
 #include "app/viewer/panel_fields.h"
 #include "core/settings_fields.h"
 
@@ -179,7 +181,23 @@ void simulationExtras(const Settings& draft, const PanelView& view, PanelRequest
   ImGui::Text("volume %.3f  height %.1f mm", view.metrics.volumeRatio, view.metrics.height * 1000.0);
 }
 
-void statsWindow(const PanelView& view) {
+// The traced image's scale and the adaptive resolution's target frame rate (0: off), which the user
+// may change here.
+void resolutionRows(const FrameStats& stats, PanelRequests& requests) {
+  ImGui::Text("scale   %.2f  %s", stats.renderScale, stats.renderScale < 1.0 ? "(reduced)" : "(full)");
+  int target = static_cast<int>(std::lround(stats.targetFps));
+  ImGui::SetNextItemWidth(kStatsWidth * 0.5f);
+  const int highest = static_cast<int>(AdaptiveResolution::kMaximumTargetFps);
+  const char* format = target == 0 ? "off" : "%d fps";
+  if (ImGui::SliderInt("target", &target, 0, highest, format, ImGuiSliderFlags_AlwaysClamp))
+    requests.targetFps = target;
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Adaptive resolution: when frames take longer than 1/target while the view moves,\n"
+                      "the image is traced smaller until they fit; full resolution as soon as they do.\n"
+                      "0 = off (always full resolution; render.scale still applies).");
+}
+
+void statsWindow(const PanelView& view, PanelRequests& requests) {
   const FrameStats& stats = view.stats;
   const ImVec2 display = ImGui::GetIO().DisplaySize;
   ImGui::SetNextWindowPos(ImVec2(display.x - kStatsWidth - kMargin, kMargin), ImGuiCond_Always);
@@ -199,6 +217,7 @@ void statsWindow(const PanelView& view) {
     ImGui::Text("reused  %.0f%% of pixels", 100.0 * stats.reusedFraction);
     ImGui::Text("threads %d, %.0f%% busy", stats.traceThreads, 100.0 * stats.threadUse);
     ImGui::Text("sim     x%.2f real time", stats.simulationSpeed);
+    resolutionRows(stats, requests);
     ImGui::PlotLines("##frame", stats.frameHistoryMs.data(), FrameStats::kHistory, stats.historyNext,
                      "frame ms", 0.0f, FLT_MAX, ImVec2(kStatsWidth - 16.0f, 40.0f));
   }
@@ -235,7 +254,7 @@ PanelRequests drawPanels(Settings& draft, std::string& scenePath, const PanelVie
     ImGui::PopItemWidth();
   }
   ImGui::End();
-  statsWindow(view);
+  statsWindow(view, requests);
   return requests;
 }
 

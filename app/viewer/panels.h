@@ -23,6 +23,7 @@ struct PanelRequests {
   bool save = false;         // "Save": write the scene to the path field
   bool load = false;         // "Load": read the scene at the path field
   float columnWidth = 0.0f;  // window pixels the column covers at the left (0 when collapsed)
+  int targetFps = -1;        // the Stats window set the adaptive resolution's target (0: off); -1: it did not
 };
 
 // Read-only facts the panels display.
@@ -39,7 +40,8 @@ struct PanelView {
 // Width of the column for a display of this width, in window pixels.
 float panelColumnWidth(float displayWidth);
 
-// Draws the column and the Stats window. `scenePath` is the Scene section's path field.
+// Draws the column and the Stats window (with the adaptive resolution's target frame rate).
+// `scenePath` is the Scene section's path field.
 PanelRequests drawPanels(Settings& draft, std::string& scenePath, const PanelView& view);
 
 // Draws the controls (keys, mouse) over the middle of the free part of the window.

@@ -33,6 +33,9 @@ class Stopwatch {
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
+// ScenarioPlayer fires the events due within this of the simulated time (core/scenario.cpp).
+constexpr double kScenarioTimeTolerance = 1e-9;
+
 }  // namespace
 
 Viewer::Viewer(ViewerBackend& backend, const Settings& settings, ViewerOptions options)
@@ -55,6 +58,9 @@ Viewer::Viewer(ViewerBackend& backend, const Settings& settings, ViewerOptions o
   ImGui_ImplOpenGL3_Init("#version 330 core");
   metrics_ = simulation_.metrics();
   columnWidth_ = panelColumnWidth(static_cast<float>(backend_.windowSize().x));
+  resolution_.setTargetFps(options_.targetFps);
+  stats_.targetFps = resolution_.targetFps();
+  if (keepsFrameRecords() && options_.maxFrames > 0) frameRecords_.reserve(options_.maxFrames);
 }
 
 Viewer::~Viewer() {
@@ -75,31 +81,31 @@ bool Viewer::frame() {
   // 28.5 fps with the physics beside the trace, 29.6 beside the panels). So that nothing is shared
   // meanwhile, the steps hand back what they did (PhysicsOutcome) and the panels' requests wait;
   // both are applied after the join. A scenario's "set" events edit the settings the trace reads, so
-  // with a scenario playing the steps run first, alone.
+  // while one is still to come the steps run first, alone; a scenario's grabs and drags run beside
+  // the panels, as the mouse's do.
   refitSlime();
   const glm::dvec3 target = grabTargetFor();
   PanelRequests requests;
-  if (scenario_ && !scenario_->finished()) {
+  if (scenarioSetPending()) {
     applyPhysicsOutcome(stepPhysics(input.elapsedSeconds, target));
     refitSlime();
     traceImage();
     uploadImage();
-    requests = drawPanelsAndOverlay(grabbedCentre());
+    requests = drawPanelsAndOverlay(grabMarks());
     present();
   } else {
     traceImage();
     uploadImage();
-    const glm::dvec3 held = grabbedCentre();
+    const GrabMarks marks = grabMarks();
     PhysicsOutcome outcome;
     std::thread physics([this, &input, &target, &outcome] { outcome = stepPhysics(input.elapsedSeconds, target); });
-    requests = drawPanelsAndOverlay(held);
+    requests = drawPanelsAndOverlay(marks);
     present();
     physics.join();
     applyPhysicsOutcome(outcome);
   }
   applyPanelRequests(requests);
-  stats_.recordStages(imageTraced_);
-  stats_.recordFrame(frameTime.milliseconds());
+  finishFrame(frameTime.milliseconds());
   return !quit_;
 }
 
@@ -112,6 +118,13 @@ int Viewer::run() {
               static_cast<long long>(stats_.frames), seconds, seconds > 0.0 ? stats_.frames / seconds : 0.0,
               simulation_.time(), static_cast<long long>(simulation_.stepCount()));
   writeReport();
+  if (!options_.frameLogPath.empty()) {
+    if (!writeFrameLogCsv(frameRecords_, options_.frameLogPath)) {
+      std::fprintf(stderr, "slime view: cannot write the frame log %s\n", options_.frameLogPath.c_str());
+      return 1;
+    }
+    std::printf("slime view: wrote %s (%zu frames)\n", options_.frameLogPath.c_str(), frameRecords_.size());
+  }
   return 0;
 }
 
@@ -220,10 +233,7 @@ Viewer::PhysicsOutcome Viewer::stepPhysics(double wallSeconds, const glm::dvec3&
       const double progress = static_cast<double>(done + 1) / steps;
       simulation_.dragTo(grabTargetDrawn_ + (target - grabTargetDrawn_) * progress);
     }
-    if (scenario_ && !scenario_->finished()) {
-      scenario_->advanceTo(simulation_.time(), simulation_, settings_);
-      sceneChanged_ = true;  // a "set" event may have changed what is drawn
-    }
+    if (scenario_ && !scenario_->finished()) playScenarioAt(simulation_.time(), outcome);
     simulation_.step();
     if (physicsTime.milliseconds() > kPhysicsBudgetMs) {  // out of time: give up the rest of the backlog
       clock_.reset();
@@ -234,16 +244,47 @@ Viewer::PhysicsOutcome Viewer::stepPhysics(double wallSeconds, const glm::dvec3&
   outcome.steps = done;
   if (grab_.active() && done > 0) grabTargetDrawn_ = target;
   if (done > 0) outcome.metrics = simulation_.metrics();
+  outcome.grabbing = simulation_.grabbing();
   outcome.milliseconds = physicsTime.milliseconds();
   return outcome;
+}
+
+// Fires the scenario's events due at `time` and notes what the report counts: the grabs and presses
+// that took hold (a grab always finds the surface point nearest to its point; a press that ends at
+// once never holds), and "set" events, which change what is drawn.
+void Viewer::playScenarioAt(double time, PhysicsOutcome& outcome) {
+  scenario_->advanceTo(time, simulation_, settings_);
+  const std::vector<ScenarioEvent>& events = options_.scenario->events;  // the player's, in its order
+  for (; scenarioEventsFired_ < events.size(); ++scenarioEventsFired_) {
+    const ScenarioEvent& event = events[scenarioEventsFired_];
+    if (event.time > time + kScenarioTimeTolerance) break;
+    const ScenarioEvent::Kind kind = event.kind;
+    if (kind == ScenarioEvent::Kind::Set) outcome.settingsEdited = true;
+    if ((kind == ScenarioEvent::Kind::Grab || kind == ScenarioEvent::Kind::Press) && simulation_.grabbing()) {
+      ++outcome.scenarioGrabs;
+      outcome.heightAtGrab = simulation_.metrics().height;
+    }
+  }
+}
+
+bool Viewer::scenarioSetPending() const {
+  if (!options_.scenario) return false;
+  const std::vector<ScenarioEvent>& events = options_.scenario->events;
+  return std::any_of(events.begin() + static_cast<std::ptrdiff_t>(scenarioEventsFired_), events.end(),
+                     [](const ScenarioEvent& event) { return event.kind == ScenarioEvent::Kind::Set; });
 }
 
 void Viewer::applyPhysicsOutcome(const PhysicsOutcome& outcome) {
   if (outcome.steps > 0) {
     slimeMoved_ = true;
     metrics_ = outcome.metrics;
-    if (grab_.active()) peakHeightWhileGrabbing_ = std::max(peakHeightWhileGrabbing_, metrics_.height);
+    if (outcome.grabbing) peakHeightWhileGrabbing_ = std::max(peakHeightWhileGrabbing_, metrics_.height);
   }
+  if (outcome.scenarioGrabs > 0) {
+    grabCount_ += outcome.scenarioGrabs;
+    heightAtGrab_ = outcome.heightAtGrab;
+  }
+  if (outcome.settingsEdited) sceneChanged_ = true;
   stats_.physicsSteps = outcome.steps;
   stats_.stages.physics = outcome.milliseconds;
   stats_.recordSimulatedTime(outcome.steps * settings_.sim.dt, outcome.wallSeconds);
@@ -270,20 +311,28 @@ bool Viewer::motionWouldShow() const {
                                             settings_.camera.fov, size.y) >= kInvisibleMotionPixels;
 }
 
-glm::ivec2 Viewer::tracedImageSize() const {
+glm::ivec2 Viewer::fullImageSize() const {
   const glm::ivec2 view = viewSize(), window = backend_.windowSize();
   const glm::ivec2 full = backend_.framebufferSize();
   if (full.x <= 0 || full.y <= 0 || view.x <= 0 || window.x <= 0) return {0, 0};  // minimised: nothing to show
-  const glm::ivec2 framebuffer{full.x * view.x / window.x, full.y};
-  // Full resolution while the user moves things too (issue 15); render.scale is the user's own choice.
-  const double scale = settings_.render.scale;
-  return {std::max(1, static_cast<int>(std::lround(framebuffer.x * scale))),
-          std::max(1, static_cast<int>(std::lround(framebuffer.y * scale)))};
+  return {full.x * view.x / window.x, full.y};
+}
+
+glm::ivec2 Viewer::tracedImageSize() const {
+  const glm::ivec2 full = fullImageSize();
+  if (full.x <= 0) return {0, 0};
+  // Full resolution while the user moves things too (issue 15). render.scale is the user's own choice;
+  // the adaptive factor is the fallback for frames over their budget, 1 unless a target is set.
+  const double scale = settings_.render.scale * resolution_.scale();
+  if (scale >= 1.0) return full;
+  return {std::max(1, static_cast<int>(std::lround(full.x * scale))),
+          std::max(1, static_cast<int>(std::lround(full.y * scale)))};
 }
 
 void Viewer::traceImage() {
-  imageTraced_ = false;
+  imageTraced_ = newImageTraced_ = false;
   const glm::ivec2 size = tracedImageSize();
+  tracedAtFullSize_ = size == fullImageSize();
   if (size.x <= 0) return;
   const Stopwatch traceTime;
   if (!sceneChanged_ && size == glm::ivec2(image_.width, image_.height)) {  // nothing new: refine it
@@ -307,8 +356,9 @@ void Viewer::traceImage() {
   stats_.threadUse = render.traceMs > 0.0 && render.threads > 0 ? render.busyMs / (render.traceMs * render.threads) : 0.0;
   stats_.imageWidth = size.x;
   stats_.imageHeight = size.y;
+  stats_.renderScale = static_cast<double>(size.y) / fullImageSize().y;
   sceneChanged_ = false;
-  imageTraced_ = true;
+  imageTraced_ = newImageTraced_ = true;
 }
 
 // Progressive anti-aliasing: once nothing has moved for kRefineAfterSeconds, each frame traces the
@@ -317,6 +367,7 @@ void Viewer::traceImage() {
 // already average their own samples.
 bool Viewer::refineImage(glm::ivec2 size) {
   if (interacting() || refinement_.converged() || settings_.render.spp > 1) return false;
+  if (resolution_.scale() < 1.0) return false;  // the adaptive resolution returns to full first
   sampleImage_.resize(size.x, size.y);
   renderer_.render(frameSettings(size), sampleImage_, nullptr, /*buffersKept=*/false, refinement_.nextOffset());
   return refinement_.add(sampleImage_, image_, &imageBytes_);
@@ -330,7 +381,18 @@ void Viewer::uploadImage() {
 
 // --- panels ----------------------------------------------------------------------------------------
 
-PanelRequests Viewer::drawPanelsAndOverlay(const glm::dvec3& heldCentre) {
+Viewer::GrabMarks Viewer::grabMarks() const {
+  GrabMarks marks;
+  const glm::ivec2 size = viewSize();
+  if (grab_.active() && size.x > 0 && size.y > 0)
+    marks.target = grab_.target(makeCamera(settings_.camera, size.x, size.y), size);
+  else if (simulation_.grabbing())  // a scenario's grab
+    marks.target = simulation_.grabTarget();
+  if (marks.target) marks.held = grabbedCentre();
+  return marks;
+}
+
+PanelRequests Viewer::drawPanelsAndOverlay(const GrabMarks& marks) {
   const Stopwatch uiTime;
   // The panels edit a draft; while an invalid edit is shown the draft keeps it, but the camera is
   // always the live one.
@@ -347,11 +409,11 @@ PanelRequests Viewer::drawPanelsAndOverlay(const glm::dvec3& heldCentre) {
 
   // The grab spot: a ring at the grab target, a line from where the grabbed points are.
   const glm::ivec2 size = viewSize();
-  if (grab_.active() && size.x > 0 && size.y > 0) {
+  if (marks.target && size.x > 0 && size.y > 0) {
     const Camera camera = makeCamera(settings_.camera, size.x, size.y);
     ImDrawList* overlay = ImGui::GetForegroundDrawList();
-    const auto target = projectToWindow(camera, grab_.target(camera, size), size);
-    const auto held = projectToWindow(camera, heldCentre, size);
+    const auto target = projectToWindow(camera, *marks.target, size);
+    const auto held = projectToWindow(camera, marks.held, size);
     const float left = columnWidth_;
     if (target && held)
       overlay->AddLine(ImVec2(left + float(held->x), float(held->y)), ImVec2(left + float(target->x), float(target->y)),
@@ -377,6 +439,30 @@ void Viewer::applyPanelRequests(const PanelRequests& requests) {
     columnWidth_ = requests.columnWidth;
     sceneChanged_ = true;
   }
+  if (requests.targetFps >= 0 && requests.targetFps != resolution_.targetFps()) {
+    resolution_.setTargetFps(requests.targetFps);
+    stats_.targetFps = resolution_.targetFps();
+  }
+}
+
+void Viewer::finishFrame(double frameMs) {
+  stats_.recordStages(imageTraced_, tracedAtFullSize_);
+  stats_.recordFrame(frameMs);
+  resolution_.update(frameMs, newImageTraced_ ? stats_.stages.trace : 0.0, newImageTraced_);
+  if (!keepsFrameRecords()) return;
+  FrameRecord record;
+  record.endSeconds = stats_.totalFrameMs / 1000.0;
+  record.frameMs = frameMs;
+  record.stages = stats_.stages;
+  if (!imageTraced_) record.stages.trace = record.stages.refit = 0.0;
+  record.traced = imageTraced_;
+  record.fullResolution = imageTraced_ && tracedAtFullSize_;
+  record.imageWidth = image_.width;
+  record.imageHeight = image_.height;
+  record.scale = stats_.renderScale;
+  record.grabbed = simulation_.grabbing();
+  record.simulatedSeconds = simulation_.time();
+  frameRecords_.push_back(record);
 }
 
 namespace {
@@ -536,6 +622,22 @@ glm::dvec3 Viewer::slimeCentre() const {
   return sum / static_cast<double>(positions.size());
 }
 
+namespace {
+
+nlohmann::json summaryJson(const FrameSummary& summary) {
+  const StageTimes& stages = summary.meanStages;
+  return {{"frames", summary.frames},
+          {"mean_fps", summary.meanFps},
+          {"median_frame_ms", summary.medianFrameMs},
+          {"mean_stage_ms",
+           {{"physics", stages.physics}, {"refit", stages.refit}, {"trace", stages.trace},
+            {"upload", stages.upload}, {"ui", stages.ui}}},
+          {"traced_full_resolution_frames", summary.fullResolutionFrames},
+          {"traced_reduced_resolution_frames", summary.reducedResolutionFrames}};
+}
+
+}  // namespace
+
 void Viewer::writeReport() const {
   if (options_.reportPath.empty()) return;
   const glm::ivec2 framebuffer = backend_.framebufferSize();
@@ -546,6 +648,12 @@ void Viewer::writeReport() const {
       {"mean_fps", stats_.meanFps()},
       {"median_frame_ms_recent", stats_.medianRecentFrameMs()},
       {"traced_frames", stats_.tracedFrames},
+      {"traced_full_resolution_frames", stats_.fullResolutionFrames},
+      {"traced_reduced_resolution_frames", stats_.reducedResolutionFrames},
+      {"adaptive_resolution", {{"target_fps", resolution_.targetFps()}, {"scale", resolution_.scale()}}},
+      {"while_grabbed", summaryJson(summarizeFrames(frameRecords_, [](const FrameRecord& frame) {
+         return frame.grabbed;
+       }))},
       {"mean_stage_ms",
        {{"physics", meanStages.physics}, {"refit", meanStages.refit}, {"trace", meanStages.trace},
         {"upload", meanStages.upload}, {"ui", meanStages.ui}}},
@@ -554,7 +662,7 @@ void Viewer::writeReport() const {
       {"steps", simulation_.stepCount()},
       {"dropped_seconds", clock_.droppedSeconds()},
       {"grabs", grabCount_},
-      {"grabbing", grab_.active()},
+      {"grabbing", simulation_.grabbing()},
       {"height_at_grab", heightAtGrab_},
       {"peak_height_while_grabbing", peakHeightWhileGrabbing_},
       {"metrics",

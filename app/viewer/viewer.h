@@ -8,7 +8,9 @@
 // and take effect from the next one.
 #pragma once
 
+#include "app/viewer/adaptive_resolution.h"
 #include "app/viewer/camera_controller.h"
+#include "app/viewer/frame_log.h"
 #include "app/viewer/frame_stats.h"
 #include "app/viewer/gl_blit.h"
 #include "app/viewer/interaction.h"
@@ -33,6 +35,8 @@ struct ViewerOptions {
   int maxFrames = 0;                                // quit after this many frames; 0 = until Esc
   std::string screenshotOnExit;                     // PNG of the last frame, if set
   std::string reportPath;                           // JSON summary written at exit, if set
+  std::string frameLogPath;                         // CSV of every frame (frame_log.h) at exit, if set
+  double targetFps = 0.0;  // adaptive resolution's target (adaptive_resolution.h); 0: off, always full size
   std::string screenshotPrefix = "slime-screenshot";  // F12 writes <prefix>-<n>.png
   std::optional<Scenario> scenario;                 // timed grab/drag/press/set events to replay
   std::string scenePath = "slime-scene.json";       // where Ctrl+S saves and Ctrl+O loads (panel field)
@@ -80,20 +84,34 @@ class Viewer {
   struct PhysicsOutcome {
     int steps = 0;
     double milliseconds = 0.0;
-    double wallSeconds = 0.0;  // the frame time the steps were for
-    SlimeMetrics metrics;      // after the steps, if there were any
+    double wallSeconds = 0.0;     // the frame time the steps were for
+    SlimeMetrics metrics;         // after the steps, if there were any
+    bool grabbing = false;        // the slime is held (by the mouse or the scenario) after the steps
+    int scenarioGrabs = 0;        // the scenario's grabs and presses that took hold during the steps
+    double heightAtGrab = 0.0;    // the slime's height when the last of them took hold
+    bool settingsEdited = false;  // a scenario "set" event fired
   };
   PhysicsOutcome stepPhysics(double wallSeconds, const glm::dvec3& target);  // touches simulation_ only
+  void playScenarioAt(double time, PhysicsOutcome& outcome);
+  bool scenarioSetPending() const;  // a "set" event of the scenario is still to come
   void applyPhysicsOutcome(const PhysicsOutcome& outcome);
   void refitSlime();
   bool motionWouldShow() const;         // the slime moved visibly since it was last drawn
-  glm::ivec2 tracedImageSize() const;   // the image this frame traces; {0, 0} when minimised
+  glm::ivec2 fullImageSize() const;     // the view's framebuffer pixels; {0, 0} when minimised
+  glm::ivec2 tracedImageSize() const;   // ... scaled by render.scale and the adaptive resolution
   void traceImage();
   bool refineImage(glm::ivec2 size);    // traces one more sample of a still image; true if it shows
   void uploadImage();
-  PanelRequests drawPanelsAndOverlay(const glm::dvec3& heldCentre);  // reads, never edits, the slime
+  // Where the grab ring and its line go: the target and the grabbed surface, whoever holds the slime.
+  struct GrabMarks {
+    std::optional<glm::dvec3> target;  // empty when nothing is held
+    glm::dvec3 held{0.0};
+  };
+  GrabMarks grabMarks() const;
+  PanelRequests drawPanelsAndOverlay(const GrabMarks& marks);  // reads, never edits, the slime
   void applyPanelRequests(const PanelRequests& requests);
   void present();
+  void finishFrame(double frameMs);     // stats, the adaptive resolution, the frame log
 
   // Helpers of the steps.
   void handleButton(const MouseButtonEvent& event, const FrameInput& input);
@@ -109,6 +127,7 @@ class Viewer {
   glm::dvec3 grabbedCentre() const;  // where the grabbed points are now
   bool interacting() const { return wallClock_ - lastInteraction_ < kRefineAfterSeconds; }
   void writeReport() const;
+  bool keepsFrameRecords() const { return !options_.frameLogPath.empty() || !options_.reportPath.empty(); }
 
   ViewerBackend& backend_;
   ViewerOptions options_;
@@ -134,15 +153,20 @@ class Viewer {
   GrabInteraction grab_;
   PhysicsClock clock_;
   FrameStats stats_;
+  AdaptiveResolution resolution_;
+  std::vector<FrameRecord> frameRecords_;  // every frame, when a frame log or report is wanted
   SlimeMetrics metrics_;
   std::optional<ScenarioPlayer> scenario_;
+  std::size_t scenarioEventsFired_ = 0;  // options_.scenario's events the player has fired so far
 
   bool quit_ = false;
   bool singleStepPending_ = false;
   bool slimeMoved_ = true;         // the mesh changed since the last refit
   std::vector<glm::dvec3> drawnPositions_;  // the vertices as the renderer last got them
   bool sceneChanged_ = true;       // camera, settings or size changed since the last trace
-  bool imageTraced_ = false;       // this frame traced a new image
+  bool imageTraced_ = false;       // this frame traced an image (a new one, or a refinement sample)
+  bool newImageTraced_ = false;    // ... a new one: the view changed
+  bool tracedAtFullSize_ = false;  // ... at the full size of the view
   glm::dvec3 grabTargetDrawn_{0.0};  // the target the grabbed points were last pulled to
   double wallClock_ = 0.0;
   double lastInteraction_ = -1e9;

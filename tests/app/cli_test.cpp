@@ -71,6 +71,13 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"snapshot -o " SLIME_TEST_OUTPUT_DIR "/bad.png --set floor.pattern=image "
                  "--set floor.image=/nonexistent.png", "floor.image"},
         BadInput{"snapshot -o " SLIME_TEST_OUTPUT_DIR "/bad.png --eye 0 0 0.1 --look-at 0 0 0.1", "--look-at"},
+        BadInput{"view --frame-log /nonexistent-directory/frames.csv", "--frame-log"},
+        BadInput{"view --frame-log /nonexistent-directory/frames.csv", "does not exist"},
+        BadInput{"view --frame-log " SLIME_TEST_OUTPUT_DIR, "is a directory"},
+        BadInput{"view --report /nonexistent-directory/report.json", "--report"},
+        BadInput{"view --target-fps 500", "--target-fps"},
+        BadInput{"view --target-fps -1", "--target-fps"},
+        BadInput{"view --target-fps fast", "--target-fps"},
         BadInput{"frobnicate", "frobnicate"}));
 
 // --eye and --look-at are readable names of --vp and --vi: the same picture.

@@ -1,0 +1,73 @@
+// The viewer's per-frame record: the CSV behind the drag chart and the report's figures over the
+// frames the slime was held.
+#include "app/viewer/frame_log.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace slime {
+namespace {
+
+FrameRecord record(double frameMs, bool traced, bool full, bool grabbed) {
+  FrameRecord frame;
+  frame.frameMs = frameMs;
+  frame.stages.physics = 5.0;
+  frame.stages.ui = 8.0;
+  frame.stages.trace = traced ? 40.0 : 0.0;
+  frame.traced = traced;
+  frame.fullResolution = traced && full;
+  frame.grabbed = grabbed;
+  return frame;
+}
+
+TEST(FrameLog, SummaryOfTheGrabbedFramesOnly) {
+  const std::vector<FrameRecord> records = {
+      record(100.0, true, true, false),  // before the grab: left out
+      record(50.0, true, true, true),   record(40.0, true, false, true), record(60.0, false, false, true),
+      record(30.0, true, true, false)};
+  const FrameSummary summary = summarizeFrames(records, [](const FrameRecord& r) { return r.grabbed; });
+  EXPECT_EQ(summary.frames, 3);
+  EXPECT_DOUBLE_EQ(summary.meanFps, 3.0 / 0.150);
+  EXPECT_DOUBLE_EQ(summary.medianFrameMs, 50.0);
+  EXPECT_DOUBLE_EQ(summary.meanStages.trace, 40.0);  // over the two frames that traced
+  EXPECT_DOUBLE_EQ(summary.meanStages.physics, 5.0);
+  EXPECT_EQ(summary.fullResolutionFrames, 1);
+  EXPECT_EQ(summary.reducedResolutionFrames, 1);
+}
+
+TEST(FrameLog, NoFramesGiveZeros) {
+  const FrameSummary summary = summarizeFrames({record(50.0, true, true, false)},
+                                               [](const FrameRecord& r) { return r.grabbed; });
+  EXPECT_EQ(summary.frames, 0);
+  EXPECT_EQ(summary.meanFps, 0.0);
+  EXPECT_EQ(summary.medianFrameMs, 0.0);
+}
+
+TEST(FrameLog, CsvHasAHeaderAndOneLinePerFrame) {
+  const std::filesystem::path path = std::filesystem::path(SLIME_TEST_OUTPUT_DIR) / "frame_log_test.csv";
+  FrameRecord frame = record(33.5, true, false, true);
+  frame.imageWidth = 320;
+  frame.imageHeight = 180;
+  frame.scale = 0.5;
+  ASSERT_TRUE(writeFrameLogCsv({record(40.0, true, true, false), frame}, path.string()));
+  std::ifstream file(path);
+  std::string header, first, second, extra;
+  std::getline(file, header);
+  std::getline(file, first);
+  std::getline(file, second);
+  EXPECT_FALSE(std::getline(file, extra));
+  EXPECT_EQ(header,
+            "frame,end_s,frame_ms,physics_ms,refit_ms,trace_ms,upload_ms,ui_ms,"
+            "traced,full_resolution,width,height,scale,grabbed,simulated_s");
+  EXPECT_EQ(second, "1,0.0000,33.500,5.000,0.000,40.000,0.000,8.000,1,0,320,180,0.500,1,0.0000");
+}
+
+TEST(FrameLog, AnUnwritablePathIsReported) {
+  EXPECT_FALSE(writeFrameLogCsv({}, "/nonexistent-directory/frames.csv"));
+}
+
+}  // namespace
+}  // namespace slime
