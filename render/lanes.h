@@ -56,22 +56,25 @@ inline Lanes select(LaneMask mask, Lanes a, Lanes b) { return Lanes(_mm256_blend
 
 #else
 
+// r.lane(i) = f(a[i], b[i]) for each of the eight lanes.
+template <typename Result, typename Argument, typename F>
+Result eachLane(const Argument& a, const Argument& b, F f) {
+  Result r;
+  for (int i = 0; i < 8; ++i) r.lane(i) = f(a[i], b[i]);
+  return r;
+}
+
 struct LaneMask {
   bool bits[8] = {};
-  friend LaneMask operator&&(LaneMask a, LaneMask b) { return combine(a, b, [](bool x, bool y) { return x && y; }); }
-  friend LaneMask operator||(LaneMask a, LaneMask b) { return combine(a, b, [](bool x, bool y) { return x || y; }); }
-  friend LaneMask operator!(LaneMask a) { return combine(a, a, [](bool x, bool) { return !x; }); }
+  friend LaneMask operator&&(LaneMask a, LaneMask b) { return eachLane<LaneMask>(a, b, [](bool x, bool y) { return x && y; }); }
+  friend LaneMask operator||(LaneMask a, LaneMask b) { return eachLane<LaneMask>(a, b, [](bool x, bool y) { return x || y; }); }
+  friend LaneMask operator!(LaneMask a) { return eachLane<LaneMask>(a, a, [](bool x, bool) { return !x; }); }
   bool operator[](int i) const { return bits[i]; }
+  bool& lane(int i) { return bits[i]; }
   unsigned mask() const {  // lane i: bit i
     unsigned result = 0;
     for (int i = 0; i < 8; ++i) result |= static_cast<unsigned>(bits[i]) << i;
     return result;
-  }
-  template <typename F>
-  static LaneMask combine(LaneMask a, LaneMask b, F f) {
-    LaneMask r;
-    for (int i = 0; i < 8; ++i) r.bits[i] = f(a.bits[i], b.bits[i]);
-    return r;
   }
 };
 
@@ -90,35 +93,24 @@ struct Lanes {
     for (int i = 0; i < 8; ++i) values[i] = v[i];
   }
   float operator[](int i) const { return v[i]; }
-  template <typename F>
-  static Lanes map(Lanes a, Lanes b, F f) {
-    Lanes r;
-    for (int i = 0; i < 8; ++i) r.v[i] = f(a.v[i], b.v[i]);
-    return r;
-  }
-  template <typename F>
-  static LaneMask test(Lanes a, Lanes b, F f) {
-    LaneMask r;
-    for (int i = 0; i < 8; ++i) r.bits[i] = f(a.v[i], b.v[i]);
-    return r;
-  }
-  friend Lanes operator+(Lanes a, Lanes b) { return map(a, b, [](float x, float y) { return x + y; }); }
-  friend Lanes operator-(Lanes a, Lanes b) { return map(a, b, [](float x, float y) { return x - y; }); }
-  friend Lanes operator*(Lanes a, Lanes b) { return map(a, b, [](float x, float y) { return x * y; }); }
-  friend Lanes operator/(Lanes a, Lanes b) { return map(a, b, [](float x, float y) { return x / y; }); }
-  friend Lanes operator-(Lanes a) { return map(a, a, [](float x, float) { return -x; }); }
-  friend LaneMask operator<(Lanes a, Lanes b) { return test(a, b, [](float x, float y) { return x < y; }); }
-  friend LaneMask operator<=(Lanes a, Lanes b) { return test(a, b, [](float x, float y) { return x <= y; }); }
-  friend LaneMask operator>(Lanes a, Lanes b) { return test(a, b, [](float x, float y) { return x > y; }); }
-  friend LaneMask operator>=(Lanes a, Lanes b) { return test(a, b, [](float x, float y) { return x >= y; }); }
+  float& lane(int i) { return v[i]; }
+  friend Lanes operator+(Lanes a, Lanes b) { return eachLane<Lanes>(a, b, [](float x, float y) { return x + y; }); }
+  friend Lanes operator-(Lanes a, Lanes b) { return eachLane<Lanes>(a, b, [](float x, float y) { return x - y; }); }
+  friend Lanes operator*(Lanes a, Lanes b) { return eachLane<Lanes>(a, b, [](float x, float y) { return x * y; }); }
+  friend Lanes operator/(Lanes a, Lanes b) { return eachLane<Lanes>(a, b, [](float x, float y) { return x / y; }); }
+  friend Lanes operator-(Lanes a) { return eachLane<Lanes>(a, a, [](float x, float) { return -x; }); }
+  friend LaneMask operator<(Lanes a, Lanes b) { return eachLane<LaneMask>(a, b, [](float x, float y) { return x < y; }); }
+  friend LaneMask operator<=(Lanes a, Lanes b) { return eachLane<LaneMask>(a, b, [](float x, float y) { return x <= y; }); }
+  friend LaneMask operator>(Lanes a, Lanes b) { return eachLane<LaneMask>(a, b, [](float x, float y) { return x > y; }); }
+  friend LaneMask operator>=(Lanes a, Lanes b) { return eachLane<LaneMask>(a, b, [](float x, float y) { return x >= y; }); }
 };
 
-inline Lanes sqrt(Lanes a) { return Lanes::map(a, a, [](float x, float) { return std::sqrt(x); }); }
-inline Lanes max(Lanes a, Lanes b) { return Lanes::map(a, b, [](float x, float y) { return x > y ? x : y; }); }
-inline Lanes min(Lanes a, Lanes b) { return Lanes::map(a, b, [](float x, float y) { return x < y ? x : y; }); }
+inline Lanes sqrt(Lanes a) { return eachLane<Lanes>(a, a, [](float x, float) { return std::sqrt(x); }); }
+inline Lanes max(Lanes a, Lanes b) { return eachLane<Lanes>(a, b, [](float x, float y) { return x > y ? x : y; }); }
+inline Lanes min(Lanes a, Lanes b) { return eachLane<Lanes>(a, b, [](float x, float y) { return x < y ? x : y; }); }
 inline Lanes select(LaneMask mask, Lanes a, Lanes b) {
   Lanes r;
-  for (int i = 0; i < 8; ++i) r.v[i] = mask.bits[i] ? a.v[i] : b.v[i];
+  for (int i = 0; i < 8; ++i) r.v[i] = mask[i] ? a[i] : b[i];
   return r;
 }
 

@@ -655,9 +655,9 @@ void WhittedTracer::floorLanes8(const FloorRays8& rays, FloorLanes8& lanes) cons
 
 void WhittedTracer::traceFloorOrSky8(const glm::vec3& eye, const float* directionX, const float* directionY,
                                      const float* directionZ, int count, TraceCounters& counters, glm::vec3* colors) const {
-  const ShadingParameters& p = parameters_;
   counters.rays.primary += static_cast<std::uint64_t>(count);
 #if defined(__AVX2__) && defined(__FMA__)
+  const ShadingParameters& p = parameters_;
   if (!(p.floorSpecular > 0.0f)) {
     // floorDistance, floorShading8 and shadeFloorWith's sums (with the light unshadowed) in lanes:
     // the same operations in the same order, so each pixel equals tracePrimary8's bit for bit.
