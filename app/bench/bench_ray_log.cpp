@@ -7,6 +7,8 @@
 #include "render/slime_geometry.h"
 #include "render/whitted_tracer.h"
 
+#include <glm/geometric.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -16,11 +18,13 @@ namespace {
 
 constexpr int kPacket = 8;
 
-// Answers every query of the tracer through Embree and logs it. Shadow packets are the ones with a
-// finite tFar (the light's distance); reflection and refraction rays run to infinity.
+// Answers every query of the tracer through Embree and logs it. Shadow packets are those with a
+// segment that ends or starts at the light; the other rays are secondary (reflection and refraction
+// rays, running to infinity or, inside a convex slime, asked backwards from beyond its bounds).
 class RecordingIntersector final : public SlimeIntersector {
  public:
-  RecordingIntersector(const SlimeIntersector& inner, RayLog& log) : inner_(inner), log_(log) {}
+  RecordingIntersector(const SlimeIntersector& inner, RayLog& log, const glm::vec3& light)
+      : inner_(inner), log_(log), light_(light) {}
 
   SlimeHit intersect(const Ray& ray) const override {  // logged as a packet of one
     const bool active[kPacket] = {true};
@@ -36,7 +40,7 @@ class RecordingIntersector final : public SlimeIntersector {
     for (int i = 0; i < kPacket; ++i) {
       packet.rays[i] = rays[i];
       packet.active[i] = active[i];
-      shadow = shadow || (active[i] && !std::isinf(rays[i].tFar));
+      shadow = shadow || (active[i] && towardsLight(rays[i]));
     }
     (shadow ? log_.shadow : log_.secondary).push_back(packet);
     inner_.intersect8(rays, active, hits);
@@ -44,8 +48,15 @@ class RecordingIntersector final : public SlimeIntersector {
   }
 
  private:
+  bool towardsLight(const Ray& ray) const {
+    if (std::isinf(ray.tFar)) return false;
+    constexpr float kNear = 1e-4f;  // metres
+    return glm::distance(ray.origin, light_) < kNear || glm::distance(ray.origin + ray.tFar * ray.direction, light_) < kNear;
+  }
+
   const SlimeIntersector& inner_;
   RayLog& log_;
+  glm::vec3 light_;
 };
 
 }  // namespace
@@ -65,7 +76,7 @@ RayLog recordSlimeQueries(const Settings& settings, const std::vector<glm::dvec3
   if (settings.slime.shape == "sphere") geometry.setAnalyticSphere(true, static_cast<float>(settings.slime.radius));
   EmbreeScene embree(settings.render.threads);
   embree.update(geometry, true);
-  const RecordingIntersector recorder(embree, log);
+  const RecordingIntersector recorder(embree, log, glm::vec3(settings.light.position));
   const FloorTexture floor(settings.floor);
   const ShadingParameters parameters = makeShadingParameters(settings, height);
   const WhittedTracer tracer(geometry, recorder, floor, parameters);

@@ -24,8 +24,8 @@ struct RayPacket {
 // Every query as the tracer made it: packets of up to 8 rays (the tracer asks nothing one ray at a time).
 struct RayLog {
   std::vector<RayPacket> primary;    // coherent primaries, 8 pixels of a row at a time
-  std::vector<RayPacket> secondary;  // reflection and refraction queries (tFar = ∞), a generation of 8 pixels' rays
-  std::vector<RayPacket> shadow;     // shadow-ray crossings towards the light (finite tFar)
+  std::vector<RayPacket> secondary;  // reflection and refraction queries, a generation of 8 pixels' rays
+  std::vector<RayPacket> shadow;     // shadow-ray crossings, segments with one end at the light
   std::uint64_t hits = 0;            // queries that found the slime while recording
 
   static std::uint64_t activeRays(const std::vector<RayPacket>& packets);
