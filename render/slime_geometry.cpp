@@ -1,6 +1,7 @@
 #include "render/slime_geometry.h"
 
 #include "render/lanes.h"
+#include "render/tsan_handoff.h"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -182,9 +183,13 @@ void SlimeGeometry::findSupportingTriangles() {
     }
     return true;
   };
+  handOff(this);  // the frame's positions and spheres, to the workers (render/tsan_handoff.h)
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), 256), [&](const tbb::blocked_range<std::size_t>& range) {
+    takeOver(this);
     for (std::size_t f = range.begin(); f < range.end(); ++f) supporting[f] = supportsSlime(f) ? 1 : 0;
+    handOff(this);  // their marks, back to the caller
   });
+  takeOver(this);
   convex = std::all_of(supporting.begin(), supporting.end(), [](std::uint8_t s) { return s != 0; });
 }
 
