@@ -5,6 +5,8 @@
 // multiply-adds unless asked for), so a result equals the scalar formula's bit for bit.
 #pragma once
 
+#include <glm/vec3.hpp>
+
 #include <cmath>
 
 #if defined(__AVX2__)
@@ -128,5 +130,16 @@ inline Lanes3 operator-(const Lanes3& a) { return {-a.x, -a.y, -a.z}; }
 inline Lanes3 select(LaneMask mask, const Lanes3& a, const Lanes3& b) {
   return {select(mask, a.x, b.x), select(mask, a.y, b.y), select(mask, a.z, b.z)};
 }
+
+// Eight vectors back in memory, read one at a time.
+struct StoredLanes3 {
+  explicit StoredLanes3(const Lanes3& lanes) {
+    lanes.x.store(x);
+    lanes.y.store(y);
+    lanes.z.store(z);
+  }
+  glm::vec3 operator[](int i) const { return {x[i], y[i], z[i]}; }
+  float x[8], y[8], z[8];
+};
 
 }  // namespace slime

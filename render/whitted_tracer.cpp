@@ -251,29 +251,23 @@ void WhittedTracer::shadeSlimes8(const PendingRay* const* pending, int count, Wa
   //   I = local Phong (entering) + w_r I_reflected + w_t I_refracted, times Beer–Lambert from inside.
   const ShadingParameters& p = parameters_;
   constexpr int N = 8;
-  float values[10][N];  // origin, direction, t, then the point's geometric and shading normals
+  float origin[3][N], direction[3][N], distance[N];
   for (int i = 0; i < N; ++i) {
     const PendingRay& ray = *pending[std::min(i, count - 1)];  // unused lanes repeat the last ray
-    values[0][i] = ray.ray.origin.x;
-    values[1][i] = ray.ray.origin.y;
-    values[2][i] = ray.ray.origin.z;
-    values[3][i] = ray.ray.direction.x;
-    values[4][i] = ray.ray.direction.y;
-    values[5][i] = ray.ray.direction.z;
-    values[6][i] = ray.hit.t;
+    for (int c = 0; c < 3; ++c) {
+      origin[c][i] = ray.ray.origin[c];
+      direction[c][i] = ray.ray.direction[c];
+    }
+    distance[i] = ray.hit.t;
   }
-  const Lanes t = Lanes::load(values[6]);
-  const Lanes3 d{Lanes::load(values[3]), Lanes::load(values[4]), Lanes::load(values[5])};
-  const Lanes3 point = Lanes3{Lanes::load(values[0]), Lanes::load(values[1]), Lanes::load(values[2])} + t * d;
-  float points[3][N], normals[6][N];
-  point.x.store(points[0]);
-  point.y.store(points[1]);
-  point.z.store(points[2]);
+  const Lanes t = Lanes::load(distance);
+  const Lanes3 d{Lanes::load(direction[0]), Lanes::load(direction[1]), Lanes::load(direction[2])};
+  const StoredLanes3 points(Lanes3{Lanes::load(origin[0]), Lanes::load(origin[1]), Lanes::load(origin[2])} + t * d);
+  float normals[6][N];  // the outward geometric normal (0–2), the interpolated shading normal (3–5)
   for (int i = 0; i < N; ++i) {
     const PendingRay& ray = *pending[std::min(i, count - 1)];
-    const glm::vec3 at{points[0][i], points[1][i], points[2][i]};
-    const glm::vec3 outward = geometry_.geometricNormal(ray.hit, at);
-    const glm::vec3 shading = geometry_.shadingNormal(ray.hit, at, p.smoothNormals);
+    const glm::vec3 outward = geometry_.geometricNormal(ray.hit, points[i]);
+    const glm::vec3 shading = geometry_.shadingNormal(ray.hit, points[i], p.smoothNormals);
     for (int c = 0; c < 3; ++c) {
       normals[c][i] = outward[c];
       normals[3 + c][i] = shading[c];
@@ -300,6 +294,7 @@ void WhittedTracer::shadeSlimes8(const PendingRay* const* pending, int count, Wa
 
   // Local Phong where the ray enters: I = k_a I_a C + T_light I_l (k_d (N·L) C + k_s (R·V)^n), with
   // Phong's lobe R = reflect(−L, N), V = −d.
+  const Lanes3 point{Lanes::load(points.x), Lanes::load(points.y), Lanes::load(points.z)};
   const Lanes3 toLightUnnormalized =
       Lanes3{Lanes(p.lightPosition.x), Lanes(p.lightPosition.y), Lanes(p.lightPosition.z)} - point;
   const Lanes3 toLight = (1.0f / sqrt(dot(toLightUnnormalized, toLightUnnormalized))) * toLightUnnormalized;
@@ -326,39 +321,37 @@ void WhittedTracer::shadeSlimes8(const PendingRay* const* pending, int count, Wa
   const Lanes rp = (etaTo * cosine - etaFrom * cosTransmitted) / (etaTo * cosine + etaFrom * cosTransmitted);
   const Lanes fresnelLanes = select(sinTransmitted < 1.0f, 0.5f * (rs * rs + rp * rp), 1.0f);
 
-  float lanes[15][N];
-  facing.x.store(lanes[0]), facing.y.store(lanes[1]), facing.z.store(lanes[2]);
-  normal.x.store(lanes[3]), normal.y.store(lanes[4]), normal.z.store(lanes[5]);
-  toLight.x.store(lanes[6]), toLight.y.store(lanes[7]), toLight.z.store(lanes[8]);
-  transmittedLanes.x.store(lanes[9]), transmittedLanes.y.store(lanes[10]), transmittedLanes.z.store(lanes[11]);
-  cosLight.store(lanes[12]), lobeCosine.store(lanes[13]), fresnelLanes.store(lanes[14]);
+  const StoredLanes3 facings(facing), shadingNormals(normal), lightDirections(toLight), transmissions(transmittedLanes);
+  float cosLights[N], lobeCosines[N], fresnels[N];
+  cosLight.store(cosLights);
+  lobeCosine.store(lobeCosines);
+  fresnelLanes.store(fresnels);
 
   // Ray by ray: the light, the children.
   for (int i = 0; i < count; ++i) {
     const PendingRay& ray = *pending[i];
     const Path& path = ray.path;
     glm::vec3& pixel = colors[ray.pixel];
-    const glm::vec3 point{points[0][i], points[1][i], points[2][i]}, facing{lanes[0][i], lanes[1][i], lanes[2][i]},
-        normal{lanes[3][i], lanes[4][i], lanes[5][i]};
+    const glm::vec3 point = points[i], facing = facings[i], normal = shadingNormals[i];
     const glm::vec3 direction = ray.ray.direction;
     const bool enters = entering[i];
     bool refracted = refractsLanes[i];
-    glm::vec3 transmitted{lanes[9][i], lanes[10][i], lanes[11][i]};
+    glm::vec3 transmitted = transmissions[i];
     if (reversed[i]) {
       const std::optional<glm::vec3> again = refract(direction, facing, enters ? 1.0f : p.ior, enters ? p.ior : 1.0f);
       refracted = again.has_value();
       if (again) transmitted = *again;
     }
-    const float fresnel = refracted ? lanes[14][i] : 1.0f;
+    const float fresnel = refracted ? fresnels[i] : 1.0f;
     const glm::vec3 inside = enters ? glm::vec3(1.0f) : glm::vec3(absorbed[0][i], absorbed[1][i], absorbed[2][i]);
     if (enters) {
       pixel += ray.factor * (p.ambient * p.ambientLight * p.slimeColor);
       if (lit[i]) {
         // (R·V)^n; cos^n < 2^-12 (invisible) once n (1 − cos) ≳ 8.3: no pow there.
-        const float cosine = lanes[13][i];
+        const float cosine = lobeCosines[i];
         const float lobe = cosine <= 0.0f || p.shininess * (1.0f - cosine) > 8.5f ? 0.0f : std::pow(cosine, p.shininess);
-        const glm::vec3 toLight{lanes[6][i], lanes[7][i], lanes[8][i]};
-        const glm::vec3 light = ray.factor * p.lightColor * (p.diffuse * lanes[12][i] * p.slimeColor + p.specular * lobe);
+        const glm::vec3 toLight = lightDirections[i];
+        const glm::vec3 light = ray.factor * p.lightColor * (p.diffuse * cosLights[i] * p.slimeColor + p.specular * lobe);
         // Towards the light out of a supporting triangle, nothing of the slime is in the way.
         if (p.shadows) addLight(offsetRayOrigin(point, facing, toLight), light, ray.pixel, geometry_.supports(ray.hit.primitive), wavefront, counters, colors);
         else pixel += light;
