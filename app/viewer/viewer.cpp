@@ -6,18 +6,14 @@
 #include "core/camera.h"
 #include "core/level_of_detail.h"
 #include "core/settings_io.h"
-#include "render/image_io.h"
 
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
-#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <thread>
 
 namespace slime {
@@ -465,21 +461,6 @@ void Viewer::finishFrame(double frameMs) {
   frameRecords_.push_back(record);
 }
 
-namespace {
-
-// validateSettings, and what only the renderer finds out: that a floor image can be read.
-void checkSettings(const Settings& settings, const Settings& current) {
-  validateSettings(settings);
-  if (settings.floor.pattern != "image" || settings.floor.image == current.floor.image) return;
-  try {
-    readPng(settings.floor.image);
-  } catch (const std::exception& error) {
-    throw SettingsError("floor.image: " + std::string(error.what()));
-  }
-}
-
-}  // namespace
-
 // A valid edit applies at once, except the rebuild-type settings (level, radius, ...): they wait in
 // wanted_ for Reload, so dragging the level slider does not rebuild the slime every frame.
 void Viewer::applyEdit(const std::string& group) {
@@ -546,65 +527,6 @@ void Viewer::toViewCoordinates(FrameInput& input) const {
   input.windowSize = viewSize();
 }
 
-Settings Viewer::sceneToSave() const {
-  Settings scene = settings_;
-  copyReloadFields(wanted_, scene);
-  const glm::ivec2 window = backend_.windowSize();
-  if (window.x > 0 && window.y > 0) scene.camera.width = window.x, scene.camera.height = window.y;
-  return scene;
-}
-
-// Written to a temporary file beside the target and renamed, so a failed save leaves no half file.
-void Viewer::saveScene() {
-  const std::string temporary = scenePath_ + ".partial";
-  {
-    std::ofstream file(temporary);
-    file << settingsToJson(sceneToSave()).dump(2) << '\n';
-    if (!file) {
-      std::filesystem::remove(temporary);
-      fileMessage_ = "Not saved: cannot write " + scenePath_;
-      fileFailed_ = true;
-      return;
-    }
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, scenePath_, error);
-  fileFailed_ = static_cast<bool>(error);
-  fileMessage_ = error ? "Not saved: " + scenePath_ + ": " + error.message() : "Saved " + scenePath_;
-  if (error) std::filesystem::remove(temporary);
-  std::printf("slime: %s\n", fileMessage_.c_str());
-}
-
-// A scene file is applied over the default scene, as `--scene` does; anything wrong leaves the
-// running scene as it was. The window keeps its size.
-void Viewer::loadScene() {
-  Settings loaded = defaultSettings();
-  try {
-    applySceneFile(loaded, scenePath_);
-    loaded.camera.width = settings_.camera.width;
-    loaded.camera.height = settings_.camera.height;
-    checkSettings(loaded, Settings{});
-  } catch (const SettingsError& error) {
-    fileMessage_ = std::string("Not loaded: ") + error.what();
-    fileFailed_ = true;
-    std::printf("slime: %s\n", fileMessage_.c_str());
-    return;
-  }
-  settings_ = wanted_ = built_ = draft_ = loaded;
-  editError_.clear();
-  errorGroup_.clear();
-  fileMessage_ = "Loaded " + scenePath_;
-  fileFailed_ = false;
-  if (grab_.active()) grab_.end();
-  simulation_.reload(settings_);
-  clock_.reset();
-  slimeMoved_ = true;
-  sceneChanged_ = true;
-  drawnPositions_.clear();
-  metrics_ = simulation_.metrics();
-  std::printf("slime: %s\n", fileMessage_.c_str());
-}
-
 Settings Viewer::frameSettings(glm::ivec2 imageSize) const {
   Settings frame = settings_;
   frame.camera.width = imageSize.x;
@@ -620,62 +542,6 @@ glm::dvec3 Viewer::slimeCentre() const {
   glm::dvec3 sum(0.0);
   for (const glm::dvec3& position : positions) sum += position;
   return sum / static_cast<double>(positions.size());
-}
-
-namespace {
-
-nlohmann::json summaryJson(const FrameSummary& summary) {
-  const StageTimes& stages = summary.meanStages;
-  return {{"frames", summary.frames},
-          {"mean_fps", summary.meanFps},
-          {"median_frame_ms", summary.medianFrameMs},
-          {"mean_stage_ms",
-           {{"physics", stages.physics}, {"refit", stages.refit}, {"trace", stages.trace},
-            {"upload", stages.upload}, {"ui", stages.ui}}},
-          {"traced_full_resolution_frames", summary.fullResolutionFrames},
-          {"traced_reduced_resolution_frames", summary.reducedResolutionFrames}};
-}
-
-}  // namespace
-
-void Viewer::writeReport() const {
-  if (options_.reportPath.empty()) return;
-  const glm::ivec2 framebuffer = backend_.framebufferSize();
-  const StageTimes meanStages = stats_.meanStages();
-  const nlohmann::json report = {
-      {"frames", stats_.frames},
-      {"fps", stats_.fps},
-      {"mean_fps", stats_.meanFps()},
-      {"median_frame_ms_recent", stats_.medianRecentFrameMs()},
-      {"traced_frames", stats_.tracedFrames},
-      {"traced_full_resolution_frames", stats_.fullResolutionFrames},
-      {"traced_reduced_resolution_frames", stats_.reducedResolutionFrames},
-      {"adaptive_resolution", {{"target_fps", resolution_.targetFps()}, {"scale", resolution_.scale()}}},
-      {"while_grabbed", summaryJson(summarizeFrames(frameRecords_, [](const FrameRecord& frame) {
-         return frame.grabbed;
-       }))},
-      {"mean_stage_ms",
-       {{"physics", meanStages.physics}, {"refit", meanStages.refit}, {"trace", meanStages.trace},
-        {"upload", meanStages.upload}, {"ui", meanStages.ui}}},
-      {"framebuffer", {framebuffer.x, framebuffer.y}},
-      {"simulated_seconds", simulation_.time()},
-      {"steps", simulation_.stepCount()},
-      {"dropped_seconds", clock_.droppedSeconds()},
-      {"grabs", grabCount_},
-      {"grabbing", simulation_.grabbing()},
-      {"height_at_grab", heightAtGrab_},
-      {"peak_height_while_grabbing", peakHeightWhileGrabbing_},
-      {"metrics",
-       {{"volume_ratio", metrics_.volumeRatio}, {"height", metrics_.height}, {"width", metrics_.width},
-        {"aspect", metrics_.aspect}, {"min_z", metrics_.minZ}}},
-      {"edit_error", editError_},
-      {"file_message", fileMessage_},
-      {"reload_pending", differingReloadFields(wanted_, built_)},
-      {"screenshots", screenshotsWritten_},
-      {"settings", settingsToJson(settings_)}};
-  std::ofstream file(options_.reportPath);
-  file << report.dump(2) << '\n';
-  if (!file) std::fprintf(stderr, "slime view: cannot write %s\n", options_.reportPath.c_str());
 }
 
 }  // namespace slime

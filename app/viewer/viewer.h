@@ -43,6 +43,10 @@ struct ViewerOptions {
   int refineSamples = 16;  // samples per pixel a still image accumulates (1: none, as `snapshot` shows it)
 };
 
+// validateSettings, and what only the renderer finds out: that a floor image can be read
+// (`current`: the settings in force, whose image is known to be readable). Throws SettingsError.
+void checkSettings(const Settings& settings, const Settings& current);
+
 class Viewer {
  public:
   static constexpr double kRefineAfterSeconds = 0.25;  // stillness before the image starts refining

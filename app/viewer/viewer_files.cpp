@@ -1,0 +1,142 @@
+// What the viewer reads and writes besides the frame: scene files (Ctrl+S, Ctrl+O) and the
+// `--report` JSON at exit.
+#include "app/viewer/viewer.h"
+
+#include "app/viewer/panel_fields.h"
+#include "core/settings_io.h"
+#include "render/image_io.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+namespace slime {
+
+void checkSettings(const Settings& settings, const Settings& current) {
+  validateSettings(settings);
+  if (settings.floor.pattern != "image" || settings.floor.image == current.floor.image) return;
+  try {
+    readPng(settings.floor.image);
+  } catch (const std::exception& error) {
+    throw SettingsError("floor.image: " + std::string(error.what()));
+  }
+}
+
+
+Settings Viewer::sceneToSave() const {
+  Settings scene = settings_;
+  copyReloadFields(wanted_, scene);
+  const glm::ivec2 window = backend_.windowSize();
+  if (window.x > 0 && window.y > 0) scene.camera.width = window.x, scene.camera.height = window.y;
+  return scene;
+}
+
+// Written to a temporary file beside the target and renamed, so a failed save leaves no half file.
+void Viewer::saveScene() {
+  const std::string temporary = scenePath_ + ".partial";
+  {
+    std::ofstream file(temporary);
+    file << settingsToJson(sceneToSave()).dump(2) << '\n';
+    if (!file) {
+      std::filesystem::remove(temporary);
+      fileMessage_ = "Not saved: cannot write " + scenePath_;
+      fileFailed_ = true;
+      return;
+    }
+  }
+  std::error_code error;
+  std::filesystem::rename(temporary, scenePath_, error);
+  fileFailed_ = static_cast<bool>(error);
+  fileMessage_ = error ? "Not saved: " + scenePath_ + ": " + error.message() : "Saved " + scenePath_;
+  if (error) std::filesystem::remove(temporary);
+  std::printf("slime: %s\n", fileMessage_.c_str());
+}
+
+// A scene file is applied over the default scene, as `--scene` does; anything wrong leaves the
+// running scene as it was. The window keeps its size.
+void Viewer::loadScene() {
+  Settings loaded = defaultSettings();
+  try {
+    applySceneFile(loaded, scenePath_);
+    loaded.camera.width = settings_.camera.width;
+    loaded.camera.height = settings_.camera.height;
+    checkSettings(loaded, Settings{});
+  } catch (const SettingsError& error) {
+    fileMessage_ = std::string("Not loaded: ") + error.what();
+    fileFailed_ = true;
+    std::printf("slime: %s\n", fileMessage_.c_str());
+    return;
+  }
+  settings_ = wanted_ = built_ = draft_ = loaded;
+  editError_.clear();
+  errorGroup_.clear();
+  fileMessage_ = "Loaded " + scenePath_;
+  fileFailed_ = false;
+  if (grab_.active()) grab_.end();
+  simulation_.reload(settings_);
+  clock_.reset();
+  slimeMoved_ = true;
+  sceneChanged_ = true;
+  drawnPositions_.clear();
+  metrics_ = simulation_.metrics();
+  std::printf("slime: %s\n", fileMessage_.c_str());
+}
+
+namespace {
+
+nlohmann::json stagesJson(const StageTimes& stages) {
+  return {{"physics", stages.physics}, {"refit", stages.refit}, {"trace", stages.trace}, {"upload", stages.upload},
+          {"ui", stages.ui}};
+}
+
+nlohmann::json summaryJson(const FrameSummary& summary) {
+  return {{"frames", summary.frames},
+          {"mean_fps", summary.meanFps},
+          {"median_frame_ms", summary.medianFrameMs},
+          {"mean_stage_ms", stagesJson(summary.meanStages)},
+          {"traced_full_resolution_frames", summary.fullResolutionFrames},
+          {"traced_reduced_resolution_frames", summary.reducedResolutionFrames}};
+}
+
+}  // namespace
+
+void Viewer::writeReport() const {
+  if (options_.reportPath.empty()) return;
+  const glm::ivec2 framebuffer = backend_.framebufferSize();
+  const nlohmann::json report = {
+      {"frames", stats_.frames},
+      {"fps", stats_.fps},
+      {"mean_fps", stats_.meanFps()},
+      {"median_frame_ms_recent", stats_.medianRecentFrameMs()},
+      {"traced_frames", stats_.tracedFrames},
+      {"traced_full_resolution_frames", stats_.fullResolutionFrames},
+      {"traced_reduced_resolution_frames", stats_.reducedResolutionFrames},
+      {"adaptive_resolution", {{"target_fps", resolution_.targetFps()}, {"scale", resolution_.scale()}}},
+      {"while_grabbed", summaryJson(summarizeFrames(frameRecords_, [](const FrameRecord& frame) {
+         return frame.grabbed;
+       }))},
+      {"mean_stage_ms", stagesJson(stats_.meanStages())},
+      {"framebuffer", {framebuffer.x, framebuffer.y}},
+      {"simulated_seconds", simulation_.time()},
+      {"steps", simulation_.stepCount()},
+      {"dropped_seconds", clock_.droppedSeconds()},
+      {"grabs", grabCount_},
+      {"grabbing", simulation_.grabbing()},
+      {"height_at_grab", heightAtGrab_},
+      {"peak_height_while_grabbing", peakHeightWhileGrabbing_},
+      {"metrics",
+       {{"volume_ratio", metrics_.volumeRatio}, {"height", metrics_.height}, {"width", metrics_.width},
+        {"aspect", metrics_.aspect}, {"min_z", metrics_.minZ}}},
+      {"edit_error", editError_},
+      {"file_message", fileMessage_},
+      {"reload_pending", differingReloadFields(wanted_, built_)},
+      {"screenshots", screenshotsWritten_},
+      {"settings", settingsToJson(settings_)}};
+  std::ofstream file(options_.reportPath);
+  file << report.dump(2) << '\n';
+  if (!file) std::fprintf(stderr, "slime view: cannot write %s\n", options_.reportPath.c_str());
+}
+
+}  // namespace slime
