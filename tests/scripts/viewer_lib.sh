@@ -31,6 +31,14 @@ screenshot() {
   fail "F12 did not write $OUT/shot-$1.png"
 }
 
+# click_at X Y: a left click at window point (X, Y), the button held for a moment: Dear ImGui 1.86
+# loses a press and release that arrive within one frame, and a loaded machine makes frames long.
+click_at() {
+  xdotool mousemove --window "$WINDOW" "$1" "$2" mousedown 1
+  sleep 0.3
+  xdotool mouseup 1
+}
+
 # differing_pixels A B: how many pixels differ by more than 3 % between two PNGs.
 differing_pixels() {
   compare -metric AE -fuzz 3% "$1" "$2" null: 2>&1 | cut -d' ' -f1

@@ -7,18 +7,20 @@
 source "$(dirname "$0")/viewer_lib.sh"
 start_viewer --size 730x360 --set sim.paused=true
 sleep 2
-xdotool mousemove --window "$WINDOW" 60 36 click 1      # close the Scene file section
+click_at 60 36      # close the Scene file section
 sleep 1
 screenshot 1
-xdotool mousemove --window "$WINDOW" 12 312 click 1     # stiffness slider (logarithmic 1..1000), near 1 N/m
+click_at 12 312     # stiffness slider (logarithmic 1..1000), near 1 N/m
 sleep 1
-xdotool mousemove --window "$WINDOW" 12 220 click 1     # level slider at its left end: 0, held for Reload
+click_at 12 220     # level slider at its left end: 0, held for Reload
 sleep 1
 screenshot 2
 # Ctrl+click a slider to type a value. (Dear ImGui 1.86 misses a key pressed and released within one
 # frame, hence keydown, a pause, keyup.)
 type_into() {  # X Y TEXT
-  xdotool mousemove --window "$WINDOW" "$1" "$2" keydown ctrl click 1 keyup ctrl
+  xdotool mousemove --window "$WINDOW" "$1" "$2" keydown ctrl mousedown 1
+  sleep 0.3
+  xdotool mouseup 1 keyup ctrl
   sleep 0.5
   xdotool type --window "$WINDOW" "$3"
   sleep 0.3
