@@ -47,15 +47,29 @@ SlimeHit BruteTracer::intersect(const Ray& ray) const {
     }
     return hit;
   }
+  return closestTriangleHit(ray, geometry_.triangles, nullptr);
+}
+
+void BruteTracer::intersectNonSupporting8(const Ray* rays, const bool* active, SlimeHit* hits) const {
+  for (int i = 0; i < 8; ++i) {
+    hits[i] = SlimeHit{};
+    if (!active[i] || geometry_.analyticSphere || !geometry_.mayHit(rays[i])) continue;
+    hits[i] = closestTriangleHit(rays[i], geometry_.nonSupportingTriangles, &geometry_.nonSupportingPrimitives);
+  }
+}
+
+SlimeHit BruteTracer::closestTriangleHit(const Ray& ray, const std::vector<Triangle>& triangles,
+                                         const std::vector<std::uint32_t>* primitives) const {
+  SlimeHit hit;
   Ray segment = ray;
   const auto& positions = geometry_.positions;
-  for (std::size_t i = 0; i < geometry_.triangles.size(); ++i) {
-    const Triangle& triangle = geometry_.triangles[i];
+  for (std::size_t i = 0; i < triangles.size(); ++i) {
+    const Triangle& triangle = triangles[i];
     float u = 0.0f, v = 0.0f;
     const float t = intersectTriangle(segment, positions[triangle.x], positions[triangle.y], positions[triangle.z], u, v);
     if (t < segment.tFar) {
       segment.tFar = t;
-      hit = SlimeHit{t, static_cast<std::uint32_t>(i), u, v};
+      hit = SlimeHit{t, primitives ? (*primitives)[i] : static_cast<std::uint32_t>(i), u, v};
     }
   }
   return hit;

@@ -6,14 +6,22 @@
 #include "render/ray.h"
 #include "render/slime_geometry.h"
 
+#include <cstdint>
+#include <vector>
+
 namespace slime {
 
 class BruteTracer final : public SlimeIntersector {
  public:
   explicit BruteTracer(const SlimeGeometry& geometry) : geometry_(geometry) {}
   SlimeHit intersect(const Ray& ray) const override;
+  void intersectNonSupporting8(const Ray* rays, const bool* active, SlimeHit* hits) const override;
 
  private:
+  // The closest hit among `triangles`, named by their index or by primitives[index].
+  SlimeHit closestTriangleHit(const Ray& ray, const std::vector<Triangle>& triangles,
+                              const std::vector<std::uint32_t>* primitives) const;
+
   const SlimeGeometry& geometry_;
 };
 

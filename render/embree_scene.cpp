@@ -33,13 +33,24 @@ EmbreeScene::EmbreeScene(int threads) {
   sphereId_ = rtcAttachGeometry(scene_, sphere_);
   rtcDisableGeometry(sphere_);
   rtcCommitScene(scene_);
+
+  nonSupportingScene_ = rtcNewScene(device_);
+  rtcSetSceneFlags(nonSupportingScene_, RTC_SCENE_FLAG_DYNAMIC);
+  rtcSetSceneBuildQuality(nonSupportingScene_, RTC_BUILD_QUALITY_LOW);
+  nonSupporting_ = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+  rtcSetGeometryBuildQuality(nonSupporting_, RTC_BUILD_QUALITY_LOW);
+  rtcAttachGeometry(nonSupportingScene_, nonSupporting_);
+  rtcDisableGeometry(nonSupporting_);
+  rtcCommitScene(nonSupportingScene_);
   throwOnError("creating the scene");
 }
 
 EmbreeScene::~EmbreeScene() {
   if (mesh_) rtcReleaseGeometry(mesh_);
   if (sphere_) rtcReleaseGeometry(sphere_);
+  if (nonSupporting_) rtcReleaseGeometry(nonSupporting_);
   if (scene_) rtcReleaseScene(scene_);
+  if (nonSupportingScene_) rtcReleaseScene(nonSupportingScene_);
   if (device_) rtcReleaseDevice(device_);
 }
 
@@ -105,6 +116,25 @@ void EmbreeScene::update(const SlimeGeometry& geometry, bool topologyChanged) {
   }
   rtcCommitScene(scene_);
   throwOnError("refitting the slime");
+  buildNonSupporting(geometry);
+}
+
+void EmbreeScene::buildNonSupporting(const SlimeGeometry& geometry) {
+  nonSupportingPrimitives_ = &geometry.nonSupportingPrimitives;
+  const bool any = !geometry.analyticSphere && !geometry.nonSupportingTriangles.empty();
+  if (any) {
+    rtcSetSharedGeometryBuffer(nonSupporting_, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, geometry.positions.data(), 0,
+                               sizeof(glm::vec3), geometry.vertexCount());
+    rtcSetSharedGeometryBuffer(nonSupporting_, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                               geometry.nonSupportingTriangles.data(), 0, sizeof(Triangle),
+                               geometry.nonSupportingTriangles.size());
+    rtcCommitGeometry(nonSupporting_);
+    rtcEnableGeometry(nonSupporting_);
+  } else {
+    rtcDisableGeometry(nonSupporting_);
+  }
+  rtcCommitScene(nonSupportingScene_);
+  throwOnError("building the non-supporting triangles");
 }
 
 SlimeHit EmbreeScene::intersect(const Ray& ray) const {
@@ -125,6 +155,15 @@ SlimeHit EmbreeScene::intersect(const Ray& ray) const {
 }
 
 void EmbreeScene::intersect8(const Ray* rays, const bool* active, SlimeHit* hits) const {
+  intersect8In(scene_, nullptr, rays, active, hits);
+}
+
+void EmbreeScene::intersectNonSupporting8(const Ray* rays, const bool* active, SlimeHit* hits) const {
+  intersect8In(nonSupportingScene_, nonSupportingPrimitives_, rays, active, hits);
+}
+
+void EmbreeScene::intersect8In(RTCScene scene, const std::vector<std::uint32_t>* primitives, const Ray* rays,
+                               const bool* active, SlimeHit* hits) const {
   alignas(32) int valid[8];
   alignas(32) RTCRayHit8 packet;
   for (int i = 0; i < 8; ++i) {
@@ -147,12 +186,14 @@ void EmbreeScene::intersect8(const Ray* rays, const bool* active, SlimeHit* hits
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-  rtcIntersect8(valid, scene_, &context, &packet);
+  rtcIntersect8(valid, scene, &context, &packet);
   for (int i = 0; i < 8; ++i) {
     hits[i] = SlimeHit{};
     if (!active[i] || packet.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) continue;
     hits[i].t = packet.ray.tfar[i];
-    hits[i].primitive = packet.hit.geomID[i] == sphereId_ ? 0u : packet.hit.primID[i];
+    hits[i].primitive = primitives                       ? (*primitives)[packet.hit.primID[i]]
+                        : packet.hit.geomID[i] == sphereId_ ? 0u
+                                                            : packet.hit.primID[i];
     hits[i].u = packet.hit.u[i];
     hits[i].v = packet.hit.v[i];
   }

@@ -1,6 +1,7 @@
 // The slime in Embree 3: one device, one dynamic scene holding the slime as a triangle mesh that
 // shares SlimeGeometry's vertex and index arrays (written in place every frame, then refitted), and
-// the analytic sphere of slime.shape=sphere as a one-point sphere primitive. The floor and sky are
+// the analytic sphere of slime.shape=sphere as a one-point sphere primitive; and a second scene of the
+// frame's non-supporting triangles alone, built anew each frame. The floor and sky are
 // not in Embree: they are analytic (see whitted_tracer.h).
 #pragma once
 
@@ -9,7 +10,9 @@
 
 #include <embree3/rtcore.h>
 
+#include <cstdint>
 #include <string>
+#include <vector>
 
 namespace slime {
 
@@ -27,11 +30,17 @@ class EmbreeScene final : public SlimeIntersector {
 
   SlimeHit intersect(const Ray& ray) const override;
   void intersect8(const Ray* rays, const bool* active, SlimeHit* hits) const override;
+  void intersectNonSupporting8(const Ray* rays, const bool* active, SlimeHit* hits) const override;
 
   int rebuildCount() const { return rebuilds_; }
 
  private:
   void attachMesh(const SlimeGeometry& geometry);
+  // The non-supporting triangles of this frame, as a BVH of their own (built anew: the set changes).
+  void buildNonSupporting(const SlimeGeometry& geometry);
+  // intersect8 in `scene`; a triangle hit's primID is mapped through `primitives` when given.
+  void intersect8In(RTCScene scene, const std::vector<std::uint32_t>* primitives, const Ray* rays, const bool* active,
+                    SlimeHit* hits) const;
   void throwOnError(const char* during);
 
   RTCDevice device_ = nullptr;
@@ -40,6 +49,9 @@ class EmbreeScene final : public SlimeIntersector {
   RTCGeometry sphere_ = nullptr;
   unsigned meshId_ = RTC_INVALID_GEOMETRY_ID;
   unsigned sphereId_ = RTC_INVALID_GEOMETRY_ID;
+  RTCScene nonSupportingScene_ = nullptr;
+  RTCGeometry nonSupporting_ = nullptr;
+  const std::vector<std::uint32_t>* nonSupportingPrimitives_ = nullptr;  // the geometry's, see update()
   bool sphereEnabled_ = false;
   float builtRadius_ = 0.0f;      // bounding radius when the BVH was last built from scratch
   int refitsSinceBuild_ = 0;

@@ -37,6 +37,10 @@ class SlimeIntersector {
   virtual void intersect8(const Ray* rays, const bool* active, SlimeHit* hits) const {
     for (int i = 0; i < 8; ++i) hits[i] = active[i] ? intersect(rays[i]) : SlimeHit{};
   }
+  // intersect8 against the triangles that do not support the slime alone (SlimeGeometry::
+  // nonSupportingTriangles; none for the analytic sphere); a hit names the triangle by its index in
+  // the whole mesh. A small set: this query costs a fraction of intersect8's.
+  virtual void intersectNonSupporting8(const Ray* rays, const bool* active, SlimeHit* hits) const = 0;
 };
 
 }  // namespace slime

@@ -118,7 +118,14 @@ void SlimeGeometry::buildClusters() {
 void SlimeGeometry::findSupportingTriangles() {
   supporting.assign(triangles.size(), 0);
   convex = false;
-  if (vertexCount() == 0 || clusterBegin.size() < 2 || !(boundRadius > 0.0f)) return;
+  nonSupportingTriangles.clear();
+  nonSupportingPrimitives.clear();
+  if (vertexCount() == 0 || clusterBegin.size() < 2 || !(boundRadius > 0.0f)) {  // none is known to support it
+    nonSupportingTriangles = triangles;
+    for (std::size_t f = 0; f < triangles.size(); ++f) nonSupportingPrimitives.push_back(static_cast<std::uint32_t>(f));
+    boundNonSupporting();
+    return;
+  }
   // Each cluster's bounding sphere (centroid, farthest member), and each group of 8 consecutive
   // clusters' (neighbours in the median splits), padded with empty spheres far below every plane
   // (radius −∞) to whole lanes.
@@ -190,7 +197,30 @@ void SlimeGeometry::findSupportingTriangles() {
     handOff(this);  // their marks, back to the caller
   });
   takeOver(this);
-  convex = std::all_of(supporting.begin(), supporting.end(), [](std::uint8_t s) { return s != 0; });
+  for (std::size_t f = 0; f < triangles.size(); ++f) {
+    if (supporting[f] != 0) continue;
+    nonSupportingTriangles.push_back(triangles[f]);
+    nonSupportingPrimitives.push_back(static_cast<std::uint32_t>(f));
+  }
+  convex = nonSupportingTriangles.empty();
+  boundNonSupporting();
+}
+
+void SlimeGeometry::boundNonSupporting() {
+  glm::vec3 low(kInfinity), high(-kInfinity);
+  for (const Triangle& t : nonSupportingTriangles)
+    for (const std::uint32_t v : {t.x, t.y, t.z}) {
+      low = glm::min(low, positions[v]);
+      high = glm::max(high, positions[v]);
+    }
+  nonSupportingCenter = nonSupportingTriangles.empty() ? glm::vec3(0.0f) : 0.5f * (low + high);
+  float radius2 = 0.0f;
+  for (const Triangle& t : nonSupportingTriangles)
+    for (const std::uint32_t v : {t.x, t.y, t.z}) {
+      const glm::vec3 d = positions[v] - nonSupportingCenter;
+      radius2 = std::max(radius2, glm::dot(d, d));
+    }
+  nonSupportingRadius = std::sqrt(radius2);
 }
 
 void SlimeGeometry::setAnalyticSphere(bool enabled, float radius) {

@@ -35,6 +35,12 @@ struct SlimeGeometry {
   std::vector<std::uint8_t> supporting;
   // Every triangle supports the slime: the slime is convex (a straight line crosses it once at most).
   bool convex = false;
+  // The triangles that do not support it, and their indices in `triangles`: the only ones a straight
+  // line can enter the slime through once it has been inside (SlimeIntersector::intersectNonSupporting8).
+  std::vector<Triangle> nonSupportingTriangles;
+  std::vector<std::uint32_t> nonSupportingPrimitives;
+  glm::vec3 nonSupportingCenter{0.0f};  // a sphere that contains them (a pulled slime's neck, a press's dent)
+  float nonSupportingRadius = 0.0f;
   // The vertices in small spatial clusters (median splits of the first frame of a topology), and each
   // cluster's bounding sphere this frame: a triangle's plane is tested against a cluster's sphere
   // before its vertices.
@@ -52,6 +58,9 @@ struct SlimeGeometry {
   static constexpr float kConvexTolerance = 2e-3f;
 
   bool isConvex() const { return analyticSphere || convex; }
+  // Whether a query of the non-supporting triangles alone costs a fraction of one of the whole mesh
+  // (they are at most half of it), so that the tracer's shortcuts through them pay (whitted_tracer.cpp).
+  bool fewNonSupporting() const { return isConvex() || 2 * nonSupportingTriangles.size() <= triangles.size(); }
   // Whether triangle `primitive`'s plane supports the slime (always, for the analytic sphere).
   bool supports(std::uint32_t primitive) const {
     return analyticSphere || convex || (primitive < supporting.size() && supporting[primitive] != 0);
@@ -65,6 +74,7 @@ struct SlimeGeometry {
   // The clusters of a new topology (buildClusters), and this frame's supporting triangles and convexity.
   void buildClusters();
   void findSupportingTriangles();
+  void boundNonSupporting();  // nonSupportingCenter and nonSupportingRadius
 
   // Makes the analytic sphere (centre of the vertices, `radius`) the slime, or the mesh again.
   void setAnalyticSphere(bool enabled, float radius);
@@ -73,12 +83,19 @@ struct SlimeGeometry {
   // Inline: every primary and every shadow ray asks it.
   bool mayHit(const Ray& ray) const {
     if (boundRadius <= 0.0f && !analyticSphere) return false;
+    return touchesSphere(ray, boundCenter, boundRadius);
+  }
+  // The same for the non-supporting triangles' bounding sphere: false when the segment cannot cross one.
+  bool mayCrossNonSupporting(const Ray& ray) const {
+    return !nonSupportingTriangles.empty() && touchesSphere(ray, nonSupportingCenter, nonSupportingRadius);
+  }
+  static bool touchesSphere(const Ray& ray, const glm::vec3& center, float sphereRadius) {
     // Closest approach of the ray to the centre, clamped to the segment; slack covers float rounding.
-    const float radius = boundRadius * 1.0001f + 1e-6f;
-    const glm::vec3 toCenter = boundCenter - ray.origin;
+    const float radius = sphereRadius * 1.0001f + 1e-6f;
+    const glm::vec3 toCenter = center - ray.origin;
     const float along = toCenter.x * ray.direction.x + toCenter.y * ray.direction.y + toCenter.z * ray.direction.z;
     const float tClosest = std::clamp(along, ray.tNear, ray.tFar);
-    const glm::vec3 offset = ray.origin + tClosest * ray.direction - boundCenter;
+    const glm::vec3 offset = ray.origin + tClosest * ray.direction - center;
     return offset.x * offset.x + offset.y * offset.y + offset.z * offset.z <= radius * radius;
   }
 

@@ -132,28 +132,34 @@ void WhittedTracer::tracePrimary8(const Ray* rays, const SlimeHit* hits, int cou
 }
 
 void WhittedTracer::findHits(std::vector<PendingRay>& rays, TraceCounters& counters) const {
-  Ray packet[8];
+  Ray packet[8], checks[8];
   bool active[8] = {};
+  bool checked[8] = {};  // the ray also asks for its first non-supporting crossing on its way out
   std::size_t members[8] = {};
-  float reversedFrom[8] = {};  // > 0: the query runs back from this far along the ray (a chord of a convex slime)
-  int size = 0;
+  float reversedFrom[8] = {};  // > 0: the query runs back from this far along the ray (a chord from inside)
+  int size = 0, checkCount = 0;
   const auto flush = [&] {
-    SlimeHit found[8];
+    SlimeHit found[8], crossings[8];
     intersector_.intersect8(packet, active, found);
-    counters.slimeQueries += static_cast<std::uint64_t>(size);
+    if (checkCount > 0) intersector_.intersectNonSupporting8(checks, checked, crossings);
+    counters.slimeQueries += static_cast<std::uint64_t>(size + checkCount);
     for (int k = 0; k < size; ++k) {
+      const Ray& ray = rays[members[k]].ray;
       SlimeHit& hit = rays[members[k]].hit;
       hit = found[k];
-      if (reversedFrom[k] > 0.0f) {
+      if (checked[k] && crossings[k].valid()) {
+        hit = crossings[k];  // it leaves through a non-supporting triangle (see below)
+      } else if (reversedFrom[k] > 0.0f) {
         if (hit.valid()) hit.t = reversedFrom[k] - hit.t;
-        else hit = intersector_.intersect(rays[members[k]].ray);  // grazing: ask the usual way
+        else hit = intersector_.intersect(ray);  // grazing: ask the usual way
       }
       reversedFrom[k] = 0.0f;
+      checked[k] = false;
     }
     for (bool& a : active) a = false;
-    size = 0;
+    size = checkCount = 0;
   };
-  const bool convex = geometry_.isConvex();
+  const bool convex = geometry_.isConvex(), backwards = geometry_.fewNonSupporting();
   for (std::size_t r = 0; r < rays.size(); ++r) {
     PendingRay& ray = rays[r];
     if (ray.hitKnown) continue;
@@ -163,13 +169,23 @@ void WhittedTracer::findHits(std::vector<PendingRay>& rays, TraceCounters& count
     // reach its bounds.
     if (ray.path.leavesSlime || !geometry_.mayHit(ray.ray)) continue;
     packet[size] = ray.ray;
-    const float beyond = ray.path.inside && convex ? geometry_.boundExitDistance(ray.ray) + kReverseMargin : 0.0f;
+    const float beyond = ray.path.inside && backwards ? geometry_.boundExitDistance(ray.ray) + kReverseMargin : 0.0f;
     if (beyond > 0.0f && beyond < kMaxReverseDistance) {
-      // Inside a convex slime the ray leaves it exactly once: that point is also the first one met
-      // by the ray coming back from beyond the bounding sphere, a query that starts outside the
-      // jelly (about twice as fast in Embree as one that starts inside and crosses it).
+      // A ray inside the slime that leaves it through a supporting triangle is then above that
+      // triangle's plane, with all the slime below: it never comes back, and where it leaves is its
+      // last crossing, the first one met by the ray coming back from beyond the bounding sphere, a
+      // query from outside the jelly (about twice as fast in Embree as one from inside, across it).
+      // A ray that leaves through a non-supporting triangle may come back, but it has crossed
+      // nothing before (had it left through a supporting one first, it could not have come back):
+      // its first crossing with the non-supporting triangles, asked beside, from a far smaller set,
+      // is where it leaves. Convex: there are none, and no second query.
       packet[size] = Ray{ray.ray.origin + beyond * ray.ray.direction, -ray.ray.direction, 0.0f, beyond - kRayOffset};
       reversedFrom[size] = beyond;
+      checks[size] = Ray{ray.ray.origin, ray.ray.direction, ray.ray.tNear, std::min(ray.ray.tFar, beyond)};
+      if (!convex && geometry_.mayCrossNonSupporting(checks[size])) {
+        checked[size] = true;
+        ++checkCount;
+      }
     }
     active[size] = true;
     members[size] = r;
@@ -507,7 +523,7 @@ void WhittedTracer::lightTransmittance8(Ray* rays, const bool* active, glm::vec3
     visible[i] = glm::vec3(1.0f);
     walking[i] = active[i];
   }
-  if (geometry_.isConvex()) crossConvexSlime8(rays, walking, visible, counters);
+  if (geometry_.fewNonSupporting()) crossFromBothEnds8(rays, walking, visible, counters);
   // Walk the crossings along the straight shadow rays (shadow rays are not bent): each crossing
   // passes the surface's transmitted fraction, each stretch inside loses exp(−σ l).
   for (int crossing = 0; crossing < kMaxShadowCrossings; ++crossing) {
@@ -524,24 +540,27 @@ void WhittedTracer::lightTransmittance8(Ray* rays, const bool* active, glm::vec3
     if (walking[i]) visible[i] = glm::vec3(0.0f);  // more crossings than kMaxShadowCrossings: blocked
 }
 
-void WhittedTracer::crossConvexSlime8(Ray* rays, bool* walking, glm::vec3* visible, TraceCounters& counters) const {
-  // A straight segment meets a convex slime in one stretch or not at all: the stretch's near end is
-  // the first hit from the segment's start, its far end the first hit from the light's end. Both
-  // queries start outside the jelly and need not wait for each other (one round of two packets,
-  // instead of a walk whose second query starts inside).
+void WhittedTracer::crossFromBothEnds8(Ray* rays, bool* walking, glm::vec3* visible, TraceCounters& counters) const {
+  // A straight segment from outside the slime that enters it through a supporting triangle can come
+  // back in only through one that does not support it (see findHits). So when it crosses no
+  // non-supporting triangle (always, on a convex slime), it meets the slime in one stretch or not at
+  // all: the stretch's near end is the first hit from the segment's start, its far end the first
+  // hit from the light's end. Those queries start outside the jelly and need not wait for each other
+  // (one round of packets, instead of a walk whose second query starts inside).
   const ShadingParameters& p = parameters_;
-  Ray back[8];
+  const bool convex = geometry_.isConvex();
   int count = 0;
-  for (int i = 0; i < 8; ++i) {
-    if (!walking[i]) continue;
-    ++count;
-    back[i] = Ray{rays[i].origin + rays[i].tFar * rays[i].direction, -rays[i].direction, 0.0f, rays[i].tFar};
-  }
+  for (int i = 0; i < 8; ++i) count += walking[i];
   if (count == 0) return;
-  counters.slimeQueries += 2 * static_cast<std::uint64_t>(count);
-  SlimeHit nearHits[8], farHits[8];
+  counters.slimeQueries += static_cast<std::uint64_t>(count);
+  SlimeHit nearHits[8], farHits[8], crossings[8];
   intersector_.intersect8(rays, walking, nearHits);
-  intersector_.intersect8(back, walking, farHits);
+  // The rays that enter the slime at their near end: the far end and the non-supporting crossings.
+  Ray back[8];
+  glm::vec3 nearNormals[8];
+  bool entering[8] = {}, checked[8] = {};
+  int checkCount = 0;
+  count = 0;
   for (int i = 0; i < 8; ++i) {
     if (!walking[i]) continue;
     const SlimeHit& near = nearHits[i];
@@ -549,13 +568,37 @@ void WhittedTracer::crossConvexSlime8(Ray* rays, bool* walking, glm::vec3* visib
       walking[i] = false;
       continue;
     }
-    const Ray& ray = rays[i];
-    const glm::vec3 nearNormal = geometry_.geometricNormal(near, ray.origin + near.t * ray.direction);
+    nearNormals[i] = geometry_.geometricNormal(near, rays[i].origin + near.t * rays[i].direction);
+    entering[i] = glm::dot(rays[i].direction, nearNormals[i]) < 0.0f;
+    if (!entering[i]) continue;
+    ++count;
+    back[i] = Ray{rays[i].origin + rays[i].tFar * rays[i].direction, -rays[i].direction, 0.0f, rays[i].tFar};
+    checked[i] = !convex && geometry_.mayCrossNonSupporting(rays[i]);
+    checkCount += checked[i];
+  }
+  if (count > 0) {
+    counters.slimeQueries += static_cast<std::uint64_t>(count + checkCount);
+    intersector_.intersect8(back, entering, farHits);
+    if (checkCount > 0) intersector_.intersectNonSupporting8(rays, checked, crossings);
+  }
+  for (int i = 0; i < 8; ++i) {
+    if (!walking[i]) continue;
+    const SlimeHit& near = nearHits[i];
+    Ray& ray = rays[i];
+    const glm::vec3 nearNormal = nearNormals[i];
     const SlimeHit& far = farHits[i];
-    if (glm::dot(ray.direction, nearNormal) >= 0.0f || !far.valid() || near.t + far.t >= ray.tFar) continue;  // the walk
+    // The others walk on, from past their near crossing (the walk's first step).
+    const auto walk = [&] { walking[i] = crossShadowSurface(ray, near, visible[i]); };
+    if (!entering[i] || crossings[i].valid() || !far.valid() || near.t + far.t >= ray.tFar) {
+      walk();
+      continue;
+    }
     const glm::vec3 farPoint = back[i].origin + far.t * back[i].direction;
     const glm::vec3 farNormal = geometry_.geometricNormal(far, farPoint);
-    if (glm::dot(ray.direction, farNormal) <= 0.0f) continue;  // the light inside the jelly: the walk
+    if (glm::dot(ray.direction, farNormal) <= 0.0f) {  // the light inside the jelly
+      walk();
+      continue;
+    }
     // Entering at the near end, Beer–Lambert over the stretch, leaving at the far end (crossShadowSurface twice).
     glm::vec3& transmittance = visible[i];
     if (p.optics == OpticsMode::Fresnel) {

@@ -154,10 +154,10 @@ class WhittedTracer {
   // rays are consumed), per channel: partial and coloured behind the translucent slime (surface
   // transmission and Beer–Lambert along the chord), 0 if opaque. Crossings are traced as packets.
   void lightTransmittance8(Ray* rays, const bool* active, glm::vec3* visible, TraceCounters& counters) const;
-  // lightTransmittance8's first step on a convex slime: each walking shadow ray's crossing found from
-  // both its ends at once; the rays it settles stop walking (the others, e.g. from inside the jelly,
-  // walk on).
-  void crossConvexSlime8(Ray* rays, bool* walking, glm::vec3* visible, TraceCounters& counters) const;
+  // lightTransmittance8's first step: each walking shadow ray's crossing found from both its ends at
+  // once, where it crosses no non-supporting triangle; the rays it settles stop walking (the others,
+  // e.g. from inside the jelly or through a dent, walk on from past their first crossing).
+  void crossFromBothEnds8(Ray* rays, bool* walking, glm::vec3* visible, TraceCounters& counters) const;
   glm::vec3 sky(const glm::vec3& direction) const;
 
   const SlimeGeometry& geometry_;

@@ -79,6 +79,13 @@ EmbreeReplay::EmbreeReplay(int threads, BvhUpdate update) : method_(update) {
   device_ = rtcNewDevice(config.c_str());
   if (!device_) throw std::runtime_error("Embree: cannot create a device for the benchmark");
   rtcSetDeviceErrorFunction(device_, recordEmbreeError, &error_);
+  nonSupporting_ = std::make_unique<EmbreeScene>(threads);
+}
+
+void EmbreeReplay::updateNonSupporting(bool topologyChanged) {
+  const std::vector<glm::dvec3> positions(vertices_.begin(), vertices_.end() - 1);
+  geometry_.update(positions, triangles_);
+  nonSupporting_->update(geometry_, topologyChanged);
 }
 
 EmbreeReplay::~EmbreeReplay() {
@@ -130,6 +137,7 @@ double EmbreeReplay::build(const std::vector<glm::dvec3>& positions, const std::
   rtcCommitScene(scene_);
   const double ms = watch.milliseconds();
   throwOnError("building the benchmark scene");
+  updateNonSupporting(true);
   return ms;
 }
 
@@ -143,6 +151,7 @@ double EmbreeReplay::update(const std::vector<glm::dvec3>& positions) {
   rtcCommitScene(scene_);
   const double ms = watch.milliseconds();
   throwOnError("updating the benchmark scene");
+  updateNonSupporting(false);
   return ms;
 }
 
@@ -158,6 +167,19 @@ ReplayTimes EmbreeReplay::replay(const RayLog& log, int threads) const {
   times.primaryMs = replayPackets(log.primary);
   times.secondaryMs = replayPackets(log.secondary);
   times.shadowMs = replayPackets(log.shadow);
+  const EmbreeScene& nonSupporting = *nonSupporting_;
+  times.nonSupportingMs =
+      timeParallel(arena, log.nonSupporting.size(), kPacketGrain, hits, [&](std::size_t begin, std::size_t end) {
+        FlushDenormals flush;
+        std::uint64_t found = 0;
+        for (std::size_t p = begin; p < end; ++p) {
+          const RayPacket& packet = log.nonSupporting[p];
+          SlimeHit crossings[8];
+          nonSupporting.intersectNonSupporting8(packet.rays.data(), packet.active.data(), crossings);
+          for (int i = 0; i < 8; ++i) found += packet.active[i] && crossings[i].valid();
+        }
+        return found;
+      });
   times.hits = hits;
   return times;
 }

@@ -20,7 +20,8 @@ constexpr int kPacket = 8;
 
 // Answers every query of the tracer through Embree and logs it. Shadow packets are those with a
 // segment that ends or starts at the light; the other rays are secondary (reflection and refraction
-// rays, running to infinity or, inside a convex slime, asked backwards from beyond its bounds).
+// rays, running to infinity or, inside the slime, asked backwards from beyond its bounds); the
+// queries of the non-supporting triangles alone are kept apart (they go to their own BVH).
 class RecordingIntersector final : public SlimeIntersector {
  public:
   RecordingIntersector(const SlimeIntersector& inner, RayLog& log, const glm::vec3& light)
@@ -35,19 +36,32 @@ class RecordingIntersector final : public SlimeIntersector {
   }
 
   void intersect8(const Ray* rays, const bool* active, SlimeHit* hits) const override {
-    RayPacket packet;
     bool shadow = false;
-    for (int i = 0; i < kPacket; ++i) {
-      packet.rays[i] = rays[i];
-      packet.active[i] = active[i];
-      shadow = shadow || (active[i] && towardsLight(rays[i]));
-    }
-    (shadow ? log_.shadow : log_.secondary).push_back(packet);
+    for (int i = 0; i < kPacket; ++i) shadow = shadow || (active[i] && towardsLight(rays[i]));
+    record(shadow ? log_.shadow : log_.secondary, rays, active);
     inner_.intersect8(rays, active, hits);
-    for (int i = 0; i < kPacket; ++i) log_.hits += active[i] && hits[i].valid();
+    countHits(active, hits);
+  }
+
+  void intersectNonSupporting8(const Ray* rays, const bool* active, SlimeHit* hits) const override {
+    record(log_.nonSupporting, rays, active);
+    inner_.intersectNonSupporting8(rays, active, hits);
+    countHits(active, hits);
   }
 
  private:
+  static void record(std::vector<RayPacket>& packets, const Ray* rays, const bool* active) {
+    RayPacket packet;
+    for (int i = 0; i < kPacket; ++i) {
+      packet.rays[i] = rays[i];
+      packet.active[i] = active[i];
+    }
+    packets.push_back(packet);
+  }
+  void countHits(const bool* active, const SlimeHit* hits) const {
+    for (int i = 0; i < kPacket; ++i) log_.hits += active[i] && hits[i].valid();
+  }
+
   bool towardsLight(const Ray& ray) const {
     if (std::isinf(ray.tFar)) return false;
     constexpr float kNear = 1e-4f;  // metres

@@ -26,10 +26,13 @@ struct RayLog {
   std::vector<RayPacket> primary;    // coherent primaries, 8 pixels of a row at a time
   std::vector<RayPacket> secondary;  // reflection and refraction queries, a generation of 8 pixels' rays
   std::vector<RayPacket> shadow;     // shadow-ray crossings, segments with one end at the light
+  std::vector<RayPacket> nonSupporting;  // crossings with the non-supporting triangles alone (their own BVH)
   std::uint64_t hits = 0;            // queries that found the slime while recording
 
   static std::uint64_t activeRays(const std::vector<RayPacket>& packets);
-  std::uint64_t queries() const { return activeRays(primary) + activeRays(secondary) + activeRays(shadow); }
+  std::uint64_t queries() const {
+    return activeRays(primary) + activeRays(secondary) + activeRays(shadow) + activeRays(nonSupporting);
+  }
 };
 
 // Traces the frame that `settings.camera` sees at width × height with the slime mesh given, and

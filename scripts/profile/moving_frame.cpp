@@ -2,11 +2,12 @@
 // turns by 1e-3 degrees each frame), level 4, depth 3, nothing else in the process, so that a
 // profiler sees only it. Not part of the CMake build; after a release build:
 //   g++ -std=c++20 -O2 -g -march=native -I. -Ibuild/release/core scripts/profile/moving_frame.cpp \
-//     build/release/render/libslime_render.a build/release/core/libslime_core.a -lembree3 -ltbb -lstb \
-//     -lpthread -o build/moving_frame
+//     build/release/app/bench/libslime_bench.a build/release/render/libslime_render.a \
+//     build/release/core/libslime_core.a -lembree3 -ltbb -lstb -lpthread -o build/moving_frame
 //   perf record -F 2000 build/moving_frame 40 734 564 2 && perf report --no-children --sort dso,symbol
 // Arguments: frames, width, height, threads, [PNG of the last frame]. Prints the median wall and CPU
 // (process, all threads) time per frame: CPU time is the steadier figure on a shared machine.
+#include "app/bench/bench_bvh.h"
 #include "core/icosphere.h"
 #include "core/settings_io.h"
 #include "render/image_io.h"
@@ -45,8 +46,21 @@ int main(int argc, char** argv) {
   settings.render.depth = 3;
   settings.render.threads = argc > 4 ? std::atoi(argv[4]) : 2;
   settings.slime.level = 4;
-  const TriangleMesh mesh = makeIcosphere(4, settings.slime.radius,
-                                          {settings.slime.position.x, settings.slime.position.y, settings.slime.radius});
+  // SLIME_PROFILE_DEFORMING=1: the headline's deforming frames (the physics' slime pulled by its top,
+  // two frames 1/60 s apart, alternating), else the icosphere on the floor.
+  const bool deforming = std::getenv("SLIME_PROFILE_DEFORMING") != nullptr;
+  std::vector<TriangleMesh> shapes{makeIcosphere(4, settings.slime.radius,
+                                                 {settings.slime.position.x, settings.slime.position.y, settings.slime.radius})};
+  if (deforming) {
+    std::vector<std::vector<glm::dvec3>> trajectory;
+    std::vector<Triangle> triangles;
+    settings.slime.shape = "mesh";
+    stretchTrajectory(settings, trajectory, triangles);
+    const auto at = [&](double seconds) {
+      return TriangleMesh{trajectory[std::min(trajectory.size() - 1, static_cast<std::size_t>(std::lround(seconds * 60.0)))], triangles};
+    };
+    shapes = {at(0.6), at(0.6 + 1.0 / 60.0)};
+  }
   Renderer renderer(settings);
   Image image;
   image.resize(width, height);
@@ -55,6 +69,7 @@ int main(int argc, char** argv) {
   const double yaw = settings.camera.yaw;
   for (int frame = 0; frame < frames; ++frame) {
     settings.camera.yaw = yaw + (frame % 2 ? 1e-3 : -1e-3);  // as bench render's moving camera
+    const TriangleMesh& mesh = shapes[frame % shapes.size()];
     renderer.updateSlime(mesh.positions, mesh.triangles);
     const auto start = std::chrono::steady_clock::now();
     const double cpuStart = processCpuMilliseconds();
