@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/camera.h"
+#include "render/convex_outline.h"
 #include "render/shading_parameters.h"
 #include "render/slime_geometry.h"
 
@@ -18,6 +19,10 @@ struct ScreenFootprint {
     int x0 = 0, x1 = 0;  // empty when x0 >= x1
   };
   std::vector<Span> rows;
+  // The mesh's outlines on the image, in the mirror and on the floor, and their points (storage
+  // kept from frame to frame).
+  ConvexOutline outlines[3];
+  std::vector<glm::dvec2> scratch;
 
   bool contains(int x, int y) const { return x >= rows[y].x0 && x < rows[y].x1; }
   // Whether the pixels [x0, x0 + count) of row y all lie outside.
@@ -27,7 +32,10 @@ struct ScreenFootprint {
 
 // Every pixel the slime can affect in a width × height image, into `footprint` (its storage is
 // reused from frame to frame). Each row's span is exact for the three regions, then widened by two
-// pixels each way and to the two rows above and below, for rounding:
+// pixels each way and to the two rows above and below, for rounding. A mesh slime lies in the convex
+// hull of its vertices: each region is that hull's outline (on the image; in the mirror; its shadow
+// on the floor, the vertices cast from the light) where it can be drawn (the vertices in front of the
+// eye, the light above them), else the bounding sphere's:
 //  - the pixels whose ray meets the bounding sphere (its image is an ellipse: along a row of the
 //    image the ray directions a + x s form a line, and a line cuts the sphere's cone of directions
 //    k |d|² − (d·c)² ≤ 0, c the centre seen from the eye and k = |c|² − r², in one interval);

@@ -83,7 +83,13 @@ struct SlimeGeometry {
   // Inline: every primary and every shadow ray asks it.
   bool mayHit(const Ray& ray) const {
     if (boundRadius <= 0.0f && !analyticSphere) return false;
-    return touchesSphere(ray, boundCenter, boundRadius);
+    // Closest approach of the ray to the centre, clamped to the segment; slack covers float rounding.
+    const float radius = boundRadius * 1.0001f + 1e-6f;
+    const glm::vec3 toCenter = boundCenter - ray.origin;
+    const float along = toCenter.x * ray.direction.x + toCenter.y * ray.direction.y + toCenter.z * ray.direction.z;
+    const float tClosest = std::clamp(along, ray.tNear, ray.tFar);
+    const glm::vec3 offset = ray.origin + tClosest * ray.direction - boundCenter;
+    return offset.x * offset.x + offset.y * offset.y + offset.z * offset.z <= radius * radius;
   }
   // The same for the non-supporting triangles' bounding sphere: false when the segment cannot cross one.
   bool mayCrossNonSupporting(const Ray& ray) const {

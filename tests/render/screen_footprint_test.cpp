@@ -160,7 +160,33 @@ TEST(ScreenFootprint, HoldsAStretchedOrFlattenedSlime) {
                                   << " pixels missed";
     std::printf("%s: footprint %lld pixels for %lld reachable\n", view.what.c_str(),
                 static_cast<long long>(footprint.area()), coverage.reachable);
+    // The vertices' outlines hug the shape (the bounding sphere's ellipses took 2.5–6.9 times the
+    // reachable pixels here): two pixels of margin around it, little else.
+    EXPECT_LE(footprint.area(), 1.6 * coverage.reachable + 4 * (160 + 120)) << view.what;
   }
+}
+
+// The outline itself: the hull of a cloud, a line clipped by it, and no outline for points on a line.
+TEST(ScreenFootprint, ConvexOutlineIsTheHullOfItsPoints) {
+  std::vector<glm::dvec2> points{{0, 0}, {2, 0}, {2, 1}, {0, 1}, {1, 0.5}, {1, 0}, {0.5, 0.9}, {2, 0}};
+  ConvexOutline outline;
+  outline.build(points);
+  ASSERT_TRUE(outline.bounded());
+  EXPECT_EQ(outline.corners().size(), 4u);  // the rectangle's corners; inner and edge points dropped
+  double low = 0.0, high = 0.0;
+  ASSERT_TRUE(outline.clip({-1.0, 0.25}, {1.0, 0.0}, low, high));  // along y = 0.25 from x = −1
+  EXPECT_DOUBLE_EQ(low, 1.0);
+  EXPECT_DOUBLE_EQ(high, 3.0);
+  ASSERT_TRUE(outline.clip({1.0, -1.0}, {0.0, 2.0}, low, high));  // up x = 1, twice as fast
+  EXPECT_DOUBLE_EQ(low, 0.5);
+  EXPECT_DOUBLE_EQ(high, 1.0);
+  EXPECT_FALSE(outline.clip({-1.0, 1.5}, {1.0, 0.0}, low, high));  // above it
+  EXPECT_FALSE(outline.clip({3.0, 0.5}, {0.0, 0.0}, low, high));   // a point outside
+  ASSERT_TRUE(outline.clip({1.0, 0.5}, {0.0, 0.0}, low, high));    // a point inside: every s
+  EXPECT_TRUE(std::isinf(low) && std::isinf(high));
+  std::vector<glm::dvec2> line{{0, 0}, {1, 1}, {2, 2}, {3, 3}};
+  outline.build(line);
+  EXPECT_FALSE(outline.bounded());
 }
 
 TEST(ScreenFootprint, WholeRowsWhereNoBoundCanBeGiven) {
