@@ -103,21 +103,32 @@ void encodeSrgb8(const glm::vec3* pixels, std::size_t count, int channels, std::
   const EncodingTable& table = encodingTable();
   for (; count >= 8; count -= 8, pixels += 8, out += 8 * channels) {
     const float* values = &pixels[0].x;
-    alignas(32) std::int32_t codes[24];
+    __m256i codes[3];  // the 24 values' codes in order (r0 g0 b0 r1 ...), one per 32-bit lane
     for (int k = 0; k < 3; ++k) {
       const __m256 clamped = _mm256_min_ps(_mm256_max_ps(_mm256_loadu_ps(values + 8 * k), _mm256_setzero_ps()), _mm256_set1_ps(1.0f));
       const __m256i bucket = _mm256_srli_epi32(_mm256_castps_si256(clamped), kBucketShift);
       const __m256i first = _mm256_i32gather_epi32(table.firstCode.data(), bucket, 4);
       const __m256 next = _mm256_i32gather_ps(table.nextStep.data(), bucket, 4);
       const __m256i reached = _mm256_castps_si256(_mm256_cmp_ps(clamped, next, _CMP_GE_OQ));  // all ones: −1
-      _mm256_store_si256(reinterpret_cast<__m256i*>(codes + 8 * k), _mm256_sub_epi32(first, reached));
+      codes[k] = _mm256_sub_epi32(first, reached);
     }
-    for (int i = 0; i < 8; ++i) {
-      std::uint8_t* pixel = out + i * channels;
-      pixel[0] = static_cast<std::uint8_t>(codes[3 * i]);
-      pixel[1] = static_cast<std::uint8_t>(codes[3 * i + 1]);
-      pixel[2] = static_cast<std::uint8_t>(codes[3 * i + 2]);
-      if (channels == 4) pixel[3] = 255;
+    // Narrowed to bytes: the packs work within 128-bit halves, leaving the 4-byte groups
+    // [c0 0-3, c1 0-3, c2 0-3, c2 0-3 | c0 4-7, c1 4-7, c2 4-7, c2 4-7]; put them back in order.
+    const __m256i words = _mm256_packus_epi32(codes[0], codes[1]), lastWords = _mm256_packus_epi32(codes[2], codes[2]);
+    const __m256i grouped = _mm256_packus_epi16(words, lastWords);
+    if (channels == 3) {
+      const __m256i bytes = _mm256_permutevar8x32_epi32(grouped, _mm256_setr_epi32(0, 4, 1, 5, 2, 6, 3, 7));
+      _mm_storeu_si128(reinterpret_cast<__m128i*>(out), _mm256_castsi256_si128(bytes));
+      _mm_storel_epi64(reinterpret_cast<__m128i*>(out + 16), _mm256_extracti128_si256(bytes, 1));
+    } else {
+      // Pixels 0-3 from bytes 0-11 in the low half, pixels 4-7 from bytes 12-23 in the high half; an
+      // opaque alpha byte after each three.
+      const __m256i halves = _mm256_permutevar8x32_epi32(grouped, _mm256_setr_epi32(0, 4, 1, 5, 5, 2, 6, 3));
+      const __m256i spread = _mm256_shuffle_epi8(
+          halves, _mm256_setr_epi8(0, 1, 2, -1, 3, 4, 5, -1, 6, 7, 8, -1, 9, 10, 11, -1, 0, 1, 2, -1, 3, 4, 5, -1, 6, 7, 8,
+                                   -1, 9, 10, 11, -1));
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(out),
+                          _mm256_or_si256(spread, _mm256_set1_epi32(static_cast<int>(0xFF000000u))));
     }
   }
 #endif
