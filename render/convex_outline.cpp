@@ -16,6 +16,36 @@ double turn(const glm::dvec2& o, const glm::dvec2& a, const glm::dvec2& b) {
 
 void ConvexOutline::build(std::vector<glm::dvec2>& points) {
   corners_.clear();
+  if (points.size() > 64) {
+    // Akl–Toussaint: the points extreme along x, y, x + y and x − y span an octagon inside the hull;
+    // the points strictly inside it cannot be corners (most of a dense cloud) and need no sorting.
+    glm::dvec2 extremes[8];
+    double reach[8];
+    for (int k = 0; k < 8; ++k) reach[k] = -std::numeric_limits<double>::infinity();
+    for (const glm::dvec2& p : points) {
+      const double along[8] = {p.x, p.x + p.y, p.y, p.y - p.x, -p.x, -p.x - p.y, -p.y, p.x - p.y};
+      for (int k = 0; k < 8; ++k)
+        if (along[k] > reach[k]) {
+          reach[k] = along[k];
+          extremes[k] = p;
+        }
+    }
+    // In the order of their directions the extremes go round counter-clockwise (repeats allowed).
+    std::vector<glm::dvec2> octagon;
+    for (const glm::dvec2& e : extremes)
+      if (octagon.empty() || (e != octagon.back() && e != octagon.front())) octagon.push_back(e);
+    bool convex = octagon.size() >= 3;
+    for (std::size_t i = 0; convex && i < octagon.size(); ++i)
+      convex = turn(octagon[i], octagon[(i + 1) % octagon.size()], octagon[(i + 2) % octagon.size()]) > 0.0;
+    if (convex) {
+      const auto strictlyInside = [&](const glm::dvec2& p) {
+        for (std::size_t i = 0; i < octagon.size(); ++i)
+          if (turn(octagon[i], octagon[(i + 1) % octagon.size()], p) <= 0.0) return false;
+        return true;
+      };
+      points.erase(std::remove_if(points.begin(), points.end(), strictlyInside), points.end());
+    }
+  }
   std::sort(points.begin(), points.end(), [](const glm::dvec2& a, const glm::dvec2& b) {
     return a.x < b.x || (a.x == b.x && a.y < b.y);
   });
@@ -36,24 +66,25 @@ void ConvexOutline::build(std::vector<glm::dvec2>& points) {
   if (hull.size() >= 3) corners_ = std::move(hull);
 }
 
-bool ConvexOutline::clip(const glm::dvec2& a, const glm::dvec2& d, double& low, double& high) const {
-  // Cyrus–Beck: inside every edge's left half-plane, cross(e, p − c) ≥ 0 for p = a + s d.
-  low = -std::numeric_limits<double>::infinity();
-  high = std::numeric_limits<double>::infinity();
+void ConvexOutline::crossRows(int rows, std::vector<Crossing>& crossings) const {
+  crossings.assign(static_cast<std::size_t>(std::max(0, rows)), Crossing{});
+  // Each edge gives x on the rows whose line it spans (ends included); a convex outline's row
+  // crossing runs between the smallest and largest of those.
   for (std::size_t i = 0; i < corners_.size(); ++i) {
-    const glm::dvec2& c = corners_[i];
-    const glm::dvec2 e = corners_[(i + 1) % corners_.size()] - c;
-    const double offset = e.x * (a.y - c.y) - e.y * (a.x - c.x);  // f(0)
-    const double rate = e.x * d.y - e.y * d.x;                      // df/ds
-    if (rate == 0.0) {
-      if (offset < 0.0) return false;  // parallel to the edge, outside it
-      continue;
+    const glm::dvec2 a = corners_[i], b = corners_[(i + 1) % corners_.size()];
+    if (a.y == b.y) continue;  // a horizontal edge: its ends belong to the edges beside it
+    const double low = std::min(a.y, b.y), high = std::max(a.y, b.y);
+    const int first = static_cast<int>(std::clamp(std::ceil(low - 0.5), 0.0, static_cast<double>(rows)));
+    const int last = static_cast<int>(std::clamp(std::floor(high - 0.5), -1.0, static_cast<double>(rows - 1)));
+    const double slope = (b.x - a.x) / (b.y - a.y);
+    for (int row = first; row <= last; ++row) {
+      const double x = a.x + (row + 0.5 - a.y) * slope;
+      Crossing& crossing = crossings[static_cast<std::size_t>(row)];
+      crossing.low = crossing.any ? std::min(crossing.low, x) : x;
+      crossing.high = crossing.any ? std::max(crossing.high, x) : x;
+      crossing.any = true;
     }
-    const double s = -offset / rate;
-    if (rate > 0.0) low = std::max(low, s);
-    else high = std::min(high, s);
   }
-  return low <= high;
 }
 
 }  // namespace slime

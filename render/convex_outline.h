@@ -19,9 +19,13 @@ class ConvexOutline {
   // Whether the outline has an inside (at least three corners not on one line).
   bool bounded() const { return corners_.size() >= 3; }
 
-  // The parameters s for which a + s d lies inside or on the outline: false if there are none, else
-  // [low, high] (a line with d = 0 inside gives ±infinity). Needs bounded().
-  bool clip(const glm::dvec2& a, const glm::dvec2& d, double& low, double& high) const;
+  // Where each horizontal line y = row + 0.5, row in [0, rows), crosses the outline: [low, high] in
+  // x, or no crossing (any = false). One walk round the corners. Needs bounded().
+  struct Crossing {
+    bool any = false;
+    double low = 0.0, high = 0.0;
+  };
+  void crossRows(int rows, std::vector<Crossing>& crossings) const;
 
   const std::vector<glm::dvec2>& corners() const { return corners_; }  // counter-clockwise
 

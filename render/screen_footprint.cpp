@@ -43,43 +43,64 @@ ScreenFootprint::Span pixelsOf(const LineInterval& interval, int width) {
   return {column(std::floor(interval.low - 0.5)), column(std::floor(interval.high - 0.5) + 1.0)};
 }
 
-// The outline on the image of the points seen from the camera, in the footprint's coordinates (x
-// along a row as in a + x s, the row's coordinate y + 0.5); false (no outline) unless every point lies
-// in front of the eye. `mirrored`: the points' mirror images below the floor.
-bool imageOutline(const Camera& camera, const std::vector<glm::vec3>& points, std::size_t count, bool mirrored, int width,
-                  int height, std::vector<glm::dvec2>& scratch, ConvexOutline& outline) {
-  scratch.clear();
-  const double xScale = 0.5 * width / (camera.tanHalfFov * camera.aspect), yScale = 0.5 * height / camera.tanHalfFov;
-  for (std::size_t i = 0; i < count; ++i) {
-    const glm::dvec3 p(points[i].x, points[i].y, mirrored ? -points[i].z : points[i].z);
-    const glm::dvec3 d = p - camera.position;
-    const double depth = glm::dot(d, camera.forward);
-    if (!(depth > 1e-9)) return false;
-    scratch.emplace_back(0.5 * width + xScale * glm::dot(d, camera.right) / depth,
-                         0.5 * height - yScale * glm::dot(d, camera.up) / depth);
-  }
-  outline.build(scratch);
-  return outline.bounded();
+// Where a point in front of the eye appears, in the footprint's coordinates: x along a row as in
+// a + x s, and the row's coordinate y + 0.5. False behind the eye (or beside it).
+bool onImage(const Camera& camera, const glm::dvec3& point, int width, int height, glm::dvec2& at) {
+  const glm::dvec3 d = point - camera.position;
+  const double depth = glm::dot(d, camera.forward);
+  if (!(depth > 1e-9)) return false;
+  at = {0.5 * width * (1.0 + glm::dot(d, camera.right) / (depth * camera.tanHalfFov * camera.aspect)),
+        0.5 * height * (1.0 - glm::dot(d, camera.up) / (depth * camera.tanHalfFov))};
+  return std::isfinite(at.x) && std::isfinite(at.y);
 }
 
-// The outline on the floor of the points' shadows from the light; false unless the light is above them all.
-bool shadowOutline(const glm::dvec3& light, const std::vector<glm::vec3>& points, std::size_t count,
-                   std::vector<glm::dvec2>& scratch, ConvexOutline& outline) {
-  scratch.clear();
-  for (std::size_t i = 0; i < count; ++i) {
-    const glm::dvec3 p(points[i]);
+// The outline on the image of the slime's vertices (or of their mirror images below the floor), each
+// row's crossing with it into `rows`; false (no outline) unless every vertex lies in front of the eye.
+bool imageOutline(const Camera& camera, const SlimeGeometry& geometry, bool mirrored, int width, int height,
+                  ScreenFootprint::Outline& outline) {
+  outline.points.clear();
+  for (std::size_t i = 0; i < geometry.vertexCount(); ++i) {
+    const glm::vec3& p = geometry.positions[i];
+    glm::dvec2 at;
+    if (!onImage(camera, glm::dvec3(p.x, p.y, mirrored ? -p.z : p.z), width, height, at)) return false;
+    outline.points.push_back(at);
+  }
+  outline.hull.build(outline.points);
+  if (!outline.hull.bounded()) return false;
+  outline.hull.crossRows(height, outline.rows);
+  return true;
+}
+
+// The outline on the image of the vertices' shadow on the floor (the vertices cast from the light
+// onto z = 0, their hull seen from the eye: seen in perspective a convex patch of the floor stays
+// convex), each row's crossing into `rows`; false unless the light is above every vertex and the
+// shadow's corners lie in front of the eye.
+bool shadowOutline(const Camera& camera, const glm::dvec3& light, const SlimeGeometry& geometry, int width, int height,
+                   ScreenFootprint::Outline& outline) {
+  outline.points.clear();
+  for (std::size_t i = 0; i < geometry.vertexCount(); ++i) {
+    const glm::dvec3 p(geometry.positions[i]);
     if (!(light.z - p.z > 1e-9 * std::max(1.0, light.z))) return false;
     const double s = light.z / (light.z - p.z);
-    scratch.emplace_back(light.x + (p.x - light.x) * s, light.y + (p.y - light.y) * s);
+    outline.points.emplace_back(light.x + (p.x - light.x) * s, light.y + (p.y - light.y) * s);
   }
-  outline.build(scratch);
-  return outline.bounded();
+  outline.hull.build(outline.points);  // on the floor
+  if (!outline.hull.bounded()) return false;
+  outline.points.clear();
+  for (const glm::dvec2& corner : outline.hull.corners()) {
+    glm::dvec2 at;
+    if (!onImage(camera, glm::dvec3(corner, 0.0), width, height, at)) return false;
+    outline.points.push_back(at);
+  }
+  outline.hull.build(outline.points);  // on the image
+  if (!outline.hull.bounded()) return false;
+  outline.hull.crossRows(height, outline.rows);
+  return true;
 }
 
-LineInterval clipped(const ConvexOutline& outline, const glm::dvec2& a, const glm::dvec2& d) {
-  LineInterval interval;
-  interval.any = outline.clip(a, d, interval.low, interval.high);
-  return interval;
+LineInterval crossing(const ScreenFootprint::Outline& outline, int row) {
+  const ConvexOutline::Crossing& c = outline.rows[static_cast<std::size_t>(row)];
+  return {c.any, c.low, c.high};
 }
 
 ScreenFootprint::Span hull(const ScreenFootprint::Span& a, const ScreenFootprint::Span& b) {
@@ -125,29 +146,25 @@ void slimeFootprint(const Camera& camera, const SlimeGeometry& geometry, const S
   const bool boundedShadow = eye.z > 0.0 && right.z == 0.0 && light.z > center.z + radius + margin;
 
   // A mesh slime lies inside the convex hull of its vertices: where they allow, the outlines of that
-  // hull (on the image, in the mirror, on the floor) replace the sphere's ellipses.
+  // hull (on the image, in the mirror, its shadow) replace the sphere's ellipses.
   const bool mesh = !geometry.analyticSphere && geometry.vertexCount() > 0;
-  ConvexOutline& seen = footprint.outlines[0];
-  ConvexOutline& mirrored = footprint.outlines[1];
-  ConvexOutline& shade = footprint.outlines[2];
-  std::vector<glm::dvec2>& scratch = footprint.scratch;
-  const std::size_t count = geometry.vertexCount();
-  const bool seenOutline = mesh && imageOutline(camera, geometry.positions, count, false, width, height, scratch, seen);
-  const bool mirrorOutline = mesh && mirror && imageOutline(camera, geometry.positions, count, true, width, height, scratch, mirrored);
-  const bool shadowOutlined = mesh && shadows && boundedShadow && shadowOutline(light, geometry.positions, count, scratch, shade);
+  ScreenFootprint::Outline& seen = footprint.outlines[0];
+  ScreenFootprint::Outline& mirrored = footprint.outlines[1];
+  ScreenFootprint::Outline& shade = footprint.outlines[2];
+  const bool seenOutline = mesh && imageOutline(camera, geometry, false, width, height, seen);
+  const bool mirrorOutline = mesh && mirror && imageOutline(camera, geometry, true, width, height, mirrored);
+  const bool shadowOutlined = mesh && shadows && boundedShadow && shadowOutline(camera, light, geometry, width, height, shade);
 
   // Camera::rayDirection for the sample at (x, v): a + x s with x in pixels.
   const glm::dvec3 step = right * (2.0 / width);
   for (int y = 0; y < height; ++y) {
     const double v = (y + 0.5) / height;
     const glm::dvec3 base = camera.forward - right + (1.0 - 2.0 * v) * up;
-    const glm::dvec2 row(0.0, y + 0.5), along(1.0, 0.0);
     ScreenFootprint::Span span = pixelsOf(
-        seenOutline ? clipped(seen, row, along)
-                    : coneInterval(base, step, toCenter, glm::dot(toCenter, toCenter) - radius * radius),
+        seenOutline ? crossing(seen, y) : coneInterval(base, step, toCenter, glm::dot(toCenter, toCenter) - radius * radius),
         width);
     if (mirror)
-      span = hull(span, pixelsOf(mirrorOutline ? clipped(mirrored, row, along)
+      span = hull(span, pixelsOf(mirrorOutline ? crossing(mirrored, y)
                                                : coneInterval(base, step, toMirror,
                                                               glm::dot(toMirror, toMirror) - radius * radius),
                                  width));
@@ -157,10 +174,9 @@ void slimeFootprint(const Camera& camera, const SlimeGeometry& geometry, const S
       } else {
         // The row's floor points eye + t (a + x s), t = −eye_z / a_z, seen from the light.
         const double t = -eye.z / base.z;
-        const glm::dvec3 start = eye + t * base, direction = t * step;
-        const LineInterval shadow =
-            shadowOutlined ? clipped(shade, glm::dvec2(start), glm::dvec2(direction))
-                           : coneInterval(start - light, direction, fromLight, glm::dot(fromLight, fromLight) - radius * radius);
+        const LineInterval shadow = shadowOutlined ? crossing(shade, y)
+                                                   : coneInterval(eye + t * base - light, t * step, fromLight,
+                                                                  glm::dot(fromLight, fromLight) - radius * radius);
         span = hull(span, pixelsOf(shadow, width));
       }
     }

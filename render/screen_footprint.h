@@ -19,10 +19,14 @@ struct ScreenFootprint {
     int x0 = 0, x1 = 0;  // empty when x0 >= x1
   };
   std::vector<Span> rows;
-  // The mesh's outlines on the image, in the mirror and on the floor, and their points (storage
-  // kept from frame to frame).
-  ConvexOutline outlines[3];
-  std::vector<glm::dvec2> scratch;
+  // The mesh's outlines on the image (of the slime, its mirror image and its shadow), their points
+  // and each row's crossing (storage kept from frame to frame).
+  struct Outline {
+    std::vector<glm::dvec2> points;
+    ConvexOutline hull;
+    std::vector<ConvexOutline::Crossing> rows;
+  };
+  Outline outlines[3];
 
   bool contains(int x, int y) const { return x >= rows[y].x0 && x < rows[y].x1; }
   // Whether the pixels [x0, x0 + count) of row y all lie outside.

@@ -10,6 +10,8 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
@@ -166,24 +168,52 @@ TEST(ScreenFootprint, HoldsAStretchedOrFlattenedSlime) {
   }
 }
 
-// The outline itself: the hull of a cloud, a line clipped by it, and no outline for points on a line.
+// The outline itself: the hull of a cloud, each row's crossing with it, and no outline for points on
+// a line.
 TEST(ScreenFootprint, ConvexOutlineIsTheHullOfItsPoints) {
-  std::vector<glm::dvec2> points{{0, 0}, {2, 0}, {2, 1}, {0, 1}, {1, 0.5}, {1, 0}, {0.5, 0.9}, {2, 0}};
+  std::vector<glm::dvec2> points{{0, 0}, {4, 0}, {4, 3}, {0, 3}, {1, 0.5}, {2, 0}, {0.5, 2.9}, {4, 0}};
   ConvexOutline outline;
   outline.build(points);
   ASSERT_TRUE(outline.bounded());
   EXPECT_EQ(outline.corners().size(), 4u);  // the rectangle's corners; inner and edge points dropped
-  double low = 0.0, high = 0.0;
-  ASSERT_TRUE(outline.clip({-1.0, 0.25}, {1.0, 0.0}, low, high));  // along y = 0.25 from x = −1
-  EXPECT_DOUBLE_EQ(low, 1.0);
-  EXPECT_DOUBLE_EQ(high, 3.0);
-  ASSERT_TRUE(outline.clip({1.0, -1.0}, {0.0, 2.0}, low, high));  // up x = 1, twice as fast
-  EXPECT_DOUBLE_EQ(low, 0.5);
-  EXPECT_DOUBLE_EQ(high, 1.0);
-  EXPECT_FALSE(outline.clip({-1.0, 1.5}, {1.0, 0.0}, low, high));  // above it
-  EXPECT_FALSE(outline.clip({3.0, 0.5}, {0.0, 0.0}, low, high));   // a point outside
-  ASSERT_TRUE(outline.clip({1.0, 0.5}, {0.0, 0.0}, low, high));    // a point inside: every s
-  EXPECT_TRUE(std::isinf(low) && std::isinf(high));
+  std::vector<ConvexOutline::Crossing> rows;
+  outline.crossRows(5, rows);
+  ASSERT_EQ(rows.size(), 5u);
+  for (int row = 0; row < 3; ++row) {  // the lines y = 0.5, 1.5, 2.5
+    EXPECT_TRUE(rows[row].any) << row;
+    EXPECT_DOUBLE_EQ(rows[row].low, 0.0) << row;
+    EXPECT_DOUBLE_EQ(rows[row].high, 4.0) << row;
+  }
+  EXPECT_FALSE(rows[3].any);  // y = 3.5 and 4.5 pass above it
+  EXPECT_FALSE(rows[4].any);
+
+  std::vector<glm::dvec2> triangle{{0, 0}, {4, 0}, {0, 4}, {1, 1}};
+  outline.build(triangle);
+  outline.crossRows(6, rows);
+  EXPECT_DOUBLE_EQ(rows[0].low, 0.0);
+  EXPECT_DOUBLE_EQ(rows[0].high, 3.5);  // the slanted side at y = 0.5
+  EXPECT_DOUBLE_EQ(rows[3].high, 0.5);
+  EXPECT_FALSE(rows[4].any);
+
+  // A dense cloud (the points inside the extremes' octagon are set aside before the sort): a
+  // hexagon's corners and 2,000 points inside it.
+  std::vector<glm::dvec2> cloud, corners;
+  for (int k = 0; k < 6; ++k) corners.emplace_back(3.0 * std::cos(k * 1.0471976), 3.0 * std::sin(k * 1.0471976));
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  while (cloud.size() < 2000) {
+    const glm::dvec2 p(2.5 * unit(random), 2.5 * unit(random));
+    if (glm::length(p) < 2.55) cloud.push_back(p);  // inside the hexagon's inscribed circle (2.598)
+  }
+  cloud.insert(cloud.begin() + 700, corners.begin(), corners.end());
+  outline.build(cloud);
+  ASSERT_EQ(outline.corners().size(), 6u);
+  for (const glm::dvec2& corner : corners) {
+    bool found = false;
+    for (const glm::dvec2& c : outline.corners()) found = found || glm::length(c - corner) < 1e-12;
+    EXPECT_TRUE(found) << corner.x << ", " << corner.y;
+  }
+
   std::vector<glm::dvec2> line{{0, 0}, {1, 1}, {2, 2}, {3, 3}};
   outline.build(line);
   EXPECT_FALSE(outline.bounded());
