@@ -2,7 +2,12 @@
 
 #include "render/embree_util.h"
 
+#if defined(__AVX2__)
+#include <immintrin.h>
+#endif
+
 #include <cmath>
+#include <cstddef>
 #include <stdexcept>
 
 namespace slime {
@@ -12,6 +17,45 @@ namespace {
 // when the bounding radius has changed by this fraction since the last build, or after this many refits.
 constexpr float kRebuildRadiusChange = 0.2f;
 constexpr int kRebuildAfterRefits = 600;
+
+// The rays' 8 floats each (origin, direction, tNear, tFar) into the packet's 8 lanes of each: an
+// 8 × 8 transpose in AVX2 builds.
+static_assert(sizeof(Ray) == 8 * sizeof(float) && offsetof(Ray, direction) == 3 * sizeof(float) &&
+                  offsetof(Ray, tNear) == 6 * sizeof(float) && offsetof(Ray, tFar) == 7 * sizeof(float),
+              "Ray is read as 8 consecutive floats");
+void toPacket(const Ray* rays, RTCRay8& packet) {
+#if defined(__AVX2__)
+  __m256 r[8], t[8], u[8];
+  for (int i = 0; i < 8; ++i) r[i] = _mm256_loadu_ps(&rays[i].origin.x);
+  for (int i = 0; i < 8; i += 2) {
+    t[i] = _mm256_unpacklo_ps(r[i], r[i + 1]);
+    t[i + 1] = _mm256_unpackhi_ps(r[i], r[i + 1]);
+  }
+  for (int i = 0; i < 8; i += 4) {
+    u[i] = _mm256_shuffle_ps(t[i], t[i + 2], 0x44);
+    u[i + 1] = _mm256_shuffle_ps(t[i], t[i + 2], 0xEE);
+    u[i + 2] = _mm256_shuffle_ps(t[i + 1], t[i + 3], 0x44);
+    u[i + 3] = _mm256_shuffle_ps(t[i + 1], t[i + 3], 0xEE);
+  }
+  float* columns[8] = {packet.org_x, packet.org_y, packet.org_z, packet.dir_x,
+                       packet.dir_y, packet.dir_z, packet.tnear, packet.tfar};
+  for (int j = 0; j < 4; ++j) {
+    _mm256_store_ps(columns[j], _mm256_permute2f128_ps(u[j], u[j + 4], 0x20));
+    _mm256_store_ps(columns[j + 4], _mm256_permute2f128_ps(u[j], u[j + 4], 0x31));
+  }
+#else
+  for (int i = 0; i < 8; ++i) {
+    packet.org_x[i] = rays[i].origin.x;
+    packet.org_y[i] = rays[i].origin.y;
+    packet.org_z[i] = rays[i].origin.z;
+    packet.dir_x[i] = rays[i].direction.x;
+    packet.dir_y[i] = rays[i].direction.y;
+    packet.dir_z[i] = rays[i].direction.z;
+    packet.tnear[i] = rays[i].tNear;
+    packet.tfar[i] = rays[i].tFar;
+  }
+#endif
+}
 
 }  // namespace
 
@@ -168,14 +212,6 @@ void EmbreeScene::intersect8In(RTCScene scene, const std::vector<std::uint32_t>*
   alignas(32) RTCRayHit8 packet;
   for (int i = 0; i < 8; ++i) {
     valid[i] = active[i] ? -1 : 0;
-    packet.ray.org_x[i] = rays[i].origin.x;
-    packet.ray.org_y[i] = rays[i].origin.y;
-    packet.ray.org_z[i] = rays[i].origin.z;
-    packet.ray.dir_x[i] = rays[i].direction.x;
-    packet.ray.dir_y[i] = rays[i].direction.y;
-    packet.ray.dir_z[i] = rays[i].direction.z;
-    packet.ray.tnear[i] = rays[i].tNear;
-    packet.ray.tfar[i] = rays[i].tFar;
     packet.ray.time[i] = 0.0f;
     packet.ray.mask[i] = 0xFFFFFFFFu;
     packet.ray.id[i] = static_cast<unsigned>(i);
@@ -183,6 +219,7 @@ void EmbreeScene::intersect8In(RTCScene scene, const std::vector<std::uint32_t>*
     packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
     packet.hit.primID[i] = RTC_INVALID_GEOMETRY_ID;
   }
+  toPacket(rays, packet.ray);
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
