@@ -1,5 +1,7 @@
 #include "render/image_io.h"
 
+#include "core/file_output.h"
+
 #include <stb_image.h>
 #include <stb_image_write.h>
 
@@ -14,7 +16,6 @@
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
-#include <unistd.h>
 
 #if defined(__AVX2__)
 #include <immintrin.h>
@@ -165,22 +166,7 @@ void writePng(const Image& image, const std::string& path) {
   if (!stbi_write_png_to_func(appendBytes, &png, image.width, image.height, 3, rgb.data(), image.width * 3))
     throw std::runtime_error("cannot encode a PNG for " + path);
 
-  // Write beside the target, then rename: readers see the old file or the whole new one.
-  const std::string temporary = path + ".tmp" + std::to_string(::getpid());
-  std::FILE* file = std::fopen(temporary.c_str(), "wb");
-  if (!file) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
-  const bool written = std::fwrite(png.data(), 1, png.size(), file) == png.size();
-  const bool closed = std::fclose(file) == 0;
-  if (!written || !closed) {
-    const int error = errno;
-    std::remove(temporary.c_str());
-    throw std::runtime_error("cannot write " + path + ": " + std::strerror(error));
-  }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
-    const int error = errno;
-    std::remove(temporary.c_str());
-    throw std::runtime_error("cannot write " + path + ": " + std::strerror(error));
-  }
+  writeFileAtomically(path, png.data(), png.size());  // readers see the old file or the whole new one
 }
 
 Image readPng(const std::string& path) {

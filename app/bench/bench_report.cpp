@@ -1,7 +1,8 @@
 #include "app/bench/bench_report.h"
 
+#include "core/file_output.h"
+
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
@@ -20,10 +21,7 @@ std::string formatValue(const nlohmann::json& value) {
   return "";  // null: an empty cell, which gnuplot skips
 }
 
-void writeText(const std::string& text, const std::string& path) {
-  std::ofstream file(path, std::ios::binary);
-  if (!file || !(file << text) || !file.flush()) throw std::runtime_error("cannot write " + path);
-}
+void writeText(const std::string& text, const std::string& path) { writeFileAtomically(path, text); }
 
 }  // namespace
 

@@ -2,6 +2,7 @@
 // and optionally write a JSON report. The same inputs give a bitwise identical report, apart from the
 // timing fields (ms_per_step, wall_seconds).
 #include "app/cli/commands.h"
+#include "core/file_output.h"
 #include "core/integrators.h"
 #include "core/scenario.h"
 #include "core/settings_io.h"
@@ -14,7 +15,6 @@
 #include <ctime>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <optional>
 
 namespace slime {
@@ -153,10 +153,11 @@ int runSim(const SimOptions& options) {
                    {"max_speed", maxSpeed}}},
         {"series", seriesJson(series)},
     };
-    std::ofstream out(options.reportFile);
-    if (!out) throw SettingsError("--report: cannot write " + options.reportFile);
-    out << report.dump(2) << "\n";
-    if (!out) throw SettingsError("--report: failed writing " + options.reportFile);
+    try {
+      writeFileAtomically(options.reportFile, report.dump(2) + "\n");
+    } catch (const std::runtime_error& e) {
+      throw SettingsError(std::string("--report: ") + e.what());
+    }
   }
   return rollbacks > kMaxRollbacks ? 1 : 0;
 }

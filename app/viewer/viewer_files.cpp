@@ -3,14 +3,13 @@
 #include "app/viewer/viewer.h"
 
 #include "app/viewer/panel_fields.h"
+#include "core/file_output.h"
 #include "core/settings_io.h"
 #include "render/image_io.h"
 
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 
 namespace slime {
 
@@ -33,24 +32,16 @@ Settings Viewer::sceneToSave() const {
   return scene;
 }
 
-// Written to a temporary file beside the target and renamed, so a failed save leaves no half file.
+// Written whole or not at all (writeFileAtomically): a failed save leaves no half file.
 void Viewer::saveScene() {
-  const std::string temporary = scenePath_ + ".partial";
-  {
-    std::ofstream file(temporary);
-    file << settingsToJson(sceneToSave()).dump(2) << '\n';
-    if (!file) {
-      std::filesystem::remove(temporary);
-      fileMessage_ = "Not saved: cannot write " + scenePath_;
-      fileFailed_ = true;
-      return;
-    }
+  try {
+    writeFileAtomically(scenePath_, settingsToJson(sceneToSave()).dump(2) + "\n");
+    fileMessage_ = "Saved " + scenePath_;
+    fileFailed_ = false;
+  } catch (const std::runtime_error& e) {
+    fileMessage_ = std::string("Not saved: ") + e.what();
+    fileFailed_ = true;
   }
-  std::error_code error;
-  std::filesystem::rename(temporary, scenePath_, error);
-  fileFailed_ = static_cast<bool>(error);
-  fileMessage_ = error ? "Not saved: " + scenePath_ + ": " + error.message() : "Saved " + scenePath_;
-  if (error) std::filesystem::remove(temporary);
   std::printf("slime: %s\n", fileMessage_.c_str());
 }
 
@@ -134,9 +125,11 @@ void Viewer::writeReport() const {
       {"reload_pending", differingReloadFields(wanted_, built_)},
       {"screenshots", screenshotsWritten_},
       {"settings", settingsToJson(settings_)}};
-  std::ofstream file(options_.reportPath);
-  file << report.dump(2) << '\n';
-  if (!file) std::fprintf(stderr, "slime view: cannot write %s\n", options_.reportPath.c_str());
+  try {
+    writeFileAtomically(options_.reportPath, report.dump(2) + "\n");
+  } catch (const std::runtime_error& e) {
+    std::fprintf(stderr, "slime view: %s\n", e.what());
+  }
 }
 
 }  // namespace slime

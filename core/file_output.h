@@ -1,0 +1,15 @@
+// Writing an output file whole or not at all: the bytes go to a temporary file beside the target,
+// which is renamed over it only once every byte is written and the file closed. A reader sees the old
+// file or the new one, and a failed write (no such directory, a full disk) leaves nothing behind.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+namespace slime {
+
+// Throws std::runtime_error "cannot write PATH: REASON" on failure, after removing the temporary file.
+void writeFileAtomically(const std::string& path, const void* bytes, std::size_t size);
+void writeFileAtomically(const std::string& path, const std::string& text);
+
+}  // namespace slime
