@@ -1,6 +1,7 @@
 #include "app/viewer/panels.h"
 
 #include <imgui.h>
+#include <imgui_internal.h>  // TempInputIsActive: a slider in its Ctrl+click text mode
 #include <imgui_stdlib.h>
 
 #include <algorithm>
@@ -9,6 +10,7 @@
 #include <cstring>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 
 #include "app/viewer/adaptive_resolution.h"
 #include "app/viewer/panel_fields.h"
@@ -48,14 +50,35 @@ std::string labelOf(const PanelField& field) {
   return field.setting.name() + (field.appliesOnReload ? " *" : "") + "##" + field.setting.key;
 }
 
+// A number typed into a slider (Ctrl+click) counts when the user leaves the field (Enter, Tab, a
+// click elsewhere), not letter by letter: Dear ImGui writes the value at every letter, so typing
+// 2000 would apply 2, 20 and 200 on the way. Escape drops it. Sliding still applies at once. Call
+// right after the slider, with what it returned.
+template <typename T>
+bool typedOnLeaving(bool changed, T& value) {
+  static std::unordered_map<ImGuiID, T> typed;  // the panels run on one thread
+  const ImGuiID id = ImGui::GetItemID();
+  if (ImGui::TempInputIsActive(id)) {
+    if (changed) typed[id] = value;
+    return false;
+  }
+  const auto pending = typed.find(id);
+  if (pending == typed.end()) return changed;
+  const T entered = pending->second;
+  typed.erase(pending);
+  if (!ImGui::IsItemDeactivated() || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) return false;
+  value = entered;
+  return true;
+}
+
 // One widget per field type; each returns whether the user changed the value this frame.
 bool edit(const PanelField& field, double& value) {
   const SettingInfo& info = field.setting;
   const std::string label = labelOf(field), format = numberFormat(info, "%.4g");
   const ImGuiSliderFlags flags =
       field.widget == Widget::LogSlider ? ImGuiSliderFlags_Logarithmic : ImGuiSliderFlags_None;
-  return ImGui::SliderScalar(label.c_str(), ImGuiDataType_Double, &value, &info.min, &info.max,
-                             format.c_str(), flags);
+  return typedOnLeaving(
+      ImGui::SliderScalar(label.c_str(), ImGuiDataType_Double, &value, &info.min, &info.max, format.c_str(), flags), value);
 }
 
 bool edit(const PanelField& field, int& value) {
@@ -80,7 +103,7 @@ bool edit(const PanelField& field, int& value) {
     return changed;
   }
   const int low = static_cast<int>(info.min), high = static_cast<int>(info.max);
-  return ImGui::SliderInt(label.c_str(), &value, low, high, numberFormat(info, "%d").c_str());
+  return typedOnLeaving(ImGui::SliderInt(label.c_str(), &value, low, high, numberFormat(info, "%d").c_str()), value);
 }
 
 bool edit(const PanelField& field, glm::dvec3& value) {

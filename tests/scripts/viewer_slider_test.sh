@@ -1,8 +1,9 @@
 #!/bin/bash
 # The panels come from the settings table: a slider click edits the setting (stiffness, near its left
 # end); a typed value outside the table's range is refused with a message naming the key and range and
-# not applied (stiffness 0.5: the least is 1 N/m; a slider applies what is typed letter by letter, so
-# every prefix of the typed text must be out of range too, or a slow frame applies one of them); the level slider waits for Reload
+# not applied (stiffness 2000: the limit is 1000 N/m), typed a letter at a time as a person types: a
+# typed number counts when the field is left, so its prefixes 2, 20 and 200 are never applied (and a
+# typed 7 N/m before it is); the level slider waits for Reload
 # instead of rebuilding the slime. Clicks on the panel are not seen by the app (no grab starts under them).
 # The column is 250 wide at the left; with the Scene file section closed its rows are 23 px apart.
 source "$(dirname "$0")/viewer_lib.sh"
@@ -30,17 +31,20 @@ type_into() {  # X Y TEXT
   xdotool keyup --window "$WINDOW" Return
   sleep 1
 }
-type_into 60 312 "0.5"      # stiffness 0.5 N/m: outside 1..1000 N/m, and so are "0" and "0."
+type_into 60 312 "7"        # stiffness 7 N/m: inside the range, applied on Enter
+type_into 60 312 "2000"     # stiffness 2000 N/m: outside 1..1000 N/m (its prefixes are inside)
 screenshot 3
 quit_viewer
 
 stiffness=$(report '.settings.slime.stiffness')
-awk -v k="$stiffness" 'BEGIN { exit !(k < 50) }' || fail "stiffness $stiffness: the slider click near 1 N/m (from 100) was not applied"
-awk -v k="$stiffness" 'BEGIN { exit !(k >= 1) }' || fail "stiffness $stiffness: an out-of-range value was applied"
+awk -v k="$stiffness" 'BEGIN { exit !(k < 50) }' ||
+  fail "stiffness $stiffness: the slider click near 1 N/m (from 100) was not applied, or a prefix of the typed 2000 was (see $OUT/shot-2.png)"
+awk -v k="$stiffness" 'BEGIN { exit !(k <= 1000) }' || fail "stiffness $stiffness: an out-of-range value was applied"
+awk -v k="$stiffness" 'BEGIN { exit !(k == 7) }' || fail "stiffness $stiffness: the typed 7 N/m was not applied on Enter"
 error=$(report '.edit_error')
-echo "$error" | grep -q "slime.stiffness" || fail "no error naming slime.stiffness for 0.5 N/m: '$error'"
+echo "$error" | grep -q "slime.stiffness" || fail "no error naming slime.stiffness for 2000 N/m: '$error'"
 echo "$error" | grep -q "1 to 1000" || fail "the error does not give the table's range 1 to 1000: '$error'"
 [ "$(report '.settings.slime.level')" -eq 4 ] || fail "the level slider rebuilt the slime at once (level $(report '.settings.slime.level'))"
 report '.reload_pending[]' | grep -qx "slime.level" || fail "slime.level is not waiting for Reload: $(report '.reload_pending')"
 [ "$(report '.grabs')" -eq 0 ] || fail "a click on a panel reached the app as a grab"
-echo "PASS: stiffness $stiffness, 0.5 N/m refused: $error; level held for Reload"
+echo "PASS: stiffness $stiffness, 2000 N/m refused: $error; level held for Reload"
