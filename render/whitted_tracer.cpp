@@ -545,8 +545,8 @@ void WhittedTracer::crossFromBothEnds8(Ray* rays, bool* walking, glm::vec3* visi
   // back in only through one that does not support it (see findHits). So when it crosses no
   // non-supporting triangle (always, on a convex slime), it meets the slime in one stretch or not at
   // all: the stretch's near end is the first hit from the segment's start, its far end the first
-  // hit from the light's end. Those queries start outside the jelly and need not wait for each other
-  // (one round of packets, instead of a walk whose second query starts inside).
+  // hit from the light's end. Both queries start outside the jelly (a walk's second query starts
+  // inside); the far end and the check are asked, in a second round, only of the rays that enter.
   const ShadingParameters& p = parameters_;
   const bool convex = geometry_.isConvex();
   int count = 0;
