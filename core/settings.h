@@ -72,6 +72,7 @@ struct RenderSettings {
   std::string optics = "fresnel";    // fresnel (dielectric) | seed (constant k_s / k_t weights)
   std::string backend = "embree";    // embree | brute (the seed's algorithm, the oracle)
   double scale = 1.0;                // resolution scale of the viewer's traced image (0.1..1)
+  double targetFps = 0.0;            // viewer: the frame rate its adaptive resolution aims for, 0 = off
   bool shadows = true;               // trace shadow rays to the point light
 };
 

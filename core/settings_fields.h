@@ -128,6 +128,8 @@ void forEachField(S& s, Visitor&& visitor) {
   visit("render.scale", s.render.scale, Limits{0.1, 1.0, "of the window size"},
         "resolution of the viewer's traced image");
   visit("render.shadows", s.render.shadows, Choices{}, "trace shadow rays to the point light");
+  visit("render.targetFps", s.render.targetFps, Limits{0.0, 240.0, "frames per second"},
+        "viewer: trace the image smaller while moving frames miss this rate (0: always full resolution)");
   // Simulation
   visit("sim.dt", s.sim.dt, Limits{1e-6, 0.01, "s"}, "fixed time step");
   visit("sim.integrator", s.sim.integrator,

@@ -23,6 +23,7 @@ struct ViewCommandOptions {
   std::vector<double> viewPoint;     // --vp x y z
   std::vector<double> viewInterest;  // --vi x y z
   double fov = 0.0;                  // --fov degrees; 0 = the scene's
+  double targetFps = -1.0;           // --target-fps (render.targetFps); < 0: the scene's
   ViewerOptions viewer;
 };
 
@@ -87,14 +88,15 @@ void registerViewCommand(CLI::App& root, int& exitCode) {
                       "at exit");
   command->add_option("--frame-log", options->viewer.frameLogPath,
                       "Write every frame (wall time, stages, traced size, grabbed) as CSV at exit");
-  command->add_option("--target-fps", options->viewer.targetFps,
+  command->add_option("--target-fps", options->targetFps,
                       "Adaptive resolution: trace smaller while frames miss this rate as the view moves "
-                      "(0 = off, the default: always full resolution)")
+                      "(0 = off, the default: always full resolution); sets render.targetFps")
       ->check(CLI::Range(0.0, AdaptiveResolution::kMaximumTargetFps));
   command->add_option("--screenshot-prefix", options->viewer.screenshotPrefix, "F12 writes <prefix>-<n>.png");
   command->callback([options, &exitCode] {
     Settings settings = loadSettings(options->scene);
     applyCameraOptions(*options, settings);
+    if (options->targetFps >= 0.0) settings.render.targetFps = options->targetFps;
     checkOutputFile("--report", options->viewer.reportPath);
     checkOutputFile("--frame-log", options->viewer.frameLogPath);
     if (!options->scene.scenarioFile.empty()) options->viewer.scenario = loadScenario(options->scene.scenarioFile);

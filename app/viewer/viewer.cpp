@@ -54,8 +54,7 @@ Viewer::Viewer(ViewerBackend& backend, const Settings& settings, ViewerOptions o
   ImGui_ImplOpenGL3_Init("#version 330 core");
   metrics_ = simulation_.metrics();
   columnWidth_ = panelColumnWidth(static_cast<float>(backend_.windowSize().x));
-  resolution_.setTargetFps(options_.targetFps);
-  stats_.targetFps = resolution_.targetFps();
+  followTargetFps();
   if (keepsFrameRecords() && options_.maxFrames > 0) frameRecords_.reserve(options_.maxFrames);
 }
 
@@ -435,10 +434,14 @@ void Viewer::applyPanelRequests(const PanelRequests& requests) {
     columnWidth_ = requests.columnWidth;
     sceneChanged_ = true;
   }
-  if (requests.targetFps >= 0 && requests.targetFps != resolution_.targetFps()) {
-    resolution_.setTargetFps(requests.targetFps);
-    stats_.targetFps = resolution_.targetFps();
-  }
+  if (requests.targetFps >= 0) settings_.render.targetFps = requests.targetFps;
+  followTargetFps();  // the Stats window's field, the Render panel's, or a loaded scene's
+}
+
+void Viewer::followTargetFps() {
+  if (settings_.render.targetFps == resolution_.targetFps()) return;
+  resolution_.setTargetFps(settings_.render.targetFps);
+  stats_.targetFps = resolution_.targetFps();
 }
 
 void Viewer::finishFrame(double frameMs) {

@@ -36,7 +36,6 @@ struct ViewerOptions {
   std::string screenshotOnExit;                     // PNG of the last frame, if set
   std::string reportPath;                           // JSON summary written at exit, if set
   std::string frameLogPath;                         // CSV of every frame (frame_log.h) at exit, if set
-  double targetFps = 0.0;  // adaptive resolution's target (adaptive_resolution.h); 0: off, always full size
   std::string screenshotPrefix = "slime-screenshot";  // F12 writes <prefix>-<n>.png
   std::optional<Scenario> scenario;                 // timed grab/drag/press/set events to replay
   std::string scenePath = "slime-scene.json";       // where Ctrl+S saves and Ctrl+O loads (panel field)
@@ -114,6 +113,7 @@ class Viewer {
   GrabMarks grabMarks() const;
   PanelRequests drawPanelsAndOverlay(const GrabMarks& marks);  // reads, never edits, the slime
   void applyPanelRequests(const PanelRequests& requests);
+  void followTargetFps();  // the adaptive resolution's target from render.targetFps
   void present();
   void finishFrame(double frameMs);     // stats, the adaptive resolution, the frame log
 

@@ -149,12 +149,13 @@ TEST(HeadlessViewer, AScenarioGrabTakesHoldAndTheReportCountsIt) {
 // no new image (the slime rests, or creeps too little to show) it is traced at full resolution again.
 TEST(HeadlessViewer, FramesOverTheTargetWhileTheSlimeMovesAreTracedSmaller) {
   ViewerOptions options;
-  options.targetFps = 240.0;
   const std::filesystem::path report =
       std::filesystem::path(SLIME_TEST_OUTPUT_DIR) / "viewer_adaptive_report.json";
   options.reportPath = report.string();
   SteppingHeadlessGl backend(320, 240, 1.0 / 30.0);
-  Viewer viewer(backend, smallScene(), options);
+  Settings settings = smallScene();
+  settings.render.targetFps = 240.0;  // a scene file's or --set's, as --target-fps sets it
+  Viewer viewer(backend, settings, options);
   const int fullWidth = 320 - static_cast<int>(std::lround(panelColumnWidth(320.0f)));
   int smallest = fullWidth;
   for (int frame = 0; frame < 30; ++frame) {  // the first second: it falls, lands and jiggles
