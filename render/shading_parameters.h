@@ -6,6 +6,8 @@
 
 #include <glm/vec3.hpp>
 
+#include <algorithm>
+
 namespace slime {
 
 enum class OpticsMode { Fresnel, Seed };
@@ -14,6 +16,9 @@ enum class OpticsMode { Fresnel, Seed };
 // factors along its path, largest channel) is at least this: the light it could bring (radiance ≤ 1)
 // is then below half an 8-bit step, 0.5/255, invisible in the PNG.
 constexpr float kMinRayWeight = 0.5f / 255.0f;
+
+// A weight's largest channel, the one kMinRayWeight is compared with.
+inline float largest(const glm::vec3& v) { return std::max(v.x, std::max(v.y, v.z)); }
 
 struct ShadingParameters {
   // Light: a point light without fall-off (the seed's model) plus an ambient term.

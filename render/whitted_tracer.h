@@ -8,7 +8,8 @@
 //   fresnel mode: w_r = F (dielectric Fresnel), w_t = (1 − F)·k_t entering, (1 − F) leaving;
 //   seed mode:    w_r = k_s, w_t = k_t (constants, as the seed);
 // and the light inside attenuated by Beer–Lambert exp(−σ l) over the path length l in the jelly.
-// The floor's and the sky's own shading (footprint, pattern, light, haze) is in floor_shading.cpp.
+// The floor's and the sky's own shading (footprint, pattern, light, haze) is in floor_shading.cpp; the
+// shadow rays' walk through the slime in shadow_rays.cpp.
 #pragma once
 
 #include "render/floor_texture.h"
