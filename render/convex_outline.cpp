@@ -31,16 +31,16 @@ void ConvexOutline::build(std::vector<glm::dvec2>& points) {
         }
     }
     // In the order of their directions the extremes go round counter-clockwise (repeats allowed).
-    std::vector<glm::dvec2> octagon;
+    glm::dvec2 octagon[8];
+    std::size_t n = 0;
     for (const glm::dvec2& e : extremes)
-      if (octagon.empty() || (e != octagon.back() && e != octagon.front())) octagon.push_back(e);
-    bool convex = octagon.size() >= 3;
-    for (std::size_t i = 0; convex && i < octagon.size(); ++i)
-      convex = turn(octagon[i], octagon[(i + 1) % octagon.size()], octagon[(i + 2) % octagon.size()]) > 0.0;
+      if (n == 0 || (e != octagon[n - 1] && e != octagon[0])) octagon[n++] = e;
+    bool convex = n >= 3;
+    for (std::size_t i = 0; convex && i < n; ++i) convex = turn(octagon[i], octagon[(i + 1) % n], octagon[(i + 2) % n]) > 0.0;
     if (convex) {
       const auto strictlyInside = [&](const glm::dvec2& p) {
-        for (std::size_t i = 0; i < octagon.size(); ++i)
-          if (turn(octagon[i], octagon[(i + 1) % octagon.size()], p) <= 0.0) return false;
+        for (std::size_t i = 0; i < n; ++i)
+          if (turn(octagon[i], octagon[(i + 1) % n], p) <= 0.0) return false;
         return true;
       };
       points.erase(std::remove_if(points.begin(), points.end(), strictlyInside), points.end());
@@ -51,8 +51,10 @@ void ConvexOutline::build(std::vector<glm::dvec2>& points) {
   });
   points.erase(std::unique(points.begin(), points.end()), points.end());
   if (points.size() < 3) return;
-  // Lower hull left to right, then upper hull right to left; collinear points are dropped.
-  std::vector<glm::dvec2> hull(2 * points.size());
+  // Lower hull left to right, then upper hull right to left; collinear points are dropped. Built in
+  // corners_ (its storage kept from call to call).
+  std::vector<glm::dvec2>& hull = corners_;
+  hull.resize(2 * points.size());
   std::size_t k = 0;
   for (const glm::dvec2& p : points) {
     while (k >= 2 && turn(hull[k - 2], hull[k - 1], p) <= 0.0) --k;
@@ -63,7 +65,7 @@ void ConvexOutline::build(std::vector<glm::dvec2>& points) {
     hull[k++] = points[i];
   }
   hull.resize(k - 1);  // the last point is the first
-  if (hull.size() >= 3) corners_ = std::move(hull);
+  if (hull.size() < 3) hull.clear();
 }
 
 void ConvexOutline::crossRows(int rows, std::vector<Crossing>& crossings) const {
