@@ -117,13 +117,8 @@ void SlimeGeometry::buildClusters() {
 
 void SlimeGeometry::findSupportingTriangles() {
   supporting.assign(triangles.size(), 0);
-  convex = false;
-  nonSupportingTriangles.clear();
-  nonSupportingPrimitives.clear();
   if (vertexCount() == 0 || clusterBegin.size() < 2 || !(boundRadius > 0.0f)) {  // none is known to support it
-    nonSupportingTriangles = triangles;
-    for (std::size_t f = 0; f < triangles.size(); ++f) nonSupportingPrimitives.push_back(static_cast<std::uint32_t>(f));
-    boundNonSupporting();
+    listNonSupporting();
     return;
   }
   // Each cluster's bounding sphere (centroid, farthest member), and each group of 8 consecutive
@@ -197,16 +192,19 @@ void SlimeGeometry::findSupportingTriangles() {
     handOff(this);  // their marks, back to the caller
   });
   takeOver(this);
+  listNonSupporting();
+}
+
+void SlimeGeometry::listNonSupporting() {
+  nonSupportingTriangles.clear();
+  nonSupportingPrimitives.clear();
   for (std::size_t f = 0; f < triangles.size(); ++f) {
     if (supporting[f] != 0) continue;
     nonSupportingTriangles.push_back(triangles[f]);
     nonSupportingPrimitives.push_back(static_cast<std::uint32_t>(f));
   }
-  convex = nonSupportingTriangles.empty();
-  boundNonSupporting();
-}
-
-void SlimeGeometry::boundNonSupporting() {
+  convex = !triangles.empty() && nonSupportingTriangles.empty();
+  // Their bounding sphere: the centre of their box, the farthest of their vertices.
   glm::vec3 low(kInfinity), high(-kInfinity);
   for (const Triangle& t : nonSupportingTriangles)
     for (const std::uint32_t v : {t.x, t.y, t.z}) {
