@@ -161,6 +161,27 @@ void EmbreeScene::update(const SlimeGeometry& geometry, bool topologyChanged) {
   rtcCommitScene(scene_);
   throwOnError("refitting the slime");
   buildNonSupporting(geometry);
+  lightGridStale_ = true;
+}
+
+void EmbreeScene::prepareLight(const SlimeGeometry& geometry, const glm::vec3& light, bool wanted) {
+  if (!wanted) {
+    lightGrid_.clear();
+    lightGridStale_ = true;
+    return;
+  }
+  if (!lightGridStale_ && light == lightGrid_.apex()) return;
+  lightGrid_.build(geometry, light);
+  lightGridStale_ = false;
+}
+
+bool EmbreeScene::lightCrossings8(const Ray* rays, const bool* active, SegmentCrossings* crossings) const {
+  if (lightGridStale_ || !lightGrid_.ready()) return false;
+  for (int i = 0; i < 8; ++i) {
+    if (active[i]) lightGrid_.crossings(rays[i], crossings[i]);
+    else crossings[i].count = 0;
+  }
+  return true;
 }
 
 void EmbreeScene::buildNonSupporting(const SlimeGeometry& geometry) {

@@ -5,6 +5,7 @@
 // not in Embree: they are analytic (see whitted_tracer.h).
 #pragma once
 
+#include "render/pencil_grid.h"
 #include "render/ray.h"
 #include "render/slime_geometry.h"
 
@@ -31,6 +32,13 @@ class EmbreeScene final : public SlimeIntersector {
   SlimeHit intersect(const Ray& ray) const override;
   void intersect8(const Ray* rays, const bool* active, SlimeHit* hits) const override;
   void intersectNonSupporting8(const Ray* rays, const bool* active, SlimeHit* hits) const override;
+  // Makes lightCrossings8 answer for a light at `light` (bins the triangles by their direction from
+  // it, render/pencil_grid.h) when `wanted`, once per shape and light; call before tracing, after
+  // update. Without it, or where the grid cannot serve, lightCrossings8 returns false.
+  void prepareLight(const SlimeGeometry& geometry, const glm::vec3& light, bool wanted);
+  // Each segment's crossings from the light's grid (no Embree query): exact, as the brute force's test.
+  bool lightCrossings8(const Ray* rays, const bool* active, SegmentCrossings* crossings) const override;
+  const PencilGrid& lightGrid() const { return lightGrid_; }
 
   int rebuildCount() const { return rebuilds_; }
 
@@ -52,6 +60,8 @@ class EmbreeScene final : public SlimeIntersector {
   RTCScene nonSupportingScene_ = nullptr;
   RTCGeometry nonSupporting_ = nullptr;
   const std::vector<std::uint32_t>* nonSupportingPrimitives_ = nullptr;  // the geometry's, see update()
+  PencilGrid lightGrid_;
+  bool lightGridStale_ = true;    // the shape changed since the grid was built
   bool sphereEnabled_ = false;
   float builtRadius_ = 0.0f;      // bounding radius when the BVH was last built from scratch
   int refitsSinceBuild_ = 0;

@@ -27,6 +27,14 @@ struct SlimeHit {
   bool valid() const { return primitive != kNoPrimitive; }
 };
 
+// Every crossing of one segment with the slime's surface, nearest first
+// (SlimeIntersector::lightCrossings8).
+struct SegmentCrossings {
+  static constexpr int kCapacity = 16;
+  int count = 0;  // kCapacity + 1: more crossings than that (hits then holds kCapacity of them, unsorted)
+  SlimeHit hits[kCapacity];
+};
+
 // Closest-hit queries against the slime alone (the floor and sky are analytic, see whitted_tracer.h).
 class SlimeIntersector {
  public:
@@ -41,6 +49,14 @@ class SlimeIntersector {
   // nonSupportingTriangles; none for the analytic sphere); a hit names the triangle by its index in
   // the whole mesh. A small set: this query costs a fraction of intersect8's.
   virtual void intersectNonSupporting8(const Ray* rays, const bool* active, SlimeHit* hits) const = 0;
+  // Every crossing of each active segment [tNear, tFar] with the slime's surface, for shadow rays
+  // (segments with one end at the light): true if this back-end answers such questions for the
+  // current light, false (and nothing written) if the caller must walk from crossing to crossing
+  // with intersect8.
+  virtual bool lightCrossings8(const Ray* rays, const bool* active, SegmentCrossings* crossings) const {
+    (void)rays, (void)active, (void)crossings;
+    return false;
+  }
 };
 
 }  // namespace slime

@@ -282,6 +282,9 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
   const int samplesPerAxis = std::max(1, static_cast<int>(std::lround(std::sqrt(std::max(1, settings.render.spp)))));
   const bool brute = settings.render.backend == "brute";
   const SlimeIntersector& intersector = brute ? static_cast<const SlimeIntersector&>(impl.brute) : impl.embree;
+  // Shadow rays' crossings from a grid of the triangles as the light sees them (the brute force,
+  // the oracle, walks them with its own queries).
+  impl.embree.prepareLight(impl.geometry, parameters.lightPosition, !brute && parameters.shadows);
   const WhittedTracer tracer(impl.geometry, intersector, impl.floor, parameters);
 
   FloorShading* floorShadings = nullptr;  // the caches, with one sample per pixel while the view holds

@@ -72,6 +72,15 @@ void WhittedTracer::lightTransmittance8(Ray* rays, const bool* active, glm::vec3
     visible[i] = glm::vec3(1.0f);
     walking[i] = active[i];
   }
+  SegmentCrossings crossings[8];
+  if (intersector_.lightCrossings8(rays, active, crossings)) {
+    for (int i = 0; i < 8; ++i) {
+      if (!active[i]) continue;
+      ++counters.slimeQueries;
+      visible[i] = transmittanceAlong(rays[i], crossings[i]);
+    }
+    return;
+  }
   if (geometry_.fewNonSupporting()) crossFromBothEnds8(rays, walking, visible, counters);
   // Walk the crossings along the straight shadow rays (shadow rays are not bent): each crossing
   // passes the surface's transmitted fraction, each stretch inside loses exp(−σ l).
@@ -87,6 +96,36 @@ void WhittedTracer::lightTransmittance8(Ray* rays, const bool* active, glm::vec3
   }
   for (int i = 0; i < 8; ++i)
     if (walking[i]) visible[i] = glm::vec3(0.0f);  // more crossings than kMaxShadowCrossings: blocked
+}
+
+glm::vec3 WhittedTracer::transmittanceAlong(const Ray& ray, const SegmentCrossings& crossings) const {
+  // crossShadowSurface's factors, crossing after crossing, with every crossing known at once.
+  if (crossings.count > SegmentCrossings::kCapacity) return glm::vec3(0.0f);  // more than kCapacity: blocked
+  const ShadingParameters& p = parameters_;
+  glm::vec3 transmittance(1.0f);
+  float lastT = 0.0f;  // from the ray's origin, or from the last crossing
+  int counted = 0;
+  bool lastEntering = false;
+  for (int k = 0; k < crossings.count; ++k) {
+    const SlimeHit& hit = crossings.hits[k];
+    const glm::vec3 outward = geometry_.geometricNormal(hit, ray.origin + hit.t * ray.direction);
+    const bool entering = glm::dot(ray.direction, outward) < 0.0f;
+    // Two hits the same way in a row are one crossing met on two triangles (through their shared edge).
+    if (counted > 0 && entering == lastEntering) continue;
+    if (++counted > kMaxShadowCrossings) return glm::vec3(0.0f);  // the walk's limit: blocked
+    if (!entering) transmittance *= beerLambert(p.slimeAbsorption, hit.t - lastT);
+    if (p.optics == OpticsMode::Fresnel) {
+      const float cosine = std::abs(glm::dot(ray.direction, outward));
+      const float fresnel = entering ? fresnelDielectric(cosine, 1.0f, p.ior) : fresnelDielectric(cosine, p.ior, 1.0f);
+      transmittance *= (1.0f - fresnel) * (entering ? p.transmission : 1.0f);
+    } else {
+      transmittance *= p.transmission;
+    }
+    if (largest(transmittance) < kMinRayWeight) return glm::vec3(0.0f);
+    lastT = hit.t;
+    lastEntering = entering;
+  }
+  return transmittance;
 }
 
 void WhittedTracer::crossFromBothEnds8(Ray* rays, bool* walking, glm::vec3* visible, TraceCounters& counters) const {

@@ -159,6 +159,9 @@ class WhittedTracer {
   // once, where it crosses no non-supporting triangle; the rays it settles stop walking (the others,
   // e.g. from inside the jelly or through a dent, walk on from past their first crossing).
   void crossFromBothEnds8(Ray* rays, bool* walking, glm::vec3* visible, TraceCounters& counters) const;
+  // The light passing along `ray` through all its crossings with the slime's surface, known at once
+  // (SlimeIntersector::lightCrossings8): crossShadowSurface's factors at each.
+  glm::vec3 transmittanceAlong(const Ray& ray, const SegmentCrossings& crossings) const;
   glm::vec3 sky(const glm::vec3& direction) const;
 
   const SlimeGeometry& geometry_;

@@ -48,6 +48,14 @@ class RecordingIntersector final : public SlimeIntersector {
     inner_.intersectNonSupporting8(rays, active, hits);
     countHits(active, hits);
   }
+  // A shadow segment answered whole by the light's grid is replayed as one Embree query of it (its
+  // nearest crossing): the least Embree could be asked for it.
+  bool lightCrossings8(const Ray* rays, const bool* active, SegmentCrossings* crossings) const override {
+    if (!inner_.lightCrossings8(rays, active, crossings)) return false;
+    record(log_.shadow, rays, active);
+    for (int i = 0; i < kPacket; ++i) log_.hits += active[i] && crossings[i].count > 0;
+    return true;
+  }
 
  private:
   static void record(std::vector<RayPacket>& packets, const Ray* rays, const bool* active) {
@@ -90,6 +98,7 @@ RayLog recordSlimeQueries(const Settings& settings, const std::vector<glm::dvec3
   if (settings.slime.shape == "sphere") geometry.setAnalyticSphere(true, static_cast<float>(settings.slime.radius));
   EmbreeScene embree(settings.render.threads);
   embree.update(geometry, true);
+  embree.prepareLight(geometry, glm::vec3(settings.light.position), settings.render.shadows);
   const RecordingIntersector recorder(embree, log, glm::vec3(settings.light.position));
   const FloorTexture floor(settings.floor);
   const ShadingParameters parameters = makeShadingParameters(settings, height);

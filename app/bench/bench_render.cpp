@@ -237,12 +237,20 @@ json measureHeadline(const Settings& base, int width, int height, int threads, c
   EmbreeReplay replay(threads, BvhUpdate::Refit);
   replay.build(shape.positions, shape.triangles);
   replay.replay(log, threads);  // warm-up
-  std::vector<double> replayMs;
+  std::vector<double> replayMs, primaryMs, secondaryMs, shadowMs, nonSupportingMs;
   for (int frame = 0; frame < options.frames; ++frame) {
-    replayMs.push_back(replay.replay(log, threads).totalMs());
+    const ReplayTimes times = replay.replay(log, threads);
+    replayMs.push_back(times.totalMs());
+    primaryMs.push_back(times.primaryMs);
+    secondaryMs.push_back(times.secondaryMs);
+    shadowMs.push_back(times.shadowMs);
+    nonSupportingMs.push_back(times.nonSupportingMs);
     progress.advance(1.0, what + ": Embree-only replay");
   }
   const TimingSummary limit = summarize(replayMs);
+  const auto kind = [](const std::vector<RayPacket>& packets, const std::vector<double>& ms) {
+    return json{{"queries", RayLog::activeRays(packets)}, {"ms", summarize(ms).median}};
+  };
   const double ms = deforming.ms.median;
   return {{"width", width},
           {"height", height},
@@ -253,7 +261,12 @@ json measureHeadline(const Settings& base, int width, int height, int threads, c
           {"deforming_frame", {{"ms", toJson(deforming.ms)}, {"refit_ms", deforming.refitMs}, {"rays", raysJson(deforming.stats)},
                                {"note", "refit + render; camera turned and slime reshaped every frame: every pixel traced"}}},
           {"deforming_replay_ms", limit.median},
-          {"deforming_replay", {{"ms", toJson(limit)}, {"queries", log.queries()}}},
+          {"deforming_replay", {{"ms", toJson(limit)},
+                                {"queries", log.queries()},
+                                {"by_kind", {{"primary", kind(log.primary, primaryMs)},
+                                             {"secondary", kind(log.secondary, secondaryMs)},
+                                             {"shadow", kind(log.shadow, shadowMs)},
+                                             {"non_supporting", kind(log.nonSupporting, nonSupportingMs)}}}}},
           {"deforming_over_replay", limit.median > 0.0 ? ms / limit.median : 0.0},
           {"moving_camera_ms", moving.ms.median},
           {"still_ms", still.ms.median},

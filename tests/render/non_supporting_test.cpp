@@ -61,36 +61,6 @@ void supportNothing(SlimeGeometry& geometry) {
     geometry.nonSupportingPrimitives.push_back(static_cast<std::uint32_t>(f));
 }
 
-struct Shape {
-  const char* what;
-  TriangleMesh mesh;
-};
-
-std::vector<Shape> nonConvexShapes(const Settings& settings) {
-  const TriangleMesh ball = makeIcosphere(4, settings.slime.radius, settings.slime.position);
-  const glm::dvec3 c = settings.slime.position;
-  const double r = settings.slime.radius;
-  std::vector<Shape> shapes;
-  TriangleMesh dented = ball;  // a press: the top pushed in by a quarter of the radius
-  for (auto& p : dented.positions) {
-    const double fromAxis = std::hypot(p.x - c.x, p.y - c.y);
-    if (p.z > c.z + 0.5 * r && fromAxis < 0.5 * r) p.z -= 0.25 * r * std::cos(fromAxis / (0.5 * r) * 1.5707963);
-  }
-  shapes.push_back({"dented", dented});
-  TriangleMesh necked = ball;  // pulled up by a pinch: stretched, with a waist below the top
-  for (auto& p : necked.positions) {
-    const double height = (p.z - c.z) / r, waist = 1.0 - 0.55 * std::exp(-std::pow((height - 0.4) / 0.2, 2.0));
-    p = glm::dvec3(c.x + (p.x - c.x) * waist, c.y + (p.y - c.y) * waist, c.z + (p.z - c.z) * (height > 0.0 ? 1.6 : 1.0));
-  }
-  shapes.push_back({"necked", necked});
-  TriangleMesh rough = ball;  // facets: every vertex moved by up to 0.2 % of the radius
-  std::mt19937 random(11);
-  std::uniform_real_distribution<double> jitter(-0.002 * r, 0.002 * r);
-  for (auto& p : rough.positions) p += glm::dvec3(jitter(random), jitter(random), jitter(random));
-  shapes.push_back({"rough", rough});
-  return shapes;
-}
-
 TEST(NonSupporting, ShortcutsOnANonConvexSlimeMatchThePlainWalk) {
   Settings settings = smallScene(200, 150);
   settings.camera.fov = 25.0;  // closer in: the slime fills much of the frame

@@ -12,7 +12,9 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <random>
 #include <string>
+#include <vector>
 
 namespace slime::testing {
 
@@ -84,6 +86,37 @@ inline Image differenceImage(const Image& a, const Image& b) {
 inline std::string outputPath(const std::string& name) {
   std::filesystem::create_directories(SLIME_TEST_OUTPUT_DIR);
   return std::string(SLIME_TEST_OUTPUT_DIR) + "/" + name;
+}
+
+// Slimes that are not convex, from the level-4 icosphere of `settings`: a dent, a waist, facets.
+struct Shape {
+  const char* what;
+  TriangleMesh mesh;
+};
+
+inline std::vector<Shape> nonConvexShapes(const Settings& settings) {
+  const TriangleMesh ball = makeIcosphere(4, settings.slime.radius, settings.slime.position);
+  const glm::dvec3 c = settings.slime.position;
+  const double r = settings.slime.radius;
+  std::vector<Shape> shapes;
+  TriangleMesh dented = ball;  // a press: the top pushed in by a quarter of the radius
+  for (auto& p : dented.positions) {
+    const double fromAxis = std::hypot(p.x - c.x, p.y - c.y);
+    if (p.z > c.z + 0.5 * r && fromAxis < 0.5 * r) p.z -= 0.25 * r * std::cos(fromAxis / (0.5 * r) * 1.5707963);
+  }
+  shapes.push_back({"dented", dented});
+  TriangleMesh necked = ball;  // pulled up by a pinch: stretched, with a waist below the top
+  for (auto& p : necked.positions) {
+    const double height = (p.z - c.z) / r, waist = 1.0 - 0.55 * std::exp(-std::pow((height - 0.4) / 0.2, 2.0));
+    p = glm::dvec3(c.x + (p.x - c.x) * waist, c.y + (p.y - c.y) * waist, c.z + (p.z - c.z) * (height > 0.0 ? 1.6 : 1.0));
+  }
+  shapes.push_back({"necked", necked});
+  TriangleMesh rough = ball;  // facets: every vertex moved by up to 0.2 % of the radius
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> jitter(-0.002 * r, 0.002 * r);
+  for (auto& p : rough.positions) p += glm::dvec3(jitter(random), jitter(random), jitter(random));
+  shapes.push_back({"rough", rough});
+  return shapes;
 }
 
 }  // namespace slime::testing
