@@ -161,26 +161,40 @@ void EmbreeScene::update(const SlimeGeometry& geometry, bool topologyChanged) {
   rtcCommitScene(scene_);
   throwOnError("refitting the slime");
   buildNonSupporting(geometry);
-  lightGridStale_ = true;
+  lightGrid_.stale = eyeGrid_.stale = true;
+}
+
+void EmbreeScene::ApexGrid::prepare(const SlimeGeometry& geometry, const glm::vec3& apex, bool wanted) {
+  if (!wanted) {
+    grid.clear();
+    stale = true;
+    return;
+  }
+  if (!stale && apex == grid.apex()) return;
+  grid.build(geometry, apex, facingApexOnly);
+  stale = false;
 }
 
 void EmbreeScene::prepareLight(const SlimeGeometry& geometry, const glm::vec3& light, bool wanted) {
-  if (!wanted) {
-    lightGrid_.clear();
-    lightGridStale_ = true;
-    return;
-  }
-  if (!lightGridStale_ && light == lightGrid_.apex()) return;
-  lightGrid_.build(geometry, light);
-  lightGridStale_ = false;
+  lightGrid_.prepare(geometry, light, wanted);
+}
+
+void EmbreeScene::prepareEye(const SlimeGeometry& geometry, const glm::vec3& eye, bool wanted) {
+  eyeGrid_.prepare(geometry, eye, wanted);
 }
 
 bool EmbreeScene::lightCrossings8(const Ray* rays, const bool* active, SegmentCrossings* crossings) const {
-  if (lightGridStale_ || !lightGrid_.ready()) return false;
+  if (!lightGrid_.serves()) return false;
   for (int i = 0; i < 8; ++i) {
-    if (active[i]) lightGrid_.crossings(rays[i], crossings[i]);
+    if (active[i]) lightGrid_.grid.crossings(rays[i], crossings[i]);
     else crossings[i].count = 0;
   }
+  return true;
+}
+
+bool EmbreeScene::primaryHits8(const Ray* rays, const bool* active, SlimeHit* hits) const {
+  if (!eyeGrid_.serves()) return false;
+  for (int i = 0; i < 8; ++i) hits[i] = active[i] ? eyeGrid_.grid.nearest(rays[i]) : SlimeHit{};
   return true;
 }
 

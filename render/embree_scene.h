@@ -38,7 +38,10 @@ class EmbreeScene final : public SlimeIntersector {
   void prepareLight(const SlimeGeometry& geometry, const glm::vec3& light, bool wanted);
   // Each segment's crossings from the light's grid (no Embree query): exact, as the brute force's test.
   bool lightCrossings8(const Ray* rays, const bool* active, SegmentCrossings* crossings) const override;
-  const PencilGrid& lightGrid() const { return lightGrid_; }
+  const PencilGrid& lightGrid() const { return lightGrid_.grid; }
+  // The same for the primary rays from `eye` (binning only the triangles that face it) and primaryHits8.
+  void prepareEye(const SlimeGeometry& geometry, const glm::vec3& eye, bool wanted);
+  bool primaryHits8(const Ray* rays, const bool* active, SlimeHit* hits) const override;
 
   int rebuildCount() const { return rebuilds_; }
 
@@ -60,8 +63,16 @@ class EmbreeScene final : public SlimeIntersector {
   RTCScene nonSupportingScene_ = nullptr;
   RTCGeometry nonSupporting_ = nullptr;
   const std::vector<std::uint32_t>* nonSupportingPrimitives_ = nullptr;  // the geometry's, see update()
-  PencilGrid lightGrid_;
-  bool lightGridStale_ = true;    // the shape changed since the grid was built
+  // A grid of the triangles seen from one point, rebuilt when the shape or the point changes.
+  struct ApexGrid {
+    PencilGrid grid;
+    bool stale = true;  // the shape changed since the grid was built
+    bool facingApexOnly = false;
+    void prepare(const SlimeGeometry& geometry, const glm::vec3& apex, bool wanted);
+    bool serves() const { return !stale && grid.ready(); }
+  };
+  ApexGrid lightGrid_;
+  ApexGrid eyeGrid_{PencilGrid{}, true, true};
   bool sphereEnabled_ = false;
   float builtRadius_ = 0.0f;      // bounding radius when the BVH was last built from scratch
   int refitsSinceBuild_ = 0;

@@ -20,6 +20,9 @@ constexpr float kMinApexDistance = 1.2f;
 // Rounding slack of a projected point, relative to the grid's extent (the projection is computed in
 // float: about 1e-7 relative; a bin one part in 10^5 too wide costs nothing).
 constexpr float kProjectionSlack = 1e-5f;
+// A triangle counts as facing the apex unless its plane has the apex behind it by more than this
+// cosine (its normal is rounded: a triangle seen edge-on is kept).
+constexpr float kFacingSlack = 1e-4f;
 
 }  // namespace
 
@@ -38,7 +41,7 @@ void PencilGrid::project(const glm::vec3& point, float& u, float& v) const {
   v = glm::dot(q, up_) / w;
 }
 
-bool PencilGrid::build(const SlimeGeometry& geometry, const glm::vec3& apex) {
+bool PencilGrid::build(const SlimeGeometry& geometry, const glm::vec3& apex, bool facingApexOnly) {
   clear();
   apex_ = apex;
   const std::size_t triangleCount = geometry.triangles.size();
@@ -93,8 +96,18 @@ bool PencilGrid::build(const SlimeGeometry& geometry, const glm::vec3& apex) {
     r1 = std::clamp(static_cast<int>((highV - v0_) * inverseCell_), 0, rows_ - 1);
   };
   const std::size_t cells = static_cast<std::size_t>(columns_) * static_cast<std::size_t>(rows_);
+  binned_.assign(triangleCount, 1);
+  if (facingApexOnly) {
+    // Facing away: the apex more than a hair (cos 1e-4) behind the triangle's plane.
+    for (std::size_t f = 0; f < triangleCount; ++f) {
+      const glm::vec3 fromApex = geometry.positions[geometry.triangles[f].x] - apex;
+      binned_[f] = glm::dot(geometry.faceNormals[f], fromApex) < kFacingSlack * glm::length(fromApex);
+    }
+  }
   fill_.assign(cells, 0);
-  for (const Triangle& t : geometry.triangles) {
+  for (std::size_t f = 0; f < triangleCount; ++f) {
+    if (!binned_[f]) continue;
+    const Triangle& t = geometry.triangles[f];
     int c0, c1, r0, r1;
     cellRange(t, c0, c1, r0, r1);
     for (int r = r0; r <= r1; ++r)
@@ -113,6 +126,7 @@ bool PencilGrid::build(const SlimeGeometry& geometry, const glm::vec3& apex) {
   for (Block& block : blocks_) std::fill(std::begin(block.primitive), std::end(block.primitive), kNoPrimitive);
   const auto& p = geometry.positions;
   for (std::size_t f = 0; f < triangleCount; ++f) {
+    if (!binned_[f]) continue;
     const Triangle& t = geometry.triangles[f];
     const glm::vec3 a = p[t.x], edge1 = p[t.y] - a, edge2 = p[t.z] - a;  // as intersectTriangle computes them
     int c0, c1, r0, r1;
@@ -136,7 +150,7 @@ bool PencilGrid::build(const SlimeGeometry& geometry, const glm::vec3& apex) {
   return true;
 }
 
-void PencilGrid::testBlock(const Block& block, const Ray& ray, SegmentCrossings& out) const {
+unsigned PencilGrid::hitLanes(const Block& block, const Ray& ray, float* ts, float* us, float* vs) const {
   // intersectTriangle's operations in its order, 8 triangles against one ray.
   const Lanes dx(ray.direction.x), dy(ray.direction.y), dz(ray.direction.z);
   const Lanes e1x = Lanes::load(block.edge1[0]), e1y = Lanes::load(block.edge1[1]), e1z = Lanes::load(block.edge1[2]);
@@ -145,7 +159,7 @@ void PencilGrid::testBlock(const Block& block, const Ray& ray, SegmentCrossings&
   const Lanes determinant = e1x * px + e1y * py + e1z * pz;
   const Lanes magnitude = max(determinant, -determinant);
   const LaneMask usable = (magnitude > Lanes(0.0f)) && (magnitude < Lanes(INFINITY));
-  if (usable.mask() == 0) return;
+  if (usable.mask() == 0) return 0;
   const Lanes inverse = Lanes(1.0f) / determinant;
   const Lanes sx = Lanes(ray.origin.x) - Lanes::load(block.corner[0]);
   const Lanes sy = Lanes(ray.origin.y) - Lanes::load(block.corner[1]);
@@ -156,28 +170,17 @@ void PencilGrid::testBlock(const Block& block, const Ray& ray, SegmentCrossings&
   const Lanes t = (e2x * qx + e2y * qy + e2z * qz) * inverse;
   const LaneMask hit = usable && (u >= Lanes(0.0f)) && (u <= Lanes(1.0f)) && (v >= Lanes(0.0f)) &&
                        (u + v <= Lanes(1.0f)) && (t >= Lanes(ray.tNear)) && (t <= Lanes(ray.tFar));
-  unsigned mask = hit.mask();
-  if (mask == 0) return;
-  alignas(32) float ts[8], us[8], vs[8];
-  t.store(ts);
-  u.store(us);
-  v.store(vs);
-  for (; mask != 0; mask &= mask - 1) {
-    const int lane = __builtin_ctz(mask);
-    const std::uint32_t primitive = block.primitive[lane];
-    bool seen = false;  // the same triangle from a second cell of the segment's
-    for (int k = 0; k < std::min(out.count, SegmentCrossings::kCapacity); ++k) seen = seen || out.hits[k].primitive == primitive;
-    if (seen) continue;
-    if (out.count >= SegmentCrossings::kCapacity) {
-      out.count = SegmentCrossings::kCapacity + 1;
-      return;
-    }
-    out.hits[out.count++] = SlimeHit{ts[lane], primitive, us[lane], vs[lane]};
+  const unsigned mask = hit.mask();
+  if (mask != 0) {
+    t.store(ts);
+    u.store(us);
+    v.store(vs);
   }
+  return mask;
 }
 
-void PencilGrid::crossings(const Ray& ray, SegmentCrossings& out) const {
-  out.count = 0;
+template <typename Visit>
+void PencilGrid::visitBlocks(const Ray& ray, Visit visit) const {
   if (!ready_) return;
   // The part of the segment within the slime's slab along the axis, where w > 0 (projectable).
   const float w0 = glm::dot(ray.origin - apex_, axis_), dw = glm::dot(ray.direction, axis_);
@@ -191,8 +194,14 @@ void PencilGrid::crossings(const Ray& ray, SegmentCrossings& out) const {
   }
   if (!(tLow <= tHigh)) return;
   float ua, va, ub, vb;
-  project(ray.origin + tLow * ray.direction, ua, va);
-  project(ray.origin + tHigh * ray.direction, ub, vb);
+  if (ray.origin == apex_) {  // a ray from the apex projects to one point: its direction's
+    project(apex_ + ray.direction, ua, va);
+    ub = ua;
+    vb = va;
+  } else {
+    project(ray.origin + tLow * ray.direction, ua, va);
+    project(ray.origin + tHigh * ray.direction, ub, vb);
+  }
   const float slack = kProjectionSlack / inverseCell_;  // about the build's slack, in u and v
   const float lowU = (std::min(ua, ub) - slack - u0_) * inverseCell_, highU = (std::max(ua, ub) + slack - u0_) * inverseCell_;
   const float lowV = (std::min(va, vb) - slack - v0_) * inverseCell_, highV = (std::max(va, vb) + slack - v0_) * inverseCell_;
@@ -202,12 +211,31 @@ void PencilGrid::crossings(const Ray& ray, SegmentCrossings& out) const {
   for (int r = r0; r <= r1; ++r) {
     for (int c = c0; c <= c1; ++c) {
       const std::size_t cell = static_cast<std::size_t>(r) * columns_ + c;
-      for (std::uint32_t b = blockBegin_[cell]; b < blockBegin_[cell + 1]; ++b) {
-        testBlock(blocks_[b], ray, out);
-        if (out.count > SegmentCrossings::kCapacity) return;
-      }
+      for (std::uint32_t b = blockBegin_[cell]; b < blockBegin_[cell + 1]; ++b)
+        if (!visit(blocks_[b])) return;
     }
   }
+}
+
+void PencilGrid::crossings(const Ray& ray, SegmentCrossings& out) const {
+  out.count = 0;
+  alignas(32) float ts[8], us[8], vs[8];
+  visitBlocks(ray, [&](const Block& block) {
+    for (unsigned mask = hitLanes(block, ray, ts, us, vs); mask != 0; mask &= mask - 1) {
+      const int lane = __builtin_ctz(mask);
+      const std::uint32_t primitive = block.primitive[lane];
+      bool seen = false;  // the same triangle from a second cell of the segment's
+      for (int k = 0; k < out.count; ++k) seen = seen || out.hits[k].primitive == primitive;
+      if (seen) continue;
+      if (out.count == SegmentCrossings::kCapacity) {
+        out.count = SegmentCrossings::kCapacity + 1;
+        return false;
+      }
+      out.hits[out.count++] = SlimeHit{ts[lane], primitive, us[lane], vs[lane]};
+    }
+    return true;
+  });
+  if (out.count > SegmentCrossings::kCapacity) return;
   // Nearest first (insertion sort: a handful of crossings).
   for (int i = 1; i < out.count; ++i) {
     const SlimeHit hit = out.hits[i];
@@ -215,6 +243,24 @@ void PencilGrid::crossings(const Ray& ray, SegmentCrossings& out) const {
     for (; j > 0 && out.hits[j - 1].t > hit.t; --j) out.hits[j] = out.hits[j - 1];
     out.hits[j] = hit;
   }
+}
+
+SlimeHit PencilGrid::nearest(const Ray& ray) const {
+  // As the brute force's closest hit: each hit shortens the segment the next tests ask about.
+  SlimeHit best;
+  Ray segment = ray;
+  alignas(32) float ts[8], us[8], vs[8];
+  visitBlocks(ray, [&](const Block& block) {
+    for (unsigned mask = hitLanes(block, segment, ts, us, vs); mask != 0; mask &= mask - 1) {
+      const int lane = __builtin_ctz(mask);
+      if (ts[lane] < segment.tFar || !best.valid()) {
+        segment.tFar = ts[lane];
+        best = SlimeHit{ts[lane], block.primitive[lane], us[lane], vs[lane]};
+      }
+    }
+    return true;
+  });
+  return best;
 }
 
 }  // namespace slime

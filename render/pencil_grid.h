@@ -5,7 +5,8 @@
 // Möller–Trumbore test (brute_tracer.h) with the same operations, 8 triangles at a time: the grid
 // only chooses which triangles to test. Any segment is answered correctly (its projection is a
 // short 2-D segment whose cells are all visited); one through the apex visits one cell or two.
-// Built anew for each shape and light (render setup, serial); read by every tracing thread.
+// Built anew for each shape and light (render setup, serial); read by every tracing thread. The
+// primary rays, all through the eye, use one too (nearest()).
 #pragma once
 
 #include "render/ray.h"
@@ -23,7 +24,10 @@ class PencilGrid {
   // Bins `geometry`'s triangles by direction from `apex`. False, and an empty grid, when it cannot
   // serve: the analytic sphere, no triangles, or the apex within 1.2 bounding radii of the slime's
   // bounding sphere's centre (its view of the slime would be too wide for one projection plane).
-  bool build(const SlimeGeometry& geometry, const glm::vec3& apex);
+  // With `facingApexOnly`, only the triangles whose outward side faces the apex are binned: from an
+  // apex outside the slime a ray's first crossing is always into it, through one of those (nearest()
+  // from the eye); crossings() then finds those alone.
+  bool build(const SlimeGeometry& geometry, const glm::vec3& apex, bool facingApexOnly = false);
   void clear();
   bool ready() const { return ready_; }
   const glm::vec3& apex() const { return apex_; }
@@ -34,6 +38,8 @@ class PencilGrid {
   // triangle once, even where the segment's cells share it). More than SegmentCrossings::kCapacity
   // crossings: count = kCapacity + 1 and the hits are the first kCapacity found, unsorted.
   void crossings(const Ray& ray, SegmentCrossings& out) const;
+  // The nearest crossing in [ray.tNear, ray.tFar] (a primary ray from the apex, the eye), or an invalid hit.
+  SlimeHit nearest(const Ray& ray) const;
 
  private:
   // Eight binned triangles, by lane: a corner and its two edges (b − a, c − a) as the brute force
@@ -46,7 +52,12 @@ class PencilGrid {
   };
   // The projection of a point with w = (p − apex)·axis > 0.
   void project(const glm::vec3& point, float& u, float& v) const;
-  void testBlock(const Block& block, const Ray& ray, SegmentCrossings& out) const;
+  // The lanes of `block` whose triangle `ray` crosses within [tNear, tFar] (bit i: lane i), with
+  // their t, u and v when any.
+  unsigned hitLanes(const Block& block, const Ray& ray, float* ts, float* us, float* vs) const;
+  // Calls visit(block) for every block of the cells the segment's projection touches, until it returns false.
+  template <typename Visit>
+  void visitBlocks(const Ray& ray, Visit visit) const;
 
   bool ready_ = false;
   glm::vec3 apex_{0.0f};
@@ -61,6 +72,7 @@ class PencilGrid {
   // The build's scratch, kept between frames.
   std::vector<float> vertexU_, vertexV_;
   std::vector<std::uint32_t> fill_;
+  std::vector<std::uint8_t> binned_;
 };
 
 }  // namespace slime

@@ -57,6 +57,12 @@ class SlimeIntersector {
     (void)rays, (void)active, (void)crossings;
     return false;
   }
+  // The closest crossings of up to 8 rays from the eye (primary rays): true if this back-end answers
+  // them for the current eye without intersect8, false (nothing written) if the caller must ask intersect8.
+  virtual bool primaryHits8(const Ray* rays, const bool* active, SlimeHit* hits) const {
+    (void)rays, (void)active, (void)hits;
+    return false;
+  }
 };
 
 }  // namespace slime

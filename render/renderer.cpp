@@ -14,6 +14,7 @@
 #include <tbb/blocked_range2d.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 #include <tbb/task_arena.h>
 
 #include <glm/geometric.hpp>
@@ -227,7 +228,7 @@ struct Renderer::Impl {
               }
               if (activeCount > 0) {
                 counts.slimeQueries += static_cast<std::uint64_t>(activeCount);
-                intersector.intersect8(rays, active, hits);
+                if (!intersector.primaryHits8(rays, active, hits)) intersector.intersect8(rays, active, hits);
               }
               tracer.tracePrimary8(rays, hits, count, counts, floorShadings ? floorShadings + first : nullptr, colors);
             }
@@ -282,17 +283,38 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
   const int samplesPerAxis = std::max(1, static_cast<int>(std::lround(std::sqrt(std::max(1, settings.render.spp)))));
   const bool brute = settings.render.backend == "brute";
   const SlimeIntersector& intersector = brute ? static_cast<const SlimeIntersector&>(impl.brute) : impl.embree;
-  // Shadow rays' crossings from a grid of the triangles as the light sees them (the brute force,
-  // the oracle, walks them with its own queries).
-  impl.embree.prepareLight(impl.geometry, parameters.lightPosition, !brute && parameters.shadows);
   const WhittedTracer tracer(impl.geometry, intersector, impl.floor, parameters);
 
   FloorShading* floorShadings = nullptr;  // the caches, with one sample per pixel while the view holds
   const bool lastKeptCaches = impl.lastKeptCaches;
   impl.lastKeptCaches = false;  // until this frame is finished
   impl.imageInPlace = impl.bytesInPlace = false;
-  // Outside the footprint a pixel sees only the floor or the sky, whatever its samples.
-  slimeFootprint(camera, impl.geometry, parameters, image.width, image.height, impl.footprint);
+  // Outside the footprint a pixel sees only the floor or the sky, whatever its samples. Beside it,
+  // the grids of the triangles as the light and the eye see them, which answer the shadow rays' and
+  // the primary rays' queries (the brute force, the oracle, asks its own).
+  const auto footprintOfTheSlime = [&] {
+    slimeFootprint(camera, impl.geometry, parameters, image.width, image.height, impl.footprint);
+  };
+  if (brute) {
+    footprintOfTheSlime();
+    impl.embree.prepareLight(impl.geometry, parameters.lightPosition, false);
+    impl.embree.prepareEye(impl.geometry, glm::vec3(camera.position), false);
+  } else {
+    const auto task = [&impl](auto&& work) {
+      return [&impl, work] {
+        takeOver(&impl);
+        work();
+        handOff(&impl);
+      };
+    };
+    handOff(&impl);
+    impl.arena->execute([&] {
+      tbb::parallel_invoke(task(footprintOfTheSlime),
+                           task([&] { impl.embree.prepareLight(impl.geometry, parameters.lightPosition, parameters.shadows); }),
+                           task([&] { impl.embree.prepareEye(impl.geometry, glm::vec3(camera.position), true); }));
+    });
+    takeOver(&impl);
+  }
   const ScreenFootprint* footprint = &impl.footprint;
   if (samplesPerAxis == 1) {
     const FloorCacheKey view = floorCacheKey(camera, parameters, image.width, image.height, pixelOffset);

@@ -2,7 +2,7 @@
 // the slime's surface, found by testing every triangle with the brute force's Möller–Trumbore, must
 // be what the grid finds, the same triangles at the same distances (the grid runs the same
 // operations on the triangles it chooses), on convex and non-convex slimes, for shadow segments
-// ending at the apex and for segments anywhere.
+// ending at the apex and for segments anywhere; and from the eye, each primary ray's closest hit.
 #include "render/brute_tracer.h"
 #include "render/embree_scene.h"
 #include "render/pencil_grid.h"
@@ -99,6 +99,41 @@ TEST(PencilGrid, ShadowSegmentsCrossWhatTheBruteForceCrosses) {
   }
 }
 
+// From the eye, the grid of the triangles facing it gives each primary ray the brute force's closest hit.
+TEST(PencilGrid, PrimaryRaysFindTheBruteForcesClosestHit) {
+  const Settings settings = smallScene();
+  std::vector<Shape> shapes = nonConvexShapes(settings);
+  shapes.push_back({"ball", restingMesh(settings)});
+  for (const glm::vec3 eye : {glm::vec3(settings.camera.position), glm::vec3(0.05f, 0.1f, 0.2f), glm::vec3(0.0f, 0.0f, -0.1f)}) {
+    for (const Shape& shape : shapes) {
+      SlimeGeometry geometry;
+      geometry.update(shape.mesh.positions, shape.mesh.triangles);
+      PencilGrid grid;
+      ASSERT_TRUE(grid.build(geometry, eye, true)) << shape.what;
+      PencilGrid all;
+      ASSERT_TRUE(all.build(geometry, eye)) << shape.what;
+      EXPECT_LT(grid.entryCount(), 0.7 * all.entryCount()) << shape.what << ": about half the triangles face the eye";
+      const BruteTracer brute(geometry);
+      std::mt19937 random(3);
+      std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+      int hits = 0;
+      for (int n = 0; n < 3000; ++n) {
+        const glm::vec3 target = geometry.boundCenter + 1.1f * geometry.boundRadius * glm::vec3(unit(random), unit(random), unit(random));
+        const Ray ray{eye, glm::normalize(target - eye), 0.0f, kInfinity};
+        const SlimeHit found = grid.nearest(ray), expected = brute.intersect(ray);
+        ASSERT_EQ(found.valid(), expected.valid()) << shape.what << ", ray " << n;
+        if (!found.valid()) continue;
+        ++hits;
+        EXPECT_EQ(found.t, expected.t) << shape.what << ", ray " << n;
+        if (found.primitive != expected.primitive) continue;  // a tie on a shared edge: either triangle
+        EXPECT_EQ(found.u, expected.u) << shape.what;
+        EXPECT_EQ(found.v, expected.v) << shape.what;
+      }
+      EXPECT_GT(hits, 1000) << shape.what << ": too few hits to compare";
+    }
+  }
+}
+
 TEST(PencilGrid, RefusesAnApexAtTheSlimeAndTheTracerWalksInstead) {
   const Settings settings = smallScene();
   const TriangleMesh mesh = restingMesh(settings);
@@ -126,6 +161,12 @@ TEST(PencilGrid, RefusesAnApexAtTheSlimeAndTheTracerWalksInstead) {
   EXPECT_FALSE(scene.lightCrossings8(rays, active, crossings)) << "a grid of the last shape";
   scene.prepareLight(geometry, glm::vec3(settings.light.position), false);
   EXPECT_FALSE(scene.lightCrossings8(rays, active, crossings)) << "shadows off";
+  SlimeHit hits[8];
+  EXPECT_FALSE(scene.primaryHits8(rays, active, hits)) << "no eye prepared";
+  scene.prepareEye(geometry, glm::vec3(settings.camera.position), true);
+  EXPECT_TRUE(scene.primaryHits8(rays, active, hits));
+  scene.update(geometry, false);
+  EXPECT_FALSE(scene.primaryHits8(rays, active, hits)) << "a grid of the last shape";
 }
 
 }  // namespace
