@@ -52,14 +52,19 @@ int encodeByCurve(float linear) { return static_cast<int>(std::lround(linearToSr
 // first code, plus one if it has reached the bucket's next step. (2^17 failed just above 0.5.)
 constexpr int kBucketShift = 16;
 
+// One 32-bit entry per bucket, so that 8 values need one gather (and the table, 64 KB, stays near
+// the core): the bucket's first code above bit 17, and below it where in the bucket the next step
+// lies, as the low 16 bits of its float (0x10000, out of reach, when it lies beyond the bucket).
+constexpr int kStepBits = 17;
+constexpr std::uint32_t kStepMask = (1u << kStepBits) - 1, kLowMask = (1u << kBucketShift) - 1;
+
 struct EncodingTable {
-  std::vector<std::int32_t> firstCode;  // per bucket, the code of its smallest float (32 bits: gathered 8 at a time)
-  std::vector<float> nextStep;          // per bucket, the smallest float with a greater code (or 2)
+  std::vector<std::uint32_t> entries;
 
   EncodingTable() {
     const auto bitsOf = [](float value) { return std::bit_cast<std::uint32_t>(value); };
     // steps[c]: the smallest float in [0, 1] that encodeByCurve takes to c or more, by bisection.
-    std::array<float, 257> steps{};
+    std::array<std::uint32_t, 257> steps{};
     for (int code = 1; code <= 255; ++code) {
       std::uint32_t low = bitsOf(0.0f), high = bitsOf(1.0f);  // encodeByCurve(1) = 255 ≥ code
       while (low < high) {
@@ -67,17 +72,17 @@ struct EncodingTable {
         if (encodeByCurve(std::bit_cast<float>(middle)) >= code) high = middle;
         else low = middle + 1;
       }
-      steps[code] = std::bit_cast<float>(low);
+      steps[code] = low;
     }
-    steps[256] = 2.0f;  // beyond every value that reaches the table
+    steps[256] = bitsOf(2.0f);  // beyond every value that reaches the table
     const std::size_t buckets = (bitsOf(1.0f) >> kBucketShift) + 1;
-    firstCode.resize(buckets);
-    nextStep.resize(buckets);
+    entries.resize(buckets);
     for (std::size_t k = 0; k < buckets; ++k) {
-      const float first = std::bit_cast<float>(static_cast<std::uint32_t>(k << kBucketShift));
-      const int code = encodeByCurve(first);
-      firstCode[k] = code;
-      nextStep[k] = steps[code + 1];
+      const std::uint32_t first = static_cast<std::uint32_t>(k << kBucketShift);
+      const int code = encodeByCurve(std::bit_cast<float>(first));
+      const std::uint32_t next = steps[code + 1];
+      const std::uint32_t offset = next >> kBucketShift == k ? next & kLowMask : kLowMask + 1;  // in this bucket, or never
+      entries[k] = static_cast<std::uint32_t>(code) << kStepBits | offset;
     }
   }
 };
@@ -93,8 +98,9 @@ std::uint8_t encodeSrgb8(float linear) {
   const EncodingTable& table = encodingTable();
   if (!(linear > 0.0f)) return 0;  // also NaN, which would be a bug upstream: never write garbage
   if (linear >= 1.0f) return 255;
-  const std::size_t bucket = std::bit_cast<std::uint32_t>(linear) >> kBucketShift;
-  return static_cast<std::uint8_t>(table.firstCode[bucket] + (linear >= table.nextStep[bucket] ? 1 : 0));
+  const std::uint32_t bits = std::bit_cast<std::uint32_t>(linear);
+  const std::uint32_t entry = table.entries[bits >> kBucketShift];
+  return static_cast<std::uint8_t>((entry >> kStepBits) + ((bits & kLowMask) >= (entry & kStepMask) ? 1 : 0));
 }
 
 void encodeSrgb8(const glm::vec3* pixels, std::size_t count, int channels, std::uint8_t* out) {
@@ -107,11 +113,13 @@ void encodeSrgb8(const glm::vec3* pixels, std::size_t count, int channels, std::
     __m256i codes[3];  // the 24 values' codes in order (r0 g0 b0 r1 ...), one per 32-bit lane
     for (int k = 0; k < 3; ++k) {
       const __m256 clamped = _mm256_min_ps(_mm256_max_ps(_mm256_loadu_ps(values + 8 * k), _mm256_setzero_ps()), _mm256_set1_ps(1.0f));
-      const __m256i bucket = _mm256_srli_epi32(_mm256_castps_si256(clamped), kBucketShift);
-      const __m256i first = _mm256_i32gather_epi32(table.firstCode.data(), bucket, 4);
-      const __m256 next = _mm256_i32gather_ps(table.nextStep.data(), bucket, 4);
-      const __m256i reached = _mm256_castps_si256(_mm256_cmp_ps(clamped, next, _CMP_GE_OQ));  // all ones: −1
-      codes[k] = _mm256_sub_epi32(first, reached);
+      const __m256i bits = _mm256_castps_si256(clamped);
+      const __m256i entry = _mm256_i32gather_epi32(reinterpret_cast<const int*>(table.entries.data()),
+                                                   _mm256_srli_epi32(bits, kBucketShift), 4);
+      const __m256i low = _mm256_and_si256(bits, _mm256_set1_epi32(static_cast<int>(kLowMask)));
+      const __m256i step = _mm256_and_si256(entry, _mm256_set1_epi32(static_cast<int>(kStepMask)));
+      const __m256i reached = _mm256_cmpgt_epi32(step, low);  // all ones (−1) while the step is not reached
+      codes[k] = _mm256_add_epi32(_mm256_srli_epi32(entry, kStepBits), _mm256_add_epi32(reached, _mm256_set1_epi32(1)));
     }
     // Narrowed to bytes: the packs work within 128-bit halves, leaving the 4-byte groups
     // [c0 0-3, c1 0-3, c2 0-3, c2 0-3 | c0 4-7, c1 4-7, c2 4-7, c2 4-7]; put them back in order.
