@@ -48,14 +48,9 @@ class RecordingIntersector final : public SlimeIntersector {
     inner_.intersectNonSupporting8(rays, active, hits);
     countHits(active, hits);
   }
-  // A shadow segment answered whole by the light's grid is replayed as one Embree query of it (its
-  // nearest crossing): the least Embree could be asked for it.
-  bool lightCrossings8(const Ray* rays, const bool* active, SegmentCrossings* crossings) const override {
-    if (!inner_.lightCrossings8(rays, active, crossings)) return false;
-    record(log_.shadow, rays, active);
-    for (int i = 0; i < kPacket; ++i) log_.hits += active[i] && crossings[i].count > 0;
-    return true;
-  }
+  // lightCrossings8 and primaryHits8 are not forwarded: the tracer then asks Embree as it would with
+  // no grids (the shadow rays' walk, the primaries' packets), so the replay stays what Embree alone
+  // needs for the frame's questions, the same measure as before the renderer answered some itself.
 
  private:
   static void record(std::vector<RayPacket>& packets, const Ray* rays, const bool* active) {
@@ -98,7 +93,6 @@ RayLog recordSlimeQueries(const Settings& settings, const std::vector<glm::dvec3
   if (settings.slime.shape == "sphere") geometry.setAnalyticSphere(true, static_cast<float>(settings.slime.radius));
   EmbreeScene embree(settings.render.threads);
   embree.update(geometry, true);
-  embree.prepareLight(geometry, glm::vec3(settings.light.position), settings.render.shadows);
   const RecordingIntersector recorder(embree, log, glm::vec3(settings.light.position));
   const FloorTexture floor(settings.floor);
   const ShadingParameters parameters = makeShadingParameters(settings, height);
