@@ -49,6 +49,9 @@ int main(int argc, char** argv) {
   // SLIME_PROFILE_DEFORMING=1: the headline's deforming frames (the physics' slime pulled by its top,
   // two frames 1/60 s apart, alternating), else the icosphere on the floor.
   const bool deforming = std::getenv("SLIME_PROFILE_DEFORMING") != nullptr;
+  // SLIME_PROFILE_STILL=1: the camera holds still (pixels the slime cannot reach are copied), as in
+  // the viewer while a person drags the slime.
+  const bool still = std::getenv("SLIME_PROFILE_STILL") != nullptr;
   std::vector<TriangleMesh> shapes{makeIcosphere(4, settings.slime.radius,
                                                  {settings.slime.position.x, settings.slime.position.y, settings.slime.radius})};
   if (deforming) {
@@ -68,7 +71,7 @@ int main(int argc, char** argv) {
   std::vector<double> wallMs, cpuMs;
   const double yaw = settings.camera.yaw;
   for (int frame = 0; frame < frames; ++frame) {
-    settings.camera.yaw = yaw + (frame % 2 ? 1e-3 : -1e-3);  // as bench render's moving camera
+    if (!still) settings.camera.yaw = yaw + (frame % 2 ? 1e-3 : -1e-3);  // as bench render's moving camera
     const TriangleMesh& mesh = shapes[frame % shapes.size()];
     renderer.updateSlime(mesh.positions, mesh.triangles);
     const auto start = std::chrono::steady_clock::now();
