@@ -65,6 +65,8 @@ bool PencilGrid::build(const SlimeGeometry& geometry, const glm::vec3& apex, boo
   float uMin = INFINITY, uMax = -INFINITY, vMin = INFINITY, vMax = -INFINITY;
   for (std::size_t i = 0; i < vertexCount; ++i) {
     project(geometry.positions[i], vertexU_[i], vertexV_[i]);
+    // SlimeGeometry pins non-finite vertices; a projection that overflows would still make bins of garbage.
+    if (!std::isfinite(vertexU_[i]) || !std::isfinite(vertexV_[i])) return false;
     uMin = std::min(uMin, vertexU_[i]);
     uMax = std::max(uMax, vertexU_[i]);
     vMin = std::min(vMin, vertexV_[i]);
