@@ -22,7 +22,8 @@ namespace slime {
 class PencilGrid {
  public:
   // Bins `geometry`'s triangles by direction from `apex`. False, and an empty grid, when it cannot
-  // serve: the analytic sphere, no triangles, or the apex within 1.2 bounding radii of the slime's
+  // serve: the analytic sphere, no triangles or more than 32,768 (a fine drawn surface: the build
+  // would cost more than the queries save), or the apex within 1.2 bounding radii of the slime's
   // bounding sphere's centre (its view of the slime would be too wide for one projection plane).
   // With `facingApexOnly`, only the triangles whose outward side faces the apex are binned: from an
   // apex outside the slime a ray's first crossing is always into it, through one of those (nearest()

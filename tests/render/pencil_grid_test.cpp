@@ -143,6 +143,14 @@ TEST(PencilGrid, RefusesAnApexAtTheSlimeAndTheTracerWalksInstead) {
   EXPECT_FALSE(grid.build(geometry, geometry.boundCenter));
   EXPECT_FALSE(grid.build(geometry, geometry.boundCenter + glm::vec3(0.0f, 0.0f, 1.1f * geometry.boundRadius)));
   EXPECT_FALSE(grid.ready());
+  const TriangleMesh fine = makeIcosphere(6, settings.slime.radius, settings.slime.position);  // 81,920 triangles
+  SlimeGeometry fineGeometry;
+  fineGeometry.update(fine.positions, fine.triangles);
+  EXPECT_FALSE(grid.build(fineGeometry, glm::vec3(settings.light.position))) << "level 6: Embree and the walk";
+  const TriangleMesh level5 = makeIcosphere(5, settings.slime.radius, settings.slime.position);
+  fineGeometry.update(level5.positions, level5.triangles);
+  EXPECT_TRUE(grid.build(fineGeometry, glm::vec3(settings.light.position))) << "level 5: a grid";
+  grid.clear();
   SegmentCrossings none;
   grid.crossings(Ray{geometry.boundCenter + glm::vec3(0.0f, 0.0f, -1.0f), {0.0f, 0.0f, 1.0f}, 0.0f, 2.0f}, none);
   EXPECT_EQ(none.count, 0);
