@@ -1,8 +1,10 @@
 // The slime in Embree 3: one device, one dynamic scene holding the slime as a triangle mesh that
 // shares SlimeGeometry's vertex and index arrays (written in place every frame, then refitted), and
 // the analytic sphere of slime.shape=sphere as a one-point sphere primitive; and a second scene of the
-// frame's non-supporting triangles alone, built anew each frame. The floor and sky are
-// not in Embree: they are analytic (see whitted_tracer.h).
+// frame's non-supporting triangles alone, built anew each frame. Beside Embree, two grids of the
+// triangles as the light and the eye see them (render/pencil_grid.h) answer the shadow rays and the
+// primary rays, where they can. The floor and sky are not in Embree: they are analytic (see
+// whitted_tracer.h).
 #pragma once
 
 #include "render/pencil_grid.h"
@@ -38,7 +40,6 @@ class EmbreeScene final : public SlimeIntersector {
   void prepareLight(const SlimeGeometry& geometry, const glm::vec3& light, bool wanted);
   // Each segment's crossings from the light's grid (no Embree query): exact, as the brute force's test.
   bool lightCrossings8(const Ray* rays, const bool* active, SegmentCrossings* crossings) const override;
-  const PencilGrid& lightGrid() const { return lightGrid_.grid; }
   // The same for the primary rays from `eye` (binning only the triangles that face it) and primaryHits8.
   void prepareEye(const SlimeGeometry& geometry, const glm::vec3& eye, bool wanted);
   bool primaryHits8(const Ray* rays, const bool* active, SlimeHit* hits) const override;

@@ -10,9 +10,9 @@
 namespace slime {
 namespace {
 
-// Cells over the grid's square per triangle binned. The default slime's shadow frame took 0.25: 47.9,
+// Cells over the grid's square per triangle. The headline's deforming frame took, with 0.25: 47.9,
 // 0.5: 46.1, 1: 47.0, 2: 48.1, 4: 48.9 ms on one thread (fewer cells: more triangles to test each
-// query; more: a triangle in more cells, a longer build).
+// query; more: a triangle in more cells, a longer build; 2026-11-24).
 constexpr float kCellsPerTriangle = 0.5f;
 constexpr int kMaxCellsPerSide = 1024;
 // The apex must stand this many bounding radii from the centre (the slime within ±56° of the axis).
@@ -23,8 +23,8 @@ constexpr float kProjectionSlack = 1e-5f;
 // Above this many triangles the grid is not built: it is rebuilt for every new shape (and, seen from
 // the eye, for every new view), at about 75 ns a triangle (one thread; 0.4 ms at level 4, 1.9 ms at
 // level 5, 8.2 ms at level 6 for the light's), while what it saves a frame hardly grows with the
-// triangles (the rays are the pixels'). Level 6 (81,920) traced 1.6× slower with grids, level 5
-// (20,480) about as fast (`slime bench render --levels 4-6`, 2026-11-24).
+// triangles (the rays are the pixels'). Level 6 (81,920) traced about 1.5× slower with grids, level 5
+// (20,480) about as fast (`slime bench render --levels 5-6`, 2026-11-24).
 constexpr std::size_t kMaxTriangles = 32768;
 // A triangle counts as facing the apex unless its plane has the apex behind it by more than this
 // cosine (its normal is rounded: a triangle seen edge-on is kept).
