@@ -343,7 +343,6 @@ void Viewer::traceImage() {
   image_.resize(size.x, size.y);
   const RenderStats render = renderer_.render(frameSettings(size), image_, &imageBytes_, /*buffersKept=*/true);
   stats_.stages.trace = traceTime.milliseconds();
-  stats_.stages.refit += render.refitMs;
   stats_.rays = render.rays.total();
   stats_.megaraysPerSecond = render.traceMs > 0.0 ? static_cast<double>(stats_.rays) / (render.traceMs * 1e3) : 0.0;
   stats_.reusedFraction = static_cast<double>(render.reusedPixels) / (static_cast<double>(size.x) * size.y);
