@@ -50,15 +50,16 @@ std::string labelOf(const PanelField& field) {
   return field.setting.name() + (field.appliesOnReload ? " *" : "") + "##" + field.setting.key;
 }
 
-// A number typed into a slider (Ctrl+click) counts when the user leaves the field (Enter, Tab, a
-// click elsewhere), not letter by letter: Dear ImGui writes the value at every letter, so typing
-// 2000 would apply 2, 20 and 200 on the way. Escape drops it. Sliding still applies at once. Call
-// right after the slider, with what it returned.
+// A number typed into a slider or a component of a three-component field (Ctrl+click) counts when
+// the user leaves the field (Enter, Tab, a click elsewhere), not letter by letter: Dear ImGui writes
+// the value at every letter, so typing 2000 would apply 2, 20 and 200 on the way. Escape drops it.
+// Sliding and dragging still apply at once. Call right after the widget, with what it returned.
 template <typename T>
 bool typedOnLeaving(bool changed, T& value) {
   static std::unordered_map<ImGuiID, T> typed;  // the panels run on one thread
   const ImGuiID id = ImGui::GetItemID();
-  if (ImGui::TempInputIsActive(id)) {
+  // (An idle group of components ends on its label, an item with no ID: id 0, never typed into.)
+  if (id != 0 && ImGui::TempInputIsActive(id)) {
     if (changed) typed[id] = value;
     return false;
   }
@@ -109,16 +110,19 @@ bool edit(const PanelField& field, int& value) {
 bool edit(const PanelField& field, glm::dvec3& value) {
   const SettingInfo& info = field.setting;
   const std::string label = labelOf(field);
+  // Three components: a component typed after a Ctrl+click counts when the field is left, as a
+  // slider's (typedOnLeaving; the group's item is the component being typed).
   if (field.widget == Widget::Color) {
-    float rgb[3] = {static_cast<float>(value.r), static_cast<float>(value.g), static_cast<float>(value.b)};
-    if (!ImGui::ColorEdit3(label.c_str(), rgb, ImGuiColorEditFlags_Float)) return false;
-    value = {rgb[0], rgb[1], rgb[2]};
+    glm::vec3 rgb{static_cast<float>(value.r), static_cast<float>(value.g), static_cast<float>(value.b)};
+    if (!typedOnLeaving(ImGui::ColorEdit3(label.c_str(), &rgb.x, ImGuiColorEditFlags_Float), rgb)) return false;
+    value = glm::dvec3(rgb);
     return true;
   }
-  // Positions: a millimetre per pixel dragged; intensities a hundredth.
+  // Positions: a millimetre per pixel dragged; intensities a hundredth. Dragging stops at the range;
+  // a typed value outside it is not clamped but refused, with the range, as a slider's.
   const float speed = info.unit == "m" ? 0.001f : 0.01f;
-  return ImGui::DragScalarN(label.c_str(), ImGuiDataType_Double, &value.x, 3, speed, &info.min, &info.max,
-                            "%.3f", ImGuiSliderFlags_AlwaysClamp);
+  return typedOnLeaving(
+      ImGui::DragScalarN(label.c_str(), ImGuiDataType_Double, &value.x, 3, speed, &info.min, &info.max, "%.3f"), value);
 }
 
 bool edit(const PanelField& field, std::string& value) {

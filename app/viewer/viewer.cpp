@@ -388,14 +388,11 @@ Viewer::GrabMarks Viewer::grabMarks() const {
 
 PanelRequests Viewer::drawPanelsAndOverlay(const GrabMarks& marks) {
   const Stopwatch uiTime;
-  // The panels edit a draft; while an invalid edit is shown the draft keeps it, but the camera is
-  // always the live one.
-  if (editError_.empty()) {
-    draft_ = settings_;
-    copyReloadFields(wanted_, draft_);
-  } else {
-    draft_.camera = settings_.camera;
-  }
+  // The panels edit a draft of what is in force. A refused edit is not kept in it: its field shows
+  // the value in force, red, with the message naming what was refused; every other field can still
+  // be edited (a kept invalid value made every later edit fail on it).
+  draft_ = settings_;
+  copyReloadFields(wanted_, draft_);
   const PanelView view{stats_,       metrics_, editError_, errorGroup_, differingReloadFields(draft_, built_),
                        fileMessage_, fileFailed_};
   const PanelRequests requests = drawPanels(draft_, scenePath_, view);
@@ -470,6 +467,7 @@ void Viewer::applyEdit(const std::string& group) {
     checkSettings(draft_, settings_);
   } catch (const SettingsError& error) {
     editError_ = error.what();  // shown in the panel; the settings keep their last valid value
+    editErrors_.push_back(editError_);
     errorGroup_ = group;
     return;
   }

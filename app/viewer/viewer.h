@@ -140,6 +140,7 @@ class Viewer {
   Settings wanted_;                // its rebuild-type values (panel_fields.h) wait here for Reload
   Settings built_;                 // ... and settings_ keeps those the slime was last built from
   std::string editError_;
+  std::vector<std::string> editErrors_;  // every refused edit of the session, in order (the report's)
   std::string errorGroup_;
   std::string scenePath_;
   std::string fileMessage_;        // the outcome of the last save or load, shown in the panel

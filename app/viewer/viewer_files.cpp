@@ -121,6 +121,7 @@ void Viewer::writeReport() const {
        {{"volume_ratio", metrics_.volumeRatio}, {"height", metrics_.height}, {"width", metrics_.width},
         {"aspect", metrics_.aspect}, {"min_z", metrics_.minZ}}},
       {"edit_error", editError_},
+      {"edit_errors", editErrors_},
       {"file_message", fileMessage_},
       {"reload_pending", differingReloadFields(wanted_, built_)},
       {"screenshots", screenshotsWritten_},
