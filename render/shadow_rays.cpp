@@ -43,19 +43,20 @@ void WhittedTracer::traceShadows(const std::vector<PendingShadow>& shadows, Trac
   if (size > 0) flush();
 }
 
+float WhittedTracer::surfaceTransmission(float cosine, bool entering) const {
+  const ShadingParameters& p = parameters_;
+  if (p.optics != OpticsMode::Fresnel) return p.transmission;
+  const float fresnel = entering ? fresnelDielectric(cosine, 1.0f, p.ior) : fresnelDielectric(cosine, p.ior, 1.0f);
+  return (1.0f - fresnel) * (entering ? p.transmission : 1.0f);
+}
+
 bool WhittedTracer::crossShadowSurface(Ray& ray, const SlimeHit& hit, glm::vec3& transmittance) const {
   const ShadingParameters& p = parameters_;
   const glm::vec3 hitPoint = ray.origin + hit.t * ray.direction;
   const glm::vec3 outward = geometry_.geometricNormal(hit, hitPoint);
   const bool entering = glm::dot(ray.direction, outward) < 0.0f;
   if (!entering) transmittance *= beerLambert(p.slimeAbsorption, hit.t);
-  if (p.optics == OpticsMode::Fresnel) {
-    const float cosine = std::abs(glm::dot(ray.direction, outward));
-    const float fresnel = entering ? fresnelDielectric(cosine, 1.0f, p.ior) : fresnelDielectric(cosine, p.ior, 1.0f);
-    transmittance *= (1.0f - fresnel) * (entering ? p.transmission : 1.0f);
-  } else {
-    transmittance *= p.transmission;
-  }
+  transmittance *= surfaceTransmission(std::abs(glm::dot(ray.direction, outward)), entering);
   if (largest(transmittance) < kMinRayWeight) {
     transmittance = glm::vec3(0.0f);
     return false;
@@ -114,13 +115,7 @@ glm::vec3 WhittedTracer::transmittanceAlong(const Ray& ray, const SegmentCrossin
     if (counted > 0 && entering == lastEntering) continue;
     if (++counted > kMaxShadowCrossings) return glm::vec3(0.0f);  // the walk's limit: blocked
     if (!entering) transmittance *= beerLambert(p.slimeAbsorption, hit.t - lastT);
-    if (p.optics == OpticsMode::Fresnel) {
-      const float cosine = std::abs(glm::dot(ray.direction, outward));
-      const float fresnel = entering ? fresnelDielectric(cosine, 1.0f, p.ior) : fresnelDielectric(cosine, p.ior, 1.0f);
-      transmittance *= (1.0f - fresnel) * (entering ? p.transmission : 1.0f);
-    } else {
-      transmittance *= p.transmission;
-    }
+    transmittance *= surfaceTransmission(std::abs(glm::dot(ray.direction, outward)), entering);
     if (largest(transmittance) < kMinRayWeight) return glm::vec3(0.0f);
     lastT = hit.t;
     lastEntering = entering;
@@ -189,22 +184,14 @@ void WhittedTracer::crossFromBothEnds8(Ray* rays, bool* walking, glm::vec3* visi
     }
     // Entering at the near end, Beer–Lambert over the stretch, leaving at the far end (crossShadowSurface twice).
     glm::vec3& transmittance = visible[i];
-    if (p.optics == OpticsMode::Fresnel) {
-      transmittance *= (1.0f - fresnelDielectric(-glm::dot(ray.direction, nearNormal), 1.0f, p.ior)) * p.transmission;
-    } else {
-      transmittance *= p.transmission;
-    }
+    transmittance *= surfaceTransmission(-glm::dot(ray.direction, nearNormal), true);
     walking[i] = false;
     if (largest(transmittance) < kMinRayWeight) {
       transmittance = glm::vec3(0.0f);
       continue;
     }
     transmittance *= beerLambert(p.slimeAbsorption, ray.tFar - near.t - far.t);
-    if (p.optics == OpticsMode::Fresnel) {
-      transmittance *= 1.0f - fresnelDielectric(glm::dot(ray.direction, farNormal), p.ior, 1.0f);
-    } else {
-      transmittance *= p.transmission;
-    }
+    transmittance *= surfaceTransmission(glm::dot(ray.direction, farNormal), false);
     if (largest(transmittance) < kMinRayWeight) transmittance = glm::vec3(0.0f);
   }
 }

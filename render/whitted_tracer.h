@@ -151,6 +151,9 @@ class WhittedTracer {
   // One crossing of a shadow ray with the slime's surface at `hit`: `transmittance` takes what passes
   // it and the ray moves past it. False when the walk is over (blocked, or out of a convex slime).
   bool crossShadowSurface(Ray& ray, const SlimeHit& hit, glm::vec3& transmittance) const;
+  // The fraction of the light a shadow ray keeps crossing the slime's surface into the jelly or out
+  // of it, `cosine` the angle's with the surface's normal: 1 − Fresnel (× k_t going in), or k_t (seed optics).
+  float surfaceTransmission(float cosine, bool entering) const;
   // Fraction of the point light passing the slime along each of up to 8 shadow rays (active[i]; the
   // rays are consumed), per channel: partial and coloured behind the translucent slime (surface
   // transmission and Beer–Lambert along the chord), 0 if opaque. Crossings are traced as packets.
