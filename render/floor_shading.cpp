@@ -11,9 +11,6 @@
 #include <algorithm>
 #include <cmath>
 
-#if defined(__AVX2__)
-#include <immintrin.h>
-#endif
 
 namespace slime {
 namespace {
@@ -27,9 +24,6 @@ float phongLobe(const glm::vec3& normal, const glm::vec3& toLight, const glm::ve
   return std::pow(cosine, shininess);
 }
 
-#if defined(__AVX2__)
-__m256 lane(const float* values) { return _mm256_loadu_ps(values); }
-#endif
 
 }  // namespace
 
@@ -56,9 +50,9 @@ FloorShading WhittedTracer::floorShading(const glm::vec3& point, const glm::vec3
 
 void WhittedTracer::floorShading8(const Ray* rays, const float* t, const float* distances, const bool* needed,
                                   FloorShading* shadings) const {
-#if defined(__AVX2__) && defined(__FMA__)
-  // Ray by ray into lanes (an unneeded lane stays a harmless zero), then floorLanes8.
-  FloorRays8 lanesIn;
+#if defined(SLIME_WIDE_LANES)
+  // Ray by ray into lanes (an unneeded lane stays a harmless zero), then floorLanes.
+  FloorRays<8> lanesIn;
   for (int i = 0; i < 8; ++i) {
     lanesIn.needed[i] = needed[i];
     if (!needed[i]) continue;
@@ -70,8 +64,8 @@ void WhittedTracer::floorShading8(const Ray* rays, const float* t, const float* 
     lanesIn.t[i] = t[i];
     lanesIn.distance[i] = distances[i];
   }
-  FloorLanes8 lanes;
-  floorLanes8(lanesIn, lanes);
+  FloorPoints<8> lanes;
+  floorLanes(lanesIn, lanes);
   const ShadingParameters& p = parameters_;
   for (int i = 0; i < 8; ++i) {
     if (!needed[i]) continue;
@@ -99,96 +93,114 @@ void WhittedTracer::floorShading8(const Ray* rays, const float* t, const float* 
     footprintY[i] = footprint.y;
   }
   float albedos[3][8];
-  floor_.albedo8(x, y, footprintX, footprintY, needed, albedos);
+  floor_.albedoLanes<8>(x, y, footprintX, footprintY, needed, albedos);
   for (int i = 0; i < 8; ++i)
     if (needed[i])
       shadings[i] = litFloor({x[i], y[i], 0.0f}, rays[i].direction, distances[i], {albedos[0][i], albedos[1][i], albedos[2][i]});
 #endif
 }
 
-#if defined(__AVX2__) && defined(__FMA__)
-void WhittedTracer::floorLanes8(const FloorRays8& rays, FloorLanes8& lanes) const {
-  // The same steps as floorFootprint and litFloor, 8 lanes at a time (within rounding of them).
+#if defined(SLIME_WIDE_LANES)
+template <int N>
+void WhittedTracer::floorLanes(const FloorRays<N>& rays, FloorPoints<N>& points) const {
+  // The same steps as floorFootprint and litFloor, N lanes at a time (within rounding of them).
+  using F = typename Wide<N>::F;
+  using I = typename Wide<N>::I;
   const ShadingParameters& p = parameters_;
-  const __m256 dx = lane(rays.directionX), dy = lane(rays.directionY), dz = lane(rays.directionZ), d = lane(rays.distance);
-  const __m256 along = lane(rays.t);
-  const __m256 px = _mm256_fmadd_ps(along, dx, lane(rays.originX)), py = _mm256_fmadd_ps(along, dy, lane(rays.originY));
-  const __m256 halfWidth = _mm256_mul_ps(_mm256_mul_ps(_mm256_set1_ps(0.5f), d), _mm256_set1_ps(p.pixelSpread));
-  const __m256 cosTheta = _mm256_max_ps(_mm256_andnot_ps(_mm256_set1_ps(-0.0f), dz), _mm256_set1_ps(1e-3f));
-  const __m256 inverseCos2 = _mm256_div_ps(_mm256_set1_ps(1.0f), _mm256_mul_ps(cosTheta, cosTheta));
-  const __m256 dx2 = _mm256_mul_ps(dx, dx), dy2 = _mm256_mul_ps(dy, dy), sin2 = _mm256_add_ps(dx2, dy2);
-  const __m256 scale = _mm256_div_ps(_mm256_mul_ps(halfWidth, halfWidth), sin2);
-  const __m256 oblique = _mm256_cmp_ps(sin2, _mm256_set1_ps(1e-12f), _CMP_GT_OQ);
-  const __m256 fx = _mm256_blendv_ps(_mm256_div_ps(halfWidth, cosTheta),
-                                     _mm256_sqrt_ps(_mm256_mul_ps(scale, _mm256_fmadd_ps(dx2, inverseCos2, dy2))), oblique);
-  const __m256 fy = _mm256_blendv_ps(halfWidth, _mm256_sqrt_ps(_mm256_mul_ps(scale, _mm256_fmadd_ps(dy2, inverseCos2, dx2))),
-                                     oblique);
-  float footprintX[8], footprintY[8];
-  _mm256_storeu_ps(lanes.x, px);
-  _mm256_storeu_ps(lanes.y, py);
-  _mm256_storeu_ps(footprintX, fx);
-  _mm256_storeu_ps(footprintY, fy);
-  floor_.albedo8(lanes.x, lanes.y, footprintX, footprintY, rays.needed, lanes.albedo);
+  const F dx = loadLanes<F>(rays.directionX), dy = loadLanes<F>(rays.directionY), dz = loadLanes<F>(rays.directionZ);
+  const F d = loadLanes<F>(rays.distance), along = loadLanes<F>(rays.t);
+  const F px = fmaLanes(along, dx, loadLanes<F>(rays.originX)), py = fmaLanes(along, dy, loadLanes<F>(rays.originY));
+  const F halfWidth = (0.5f * d) * p.pixelSpread;
+  const F cosTheta = maxLanes(absLanes(dz), splat<F>(1e-3f));
+  const F inverseCos2 = 1.0f / (cosTheta * cosTheta);
+  const F dx2 = dx * dx, dy2 = dy * dy, sin2 = dx2 + dy2;
+  const F scale = (halfWidth * halfWidth) / sin2;
+  const I oblique = sin2 > 1e-12f;
+  const F fx = oblique ? sqrtLanes(scale * fmaLanes(dx2, inverseCos2, dy2)) : halfWidth / cosTheta;
+  const F fy = oblique ? sqrtLanes(scale * fmaLanes(dy2, inverseCos2, dx2)) : halfWidth;
+  float footprintX[N], footprintY[N];
+  storeLanes(points.x, px);
+  storeLanes(points.y, py);
+  storeLanes(footprintX, fx);
+  storeLanes(footprintY, fy);
+  floor_.albedoLanes<N>(points.x, points.y, footprintX, footprintY, rays.needed, points.albedo);
 
   // litFloor: the haze, and the light's direction (its z) at each point.
-  _mm256_storeu_ps(lanes.haze, _mm256_sub_ps(_mm256_set1_ps(1.0f), exp(Lanes(_mm256_div_ps(_mm256_sub_ps(_mm256_setzero_ps(), d), _mm256_set1_ps(p.hazeDistance)))).v));
-  const __m256 toLightX = _mm256_sub_ps(_mm256_set1_ps(p.lightPosition.x), px);
-  const __m256 toLightY = _mm256_sub_ps(_mm256_set1_ps(p.lightPosition.y), py);
-  const __m256 toLightZ = _mm256_set1_ps(p.lightPosition.z);
-  const __m256 length2 = _mm256_fmadd_ps(toLightX, toLightX, _mm256_fmadd_ps(toLightY, toLightY, _mm256_mul_ps(toLightZ, toLightZ)));
-  _mm256_storeu_ps(lanes.lightZ, _mm256_mul_ps(toLightZ, _mm256_div_ps(_mm256_set1_ps(1.0f), _mm256_sqrt_ps(length2))));
+  storeLanes(points.haze, 1.0f - expLanes((0.0f - d) / p.hazeDistance));
+  const F toLightX = p.lightPosition.x - px, toLightY = p.lightPosition.y - py, toLightZ = splat<F>(p.lightPosition.z);
+  const F length2 = fmaLanes(toLightX, toLightX, fmaLanes(toLightY, toLightY, toLightZ * toLightZ));
+  storeLanes(points.lightZ, toLightZ * (1.0f / sqrtLanes(length2)));
+}
+
+template <int N>
+void WhittedTracer::traceFloorOrSkyLanes(const glm::vec3& eye, const float* directionX, const float* directionY,
+                                         const float* directionZ, int count, TraceCounters& counters,
+                                         glm::vec3* colors) const {
+  // floorDistance, floorShading8 and shadeFloorWith's sums (with the light unshadowed) in lanes:
+  // the same operations in the same order, so each pixel equals tracePrimary8's bit for bit.
+  // floorDistance in lanes; the lanes that do not see the floor (or are past `count`) stay zero.
+  using F = typename Wide<N>::F;
+  using I = typename Wide<N>::I;
+  const ShadingParameters& p = parameters_;
+  F lane{};
+  for (int i = 0; i < N; ++i) lane[i] = static_cast<float>(i);
+  FloorRays<N> rays;
+  const F dz = loadLanes<F>(directionZ);
+  const I sees = (dz < 0.0f) & (lane < static_cast<float>(count));
+  const unsigned floorMask = maskBits(sees);
+  for (int i = 0; i < N; ++i) rays.needed[i] = (floorMask >> i) & 1u;
+  const F none = splat<F>(0.0f);
+  const F t = sees ? std::max(0.0f, eye.z) / (0.0f - dz) : none;
+  storeLanes(rays.originX, sees ? splat<F>(eye.x) : none);
+  storeLanes(rays.originY, sees ? splat<F>(eye.y) : none);
+  storeLanes(rays.directionX, sees ? loadLanes<F>(directionX) : none);
+  storeLanes(rays.directionY, sees ? loadLanes<F>(directionY) : none);
+  storeLanes(rays.directionZ, sees ? dz : none);
+  storeLanes(rays.t, t);
+  storeLanes(rays.distance, t);
+  FloorPoints<N> points;
+  if (floorMask != 0) floorLanes(rays, points);
+  const bool lit = p.lightPosition.z > 0.0f;
+  const F lightScale = p.floorDiffuse * loadLanes<F>(points.lightZ);
+  const F haze = loadLanes<F>(points.haze), near = 1.0f - haze;
+  // sky() in lanes for the others: glm::mix(horizon, zenith, √clamp(d_z, 0, 1)).
+  const F elevation = sqrtLanes(minLanes(maxLanes(dz, none), splat<F>(1.0f)));
+  float channels[3][N];
+  unsigned shadowRays = 0;
+  for (int c = 0; c < 3; ++c) {
+    const F a = loadLanes<F>(points.albedo[c]);
+    const F ambient = a * p.ambientLight[c];
+    const F base = near * ambient + haze * p.skyHorizon[c];
+    const F light = lit ? p.lightColor[c] * (lightScale * a) : none;
+    const F skyColor = p.skyHorizon[c] * (1.0f - elevation) + p.skyZenith[c] * elevation;
+    storeLanes(channels[c], sees ? base + near * light : skyColor);
+    shadowRays |= floorMask & maskBits(light != 0.0f);
+  }
+  for (int i = 0; i < count; ++i) colors[i] = glm::vec3(channels[0][i], channels[1][i], channels[2][i]);
+  if (p.shadows) counters.rays.shadow += static_cast<std::uint64_t>(__builtin_popcount(shadowRays));
 }
 #endif
 
-void WhittedTracer::traceFloorOrSky8(const glm::vec3& eye, const float* directionX, const float* directionY,
-                                     const float* directionZ, int count, TraceCounters& counters, glm::vec3* colors) const {
+void WhittedTracer::traceFloorOrSky(const glm::vec3& eye, const float* directionX, const float* directionY,
+                                    const float* directionZ, int count, TraceCounters& counters, glm::vec3* colors) const {
   counters.rays.primary += static_cast<std::uint64_t>(count);
-#if defined(__AVX2__) && defined(__FMA__)
-  const ShadingParameters& p = parameters_;
-  if (!(p.floorSpecular > 0.0f)) {
-    // floorDistance, floorShading8 and shadeFloorWith's sums (with the light unshadowed) in lanes:
-    // the same operations in the same order, so each pixel equals tracePrimary8's bit for bit.
-    // floorDistance in lanes; the lanes that do not see the floor (or are past `count`) stay zero.
-    FloorRays8 rays;
-    const __m256 dz = lane(directionZ);
-    const __m256 sees = _mm256_and_ps(_mm256_cmp_ps(dz, _mm256_setzero_ps(), _CMP_LT_OQ),
-                                      _mm256_cmp_ps(_mm256_setr_ps(0, 1, 2, 3, 4, 5, 6, 7), _mm256_set1_ps(static_cast<float>(count)), _CMP_LT_OQ));
-    const int floorMask = _mm256_movemask_ps(sees);
-    for (int i = 0; i < 8; ++i) rays.needed[i] = (floorMask >> i) & 1;
-    const __m256 t = _mm256_and_ps(sees, _mm256_div_ps(_mm256_set1_ps(std::max(0.0f, eye.z)), _mm256_sub_ps(_mm256_setzero_ps(), dz)));
-    _mm256_storeu_ps(rays.originX, _mm256_and_ps(sees, _mm256_set1_ps(eye.x)));
-    _mm256_storeu_ps(rays.originY, _mm256_and_ps(sees, _mm256_set1_ps(eye.y)));
-    _mm256_storeu_ps(rays.directionX, _mm256_and_ps(sees, lane(directionX)));
-    _mm256_storeu_ps(rays.directionY, _mm256_and_ps(sees, lane(directionY)));
-    _mm256_storeu_ps(rays.directionZ, _mm256_and_ps(sees, dz));
-    _mm256_storeu_ps(rays.t, t);
-    _mm256_storeu_ps(rays.distance, t);
-    FloorLanes8 lanes;
-    if (floorMask != 0) floorLanes8(rays, lanes);
-    const bool lit = p.lightPosition.z > 0.0f;
-    const __m256 lightScale = _mm256_mul_ps(_mm256_set1_ps(p.floorDiffuse), lane(lanes.lightZ));
-    const __m256 haze = lane(lanes.haze), near = _mm256_sub_ps(_mm256_set1_ps(1.0f), haze);
-    float channels[3][8];
-    int shadowRays = 0;
-    for (int c = 0; c < 3; ++c) {
-      const __m256 a = lane(lanes.albedo[c]);
-      const __m256 ambient = _mm256_mul_ps(a, _mm256_set1_ps(p.ambientLight[c]));
-      const __m256 base = _mm256_add_ps(_mm256_mul_ps(near, ambient), _mm256_mul_ps(haze, _mm256_set1_ps(p.skyHorizon[c])));
-      const __m256 light = lit ? _mm256_mul_ps(_mm256_set1_ps(p.lightColor[c]), _mm256_mul_ps(lightScale, a)) : _mm256_setzero_ps();
-      _mm256_storeu_ps(channels[c], _mm256_add_ps(base, _mm256_mul_ps(near, light)));
-      shadowRays |= floorMask & _mm256_movemask_ps(_mm256_cmp_ps(light, _mm256_setzero_ps(), _CMP_NEQ_UQ));
-    }
-    for (int i = 0; i < count; ++i)
-      colors[i] = rays.needed[i] ? glm::vec3(channels[0][i], channels[1][i], channels[2][i]) : sky({directionX[i], directionY[i], directionZ[i]});
-    if (p.shadows) counters.rays.shadow += static_cast<std::uint64_t>(__builtin_popcount(shadowRays));
+#if defined(SLIME_WIDE_LANES)
+  if (!(parameters_.floorSpecular > 0.0f)) {
+    if (count > 8) traceFloorOrSkyLanes<kFloorOrSkyRays>(eye, directionX, directionY, directionZ, count, counters, colors);
+    else traceFloorOrSkyLanes<8>(eye, directionX, directionY, directionZ, count, counters, colors);
     return;
   }
 #endif
-  Ray rays[8];
-  SlimeHit misses[8];
-  for (int i = 0; i < count; ++i) rays[i] = Ray{eye, {directionX[i], directionY[i], directionZ[i]}, 0.0f, kInfinity};
+  // A shiny floor (or no AVX2): tracePrimary8's general path, 8 rays at a time.
   counters.rays.primary -= static_cast<std::uint64_t>(count);  // tracePrimary8 counts them
-  tracePrimary8(rays, misses, count, counters, nullptr, colors, true);
+  for (int first = 0; first < count; first += 8) {
+    const int size = std::min(8, count - first);
+    Ray rays[8];
+    SlimeHit misses[8];
+    for (int i = 0; i < size; ++i)
+      rays[i] = Ray{eye, {directionX[first + i], directionY[first + i], directionZ[first + i]}, 0.0f, kInfinity};
+    tracePrimary8(rays, misses, size, counters, nullptr, colors + first, true);
+  }
 }
 
 FloorShading WhittedTracer::litFloor(const glm::vec3& point, const glm::vec3& direction, float distance,

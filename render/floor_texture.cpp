@@ -10,9 +10,7 @@
 #include <cmath>
 #include <cstdint>
 
-#if defined(__AVX2__)
-#include <immintrin.h>
-#endif
+#include "render/wide_lanes.h"
 
 namespace slime {
 namespace {
@@ -153,129 +151,120 @@ glm::vec3 FloorTexture::planks(glm::vec2 p, glm::vec2 footprint) const {
   return glm::mix(color, colorB_ * 0.35f, seam);
 }
 
-void FloorTexture::albedo8(const float* x, const float* y, const float* footprintX, const float* footprintY,
-                           const bool* active, float (*channels)[8]) const {
-#if defined(__AVX2__)
+template <int N>
+void FloorTexture::albedoLanes(const float* x, const float* y, const float* footprintX, const float* footprintY,
+                               const bool* active, float (*channels)[N]) const {
+#if defined(SLIME_WIDE_LANES)
   if (pattern_ == Pattern::Planks) {
-    float lanes[3][8];
-    planks8(x, y, footprintX, footprintY, lanes);
-    for (int i = 0; i < 8; ++i) {
-      if (!active[i]) continue;
-      const bool near = std::abs(x[i]) < 1e5f && std::abs(y[i]) < 1e5f;
-      for (int c = 0; c < 3; ++c) channels[c][i] = near ? lanes[c][i] : mean_[c];
-    }
+    // Every lane is written (an inactive one with whatever its coordinates give); kilometres away, the mean.
+    using F = typename Wide<N>::F;
+    planksLanes<N>(x, y, footprintX, footprintY, channels);
+    const auto near = (absLanes(loadLanes<F>(x)) < 1e5f) & (absLanes(loadLanes<F>(y)) < 1e5f);
+    for (int c = 0; c < 3; ++c) storeLanes(channels[c], near ? loadLanes<F>(channels[c]) : splat<F>(mean_[c]));
     return;
   }
 #endif
-  for (int i = 0; i < 8; ++i) {
+  for (int i = 0; i < N; ++i) {
     if (!active[i]) continue;
     const glm::vec3 albedo = this->albedo({x[i], y[i]}, {footprintX[i], footprintY[i]});
     for (int c = 0; c < 3; ++c) channels[c][i] = albedo[c];
   }
 }
 
-#if defined(__AVX2__)
+#if defined(SLIME_WIDE_LANES)
 namespace {
 
-// The scalar helpers above, 8 lanes at a time (same formulas, same order of operations).
-struct Lanes {
-  static __m256 all(float v) { return _mm256_set1_ps(v); }
-  static __m256 abs(__m256 v) { return _mm256_andnot_ps(_mm256_set1_ps(-0.0f), v); }
-  static __m256 floor(__m256 v) { return _mm256_round_ps(v, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC); }
-  static __m256 mix(__m256 a, __m256 b, __m256 t) {  // glm::mix: a (1 − t) + b t
-    return _mm256_add_ps(_mm256_mul_ps(a, _mm256_sub_ps(all(1.0f), t)), _mm256_mul_ps(b, t));
+// The scalar helpers above, N lanes at a time (same formulas, same order of operations).
+template <int N>
+struct PlankLanes {
+  using F = typename Wide<N>::F;
+  using I = typename Wide<N>::I;
+  using U = typename Wide<N>::U;
+  static U hashBits(I i, I j) {
+    U x = ((U)i * 0x9E3779B9u) ^ ((U)j + 0x7F4A7C15u);
+    x ^= x >> 16;
+    x *= 0x7feb352du;
+    x ^= x >> 15;
+    x *= 0x846ca68bu;
+    return x ^ (x >> 16);
   }
-  static __m256 clamp01(__m256 v) { return _mm256_min_ps(_mm256_max_ps(v, all(0.0f)), all(1.0f)); }
-  static __m256i hashBits(__m256i i, __m256i j) {
-    __m256i x = _mm256_xor_si256(_mm256_mullo_epi32(i, _mm256_set1_epi32(static_cast<int>(0x9E3779B9u))),
-                                 _mm256_add_epi32(j, _mm256_set1_epi32(0x7F4A7C15)));
-    x = _mm256_xor_si256(x, _mm256_srli_epi32(x, 16));
-    x = _mm256_mullo_epi32(x, _mm256_set1_epi32(0x7feb352d));
-    x = _mm256_xor_si256(x, _mm256_srli_epi32(x, 15));
-    x = _mm256_mullo_epi32(x, _mm256_set1_epi32(static_cast<int>(0x846ca68bu)));
-    return _mm256_xor_si256(x, _mm256_srli_epi32(x, 16));
+  static F hash01(U bits) { return __builtin_convertvector((I)(bits >> 8), F) * (1.0f / 16777216.0f); }
+  static F hashByte(U bits, int k) {
+    return (__builtin_convertvector((I)((bits >> (8 * k)) & 0xFFu), F) + 0.5f) * (1.0f / 256.0f);
   }
-  static __m256 hash01(__m256i bits) {
-    return _mm256_mul_ps(_mm256_cvtepi32_ps(_mm256_srli_epi32(bits, 8)), all(1.0f / 16777216.0f));
+  static F mix(F a, F b, F t) { return a * (1.0f - t) + b * t; }  // glm::mix
+  static F clamp01(F v) { return minLanes(maxLanes(v, splat<F>(0.0f)), splat<F>(1.0f)); }
+  static F grainSine(F x) {
+    F turns = x * (1.0f / (2.0f * kPi));
+    turns = turns - floorLanes(turns + 0.5f);
+    const F y = (8.0f * turns) * (1.0f - 2.0f * absLanes(turns));
+    return y * (0.775f + 0.225f * absLanes(y));
   }
-  static __m256 hashByte(__m256i bits, int k) {
-    const __m256i byte = _mm256_and_si256(_mm256_srlv_epi32(bits, _mm256_set1_epi32(8 * k)), _mm256_set1_epi32(0xFF));
-    return _mm256_mul_ps(_mm256_add_ps(_mm256_cvtepi32_ps(byte), all(0.5f)), all(1.0f / 256.0f));
+  static F pulseIntegral(F x, F width) {
+    const F whole = floorLanes(x);
+    return whole * width + minLanes(x - whole, width);
   }
-  static __m256 grainSine(__m256 x) {
-    __m256 turns = _mm256_mul_ps(x, all(1.0f / (2.0f * kPi)));
-    turns = _mm256_sub_ps(turns, floor(_mm256_add_ps(turns, all(0.5f))));
-    const __m256 y = _mm256_mul_ps(_mm256_mul_ps(all(8.0f), turns),
-                                   _mm256_sub_ps(all(1.0f), _mm256_mul_ps(all(2.0f), abs(turns))));
-    return _mm256_mul_ps(y, _mm256_add_ps(all(0.775f), _mm256_mul_ps(all(0.225f), abs(y))));
-  }
-  static __m256 pulseIntegral(__m256 x, __m256 width) {
-    const __m256 whole = floor(x);
-    return _mm256_add_ps(_mm256_mul_ps(whole, width), _mm256_min_ps(_mm256_sub_ps(x, whole), width));
-  }
-  static __m256 filteredPulse(__m256 x, __m256 halfWidth, __m256 width) {
-    const __m256 point = _mm256_and_ps(_mm256_cmp_ps(_mm256_sub_ps(x, floor(x)), width, _CMP_LT_OQ), all(1.0f));
-    const __m256 box = _mm256_div_ps(_mm256_sub_ps(pulseIntegral(_mm256_add_ps(x, halfWidth), width),
-                                                   pulseIntegral(_mm256_sub_ps(x, halfWidth), width)),
-                                     _mm256_mul_ps(all(2.0f), halfWidth));
-    return _mm256_blendv_ps(box, point, _mm256_cmp_ps(halfWidth, all(1e-6f), _CMP_LT_OQ));
+  static F filteredPulse(F x, F halfWidth, F width) {
+    const F point = x - floorLanes(x) < width ? splat<F>(1.0f) : splat<F>(0.0f);
+    const F box = (pulseIntegral(x + halfWidth, width) - pulseIntegral(x - halfWidth, width)) / (2.0f * halfWidth);
+    return halfWidth < 1e-6f ? point : box;
   }
 };
 
 }  // namespace
 
-// planks() for 8 lookups: the same pattern, lane by lane (see there for what each step draws).
-void FloorTexture::planks8(const float* x, const float* y, const float* footprintX, const float* footprintY,
-                           float (*channels)[8]) const {
-  using L = Lanes;
+// planks() for N lookups: the same pattern, lane by lane (see there for what each step draws).
+template <int N>
+void FloorTexture::planksLanes(const float* x, const float* y, const float* footprintX, const float* footprintY,
+                               float (*channels)[N]) const {
+  using L = PlankLanes<N>;
+  using F = typename L::F;
+  using I = typename L::I;
   constexpr float kLength = 6.0f, kSeam = 0.03f, kGrainPerBoard = 11.0f;
   constexpr float kDarkestGrainDensity = 0.7f, kGrainDensityRange = 0.6f, kGrainPeriod = 1.0f / kGrainPerBoard;
-  const __m256 inverseScale = L::all(inverseScale_);
-  const __m256 qx = _mm256_mul_ps(_mm256_loadu_ps(x), inverseScale), qy = _mm256_mul_ps(_mm256_loadu_ps(y), inverseScale);
-  const __m256 hx = _mm256_mul_ps(_mm256_loadu_ps(footprintX), inverseScale);
-  const __m256 hy = _mm256_mul_ps(_mm256_loadu_ps(footprintY), inverseScale);
-  // Lanes far away (kilometres) are replaced by the mean in albedo8; clamp them so the integers stay sane.
-  const __m256 row = L::floor(_mm256_min_ps(_mm256_max_ps(qy, L::all(-1e7f)), L::all(1e7f)));
-  const __m256i rowIndex = _mm256_cvttps_epi32(row);
-  const __m256 stagger = _mm256_mul_ps(L::hash01(L::hashBits(rowIndex, _mm256_set1_epi32(17))), L::all(kLength));
-  const __m256 along = _mm256_mul_ps(_mm256_add_ps(_mm256_min_ps(_mm256_max_ps(qx, L::all(-1e7f)), L::all(1e7f)), stagger),
-                                     L::all(1.0f / kLength));
-  const __m256 board = L::floor(along);
-  const __m256i draws = L::hashBits(_mm256_cvttps_epi32(board), rowIndex);
+  const F qx = loadLanes<F>(x) * inverseScale_, qy = loadLanes<F>(y) * inverseScale_;
+  const F hx = loadLanes<F>(footprintX) * inverseScale_, hy = loadLanes<F>(footprintY) * inverseScale_;
+  // Lanes far away (kilometres) are replaced by the mean in albedoLanes; clamp them so the integers stay sane.
+  const F row = floorLanes(minLanes(maxLanes(qy, splat<F>(-1e7f)), splat<F>(1e7f)));
+  const I rowIndex = __builtin_convertvector(row, I);
+  const F stagger = L::hash01(L::hashBits(rowIndex, I{} + 17)) * kLength;
+  const F along = (minLanes(maxLanes(qx, splat<F>(-1e7f)), splat<F>(1e7f)) + stagger) * (1.0f / kLength);
+  const F board = floorLanes(along);
+  const auto draws = L::hashBits(__builtin_convertvector(board, I), rowIndex);
 
-  const __m256 boardVisibility = L::clamp01(_mm256_sub_ps(L::all(1.0f), _mm256_mul_ps(L::all(2.0f), _mm256_max_ps(hx, hy))));
-  const __m256 shade = L::mix(L::all(0.5f), L::hashByte(draws, 0), boardVisibility);
-  const __m256 brightness = _mm256_add_ps(
-      L::all(1.0f), _mm256_mul_ps(_mm256_mul_ps(L::all(0.18f), boardVisibility), _mm256_sub_ps(L::hashByte(draws, 1), L::all(0.5f))));
+  const F boardVisibility = L::clamp01(1.0f - 2.0f * maxLanes(hx, hy));
+  const F shade = L::mix(splat<F>(0.5f), L::hashByte(draws, 0), boardVisibility);
+  const F brightness = 1.0f + (0.18f * boardVisibility) * (L::hashByte(draws, 1) - 0.5f);
 
   // Grain, where the footprint leaves any of it: a factor of 1 elsewhere.
-  __m256 grainFactor = L::all(1.0f);
-  const __m256 grainShows = _mm256_cmp_ps(hy, L::all(0.5f * kGrainPeriod / kDarkestGrainDensity), _CMP_LT_OQ);
-  if (_mm256_movemask_ps(grainShows) != 0) {
-    const __m256 phase = _mm256_mul_ps(_mm256_mul_ps(L::hashByte(draws, 2), L::all(2.0f)), L::all(kPi));
-    const __m256 density = _mm256_add_ps(L::all(kDarkestGrainDensity), _mm256_mul_ps(L::all(kGrainDensityRange), L::hashByte(draws, 3)));
-    const __m256 wander = _mm256_mul_ps(
-        _mm256_add_ps(L::all(1.0f), _mm256_mul_ps(L::all(1.5f), density)),
-        L::grainSine(_mm256_add_ps(_mm256_mul_ps(qx, _mm256_add_ps(L::all(0.9f), density)), phase)));
-    const __m256 grain = L::grainSine(_mm256_add_ps(
-        _mm256_add_ps(_mm256_mul_ps(_mm256_mul_ps(L::all(2.0f * kPi * kGrainPerBoard), density), qy), wander), phase));
+  F grainFactor = splat<F>(1.0f);
+  const I grainShows = hy < 0.5f * kGrainPeriod / kDarkestGrainDensity;
+  if (maskBits(grainShows) != 0) {
+    const F phase = (L::hashByte(draws, 2) * 2.0f) * kPi;
+    const F density = kDarkestGrainDensity + kGrainDensityRange * L::hashByte(draws, 3);
+    const F wander = (1.0f + 1.5f * density) * L::grainSine(qx * (0.9f + density) + phase);
+    const F grain = L::grainSine(((2.0f * kPi * kGrainPerBoard) * density) * qy + wander + phase);
     // detailVisibility(h_y, period / density) = clamp(1 − 2 h_y / (period / density)).
-    const __m256 visibility = L::clamp01(
-        _mm256_sub_ps(L::all(1.0f), _mm256_div_ps(_mm256_mul_ps(L::all(2.0f), hy), _mm256_div_ps(L::all(kGrainPeriod), density))));
-    const __m256 factor = _mm256_add_ps(L::all(1.0f), _mm256_mul_ps(_mm256_mul_ps(L::all(0.05f), grain), visibility));
-    grainFactor = _mm256_blendv_ps(grainFactor, factor, grainShows);
+    const F visibility = L::clamp01(1.0f - (2.0f * hy) / (kGrainPeriod / density));
+    grainFactor = grainShows ? 1.0f + (0.05f * grain) * visibility : grainFactor;
   }
 
-  const __m256 longSeam = L::filteredPulse(_mm256_add_ps(qy, L::all(0.5f * kSeam)), hy, L::all(kSeam));
-  const __m256 joint = L::filteredPulse(_mm256_add_ps(along, L::all(0.5f * kSeam / kLength)),
-                                        _mm256_mul_ps(hx, L::all(1.0f / kLength)), L::all(kSeam / kLength));
-  const __m256 seam = _mm256_sub_ps(L::all(1.0f), _mm256_mul_ps(_mm256_sub_ps(L::all(1.0f), longSeam), _mm256_sub_ps(L::all(1.0f), joint)));
+  const F longSeam = L::filteredPulse(qy + 0.5f * kSeam, hy, splat<F>(kSeam));
+  const F joint = L::filteredPulse(along + 0.5f * kSeam / kLength, hx * (1.0f / kLength), splat<F>(kSeam / kLength));
+  const F seam = 1.0f - (1.0f - longSeam) * (1.0f - joint);
 
   for (int c = 0; c < 3; ++c) {
-    const __m256 color = _mm256_mul_ps(_mm256_mul_ps(L::mix(L::all(colorA_[c]), L::all(colorB_[c]), shade), brightness), grainFactor);
-    _mm256_storeu_ps(channels[c], L::mix(color, L::all(colorB_[c] * 0.35f), seam));
+    const F color = (L::mix(splat<F>(colorA_[c]), splat<F>(colorB_[c]), shade) * brightness) * grainFactor;
+    storeLanes(channels[c], L::mix(color, splat<F>(colorB_[c] * 0.35f), seam));
   }
 }
+#endif
+
+template void FloorTexture::albedoLanes<8>(const float*, const float*, const float*, const float*, const bool*,
+                                           float (*)[8]) const;
+#if defined(SLIME_WIDE_LANES) && defined(__AVX512F__)
+template void FloorTexture::albedoLanes<16>(const float*, const float*, const float*, const float*, const bool*,
+                                            float (*)[16]) const;
 #endif
 
 // Square tiles of side `scale` in colorA, with grout lines in colorB and a slight shade per tile.

@@ -21,11 +21,13 @@ class FloorTexture {
   // Linear-RGB albedo averaged over the box [x ± footprint.x] × [y ± footprint.y] (metres).
   glm::vec3 albedo(glm::vec2 point, glm::vec2 footprint) const;
 
-  // albedo() for up to 8 lookups at once (structure of arrays in, channels[c][i] out; lanes with
-  // active[i] false are left alone): the planks in 8-wide AVX2 when the build has it, else one
-  // lookup at a time. Within rounding of albedo() (the golden tests bound the difference).
-  void albedo8(const float* x, const float* y, const float* footprintX, const float* footprintY, const bool* active,
-               float (*channels)[8]) const;
+  // albedo() for N lookups at once (structure of arrays in, channels[c][i] out for the lanes with
+  // active[i]; the others may be written too): the planks N lanes at a time when the build has AVX2 (N = 8) or
+  // AVX-512 (N = 16; render/wide_lanes.h), else one lookup at a time. Within rounding of albedo()
+  // (the golden tests bound the difference), and a lane's result is the same for either N.
+  template <int N>
+  void albedoLanes(const float* x, const float* y, const float* footprintX, const float* footprintY, const bool* active,
+                   float (*channels)[N]) const;
 
   // The albedo seen from very far away (the average of the pattern).
   glm::vec3 meanAlbedo() const { return mean_; }
@@ -42,7 +44,9 @@ class FloorTexture {
   glm::vec3 tiles(glm::vec2 p, glm::vec2 footprint) const;
   glm::vec3 checker(glm::vec2 p, glm::vec2 footprint) const;
   glm::vec3 image(glm::vec2 p, glm::vec2 footprint) const;
-  void planks8(const float* x, const float* y, const float* footprintX, const float* footprintY, float (*channels)[8]) const;
+  template <int N>
+  void planksLanes(const float* x, const float* y, const float* footprintX, const float* footprintY,
+                   float (*channels)[N]) const;
   void loadImage(const std::string& path);
 
   Pattern pattern_ = Pattern::Planks;

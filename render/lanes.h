@@ -5,6 +5,8 @@
 // multiply-adds unless asked for), so a result equals the scalar formula's bit for bit.
 #pragma once
 
+#include "render/wide_lanes.h"
+
 #include <glm/vec3.hpp>
 
 #include <cmath>
@@ -118,33 +120,15 @@ inline Lanes select(LaneMask mask, Lanes a, Lanes b) {
 
 #endif
 
-// e^x lane by lane. With AVX2, Cephes' expf (range reduction by ln 2, a degree-5 polynomial; within
-// 2 ulp of libm's expf over [−87, 0], where the tracer uses it: absorption and haze); else libm's.
+// e^x lane by lane: expLanes (render/wide_lanes.h) where the build has AVX2 and FMA, else libm's.
 inline Lanes exp(Lanes x) {
-#if defined(__AVX2__)
-  const auto multiplyAdd = [](__m256 a, __m256 b, __m256 c) {
-#if defined(__FMA__)
-    return _mm256_fmadd_ps(a, b, c);
+#if defined(SLIME_WIDE_LANES)
+  return Lanes((__m256)expLanes((Wide<8>::F)x.v));
 #else
-    return _mm256_add_ps(_mm256_mul_ps(a, b), c);
-#endif
-  };
-  const __m256 v = _mm256_max_ps(x.v, _mm256_set1_ps(-87.0f));
-  const __m256 n = _mm256_round_ps(_mm256_mul_ps(v, _mm256_set1_ps(1.44269504088896341f)),
-                                   _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC);
-  __m256 r = _mm256_sub_ps(v, _mm256_mul_ps(n, _mm256_set1_ps(0.693359375f)));
-  r = _mm256_sub_ps(r, _mm256_mul_ps(n, _mm256_set1_ps(-2.12194440e-4f)));
-  __m256 p = _mm256_set1_ps(1.9875691500e-4f);
-  p = multiplyAdd(p, r, _mm256_set1_ps(1.3981999507e-3f));
-  p = multiplyAdd(p, r, _mm256_set1_ps(8.3334519073e-3f));
-  p = multiplyAdd(p, r, _mm256_set1_ps(4.1665795894e-2f));
-  p = multiplyAdd(p, r, _mm256_set1_ps(1.6666665459e-1f));
-  p = multiplyAdd(p, r, _mm256_set1_ps(5.0000001201e-1f));
-  p = multiplyAdd(p, _mm256_mul_ps(r, r), _mm256_add_ps(r, _mm256_set1_ps(1.0f)));
-  const __m256i scale = _mm256_slli_epi32(_mm256_add_epi32(_mm256_cvtps_epi32(n), _mm256_set1_epi32(127)), 23);
-  return Lanes(_mm256_mul_ps(p, _mm256_castsi256_ps(scale)));
-#else
-  return eachLane<Lanes>(x, x, [](float value, float) { return std::exp(value); });
+  float values[8];
+  x.store(values);
+  for (float& value : values) value = std::exp(value);
+  return Lanes::load(values);
 #endif
 }
 

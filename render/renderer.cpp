@@ -34,6 +34,8 @@ namespace {
 constexpr int kTileRows = 8;
 constexpr int kTileColumns = 32;  // a multiple of the 8-ray packet width
 constexpr int kPacket = 8;
+// Pixels seen to lie outside the slime's footprint are shaded this many at a time (8 with AVX2, 16 with AVX-512).
+constexpr int kFloorLanes = WhittedTracer::kFloorOrSkyRays;
 
 double millisecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -181,19 +183,23 @@ struct Renderer::Impl {
     const float inverseSamples = 1.0f / static_cast<float>(samplesPerAxis * samplesPerAxis);
     const glm::vec3 eye(camera.position);
     const PrimaryView view(camera, image.width, image.height);
+    const auto resetCaches = [&](std::size_t first, int count) {  // the view changed: nothing kept holds
+      for (int i = 0; i < count; ++i) {
+        floorShadings[first + i].filled = false;
+        reusable[first + i] = 0;
+      }
+    };
     for (int y = rowBegin; y < rowEnd; ++y) {
-      for (int x0 = columnBegin; x0 < columnEnd; x0 += kPacket) {
-        const int count = std::min(kPacket, columnEnd - x0);
+      int count = 0;
+      for (int x0 = columnBegin; x0 < columnEnd; x0 += count) {
+        count = std::min(kPacket, columnEnd - x0);
         const std::size_t first = static_cast<std::size_t>(y) * image.width + x0;
-        if (floorShadings && cachesStale) {
-          for (int i = 0; i < count; ++i) {
-            floorShadings[first + i].filled = false;
-            reusable[first + i] = 0;
-          }
-        }
+        if (floorShadings && cachesStale) resetCaches(first, count);
         const bool outside = footprint && footprint->outside(x0, count, y);
-        if (outside && floorShadings &&
-            std::all_of(&reusable[first], &reusable[first] + count, [](std::uint8_t r) { return r != 0; })) {
+        const auto copied = [&](std::size_t from, int size) {  // outside, with colours kept from the last frame
+          return floorShadings && std::all_of(&reusable[from], &reusable[from] + size, [](std::uint8_t r) { return r != 0; });
+        };
+        if (outside && copied(first, count)) {
           // Outside the last frame's footprint too, the last frame copied or stored exactly these colours.
           const bool inPlace = imageInPlace && lastFootprint.outside(x0, count, y);
           if (!inPlace)
@@ -203,19 +209,27 @@ struct Renderer::Impl {
           counts.reusedPixels += static_cast<std::uint64_t>(count);
           continue;
         }
-        glm::vec3 sums[kPacket] = {};
+        if (outside && count == kPacket && kFloorLanes > kPacket && x0 + kPacket < columnEnd) {
+          // Where the processor has wider lanes, the next packet joins this one if it too lies
+          // outside the footprint and is to be traced: floor or sky, kFloorLanes pixels at a time.
+          const int next = std::min(kFloorLanes - kPacket, columnEnd - x0 - kPacket);
+          if (floorShadings && cachesStale) resetCaches(first + kPacket, next);
+          if (footprint->outside(x0 + kPacket, next, y) && !copied(first + kPacket, next)) count += next;
+        }
+        glm::vec3 sums[kFloorLanes] = {};
         for (int sampleY = 0; sampleY < samplesPerAxis; ++sampleY) {
           for (int sampleX = 0; sampleX < samplesPerAxis; ++sampleX) {
             // One sample: the caller's point of the pixel; more: the centre of each cell of an n × n
             // grid in the pixel (stratified supersampling).
             const float offsetX = samplesPerAxis == 1 ? pixelOffset.x : (sampleX + 0.5f) / samplesPerAxis;
             const float offsetY = samplesPerAxis == 1 ? pixelOffset.y : (sampleY + 0.5f) / samplesPerAxis;
-            float directionX[kPacket], directionY[kPacket], directionZ[kPacket];
-            primaryDirections8(view, x0 + offsetX, y + offsetY, directionX, directionY, directionZ);
-            glm::vec3 colors[kPacket];
+            float directionX[kFloorLanes], directionY[kFloorLanes], directionZ[kFloorLanes];
+            for (int from = 0; from < count; from += kPacket)
+              primaryDirections8(view, x0 + from + offsetX, y + offsetY, directionX + from, directionY + from, directionZ + from);
+            glm::vec3 colors[kFloorLanes];
             if (outside) {
               // Nothing here can meet the slime or its shadow: the floor or the sky, in lanes.
-              tracer.traceFloorOrSky8(eye, directionX, directionY, directionZ, count, counts, colors);
+              tracer.traceFloorOrSky(eye, directionX, directionY, directionZ, count, counts, colors);
             } else {
               Ray rays[kPacket];
               bool active[kPacket] = {};
@@ -235,16 +249,19 @@ struct Renderer::Impl {
             for (int i = 0; i < count; ++i) sums[i] += colors[i];
           }
         }
-        for (int i = 0; i < kPacket && x0 + i < columnEnd; ++i) {
-          const glm::vec3 color = sums[i] * inverseSamples;
+        glm::vec3* pixels = &image.pixels[first];
+        int nonFinite = 0;
+        for (int i = 0; i < count; ++i) {
+          const glm::vec3 color = samplesPerAxis == 1 ? sums[i] : sums[i] * inverseSamples;
           // A non-finite colour would be a bug upstream: count it (tests demand 0), never show it.
           const bool finite = std::isfinite(color.x + color.y + color.z);
-          counts.nonFinitePixels += !finite;
-          image.at(x0 + i, y) = finite ? color : glm::vec3(0.0f);
-          if (outside && floorShadings) {
-            reusableColors[first + i] = image.at(x0 + i, y);
-            reusable[first + i] = 1;
-          }
+          nonFinite += !finite;
+          pixels[i] = finite ? color : glm::vec3(0.0f);
+        }
+        counts.nonFinitePixels += static_cast<std::uint64_t>(nonFinite);
+        if (outside && floorShadings) {
+          std::copy(pixels, pixels + count, &reusableColors[first]);
+          std::fill(&reusable[first], &reusable[first] + count, std::uint8_t{1});
         }
         if (srgba) encodeSrgb8(&image.pixels[first], static_cast<std::size_t>(count), 4, srgba + 4 * first);
       }

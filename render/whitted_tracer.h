@@ -17,6 +17,7 @@
 #include "render/renderer.h"
 #include "render/shading_parameters.h"
 #include "render/slime_geometry.h"
+#include "render/wide_lanes.h"
 
 #include <vector>
 
@@ -59,12 +60,18 @@ class WhittedTracer {
   void tracePrimary8(const Ray* rays, const SlimeHit* hits, int count, TraceCounters& counters,
                      FloorShading* floorCache, glm::vec3* colors, bool outOfReach = false) const;
 
-  // Up to `count` ≤ 8 primary rays from `eye` (unit directions by lane) that can neither meet the
-  // slime nor see its shadow (outside its ScreenFootprint): the floor or the sky, into colors[]. On a
-  // matte floor in lanes (AVX2), with the very operations of tracePrimary8, so a pixel shaded here
-  // equals one shaded there bit for bit (the footprint's invariant test demands it).
-  void traceFloorOrSky8(const glm::vec3& eye, const float* directionX, const float* directionY, const float* directionZ,
-                        int count, TraceCounters& counters, glm::vec3* colors) const;
+  // Up to `count` ≤ kFloorOrSkyRays primary rays from `eye` (unit directions by lane) that can
+  // neither meet the slime nor see its shadow (outside its ScreenFootprint): the floor or the sky,
+  // into colors[]. On a matte floor in lanes (8 with AVX2, 16 with AVX-512), with the very operations
+  // of tracePrimary8, so a pixel shaded here equals one shaded there bit for bit (the footprint's
+  // invariant test demands it).
+#if defined(SLIME_WIDE_LANES)
+  static constexpr int kFloorOrSkyRays = kWidestLanes;
+#else
+  static constexpr int kFloorOrSkyRays = 8;
+#endif
+  void traceFloorOrSky(const glm::vec3& eye, const float* directionX, const float* directionY, const float* directionZ,
+                       int count, TraceCounters& counters, glm::vec3* colors) const;
 
   // One primary ray whose slime hit is known (tracePrimary8 with one ray).
   glm::vec3 tracePrimary(const Ray& ray, const SlimeHit& hit, TraceCounters& counters,
@@ -131,19 +138,27 @@ class WhittedTracer {
   // (needed[i]), the pattern looked up 8 at a time; writes shadings[i] of those only.
   void floorShading8(const Ray* rays, const float* t, const float* distances, const bool* needed,
                      FloorShading* shadings) const;
-  // Up to 8 rays reaching the floor, by lane (unneeded lanes stay zero), and what floorLanes8 finds there.
-  struct FloorRays8 {
-    float originX[8] = {}, originY[8] = {}, directionX[8] = {}, directionY[8] = {}, directionZ[8] = {};
-    float t[8] = {}, distance[8] = {};  // along the ray to the floor; from the eye (the footprint's cone)
-    bool needed[8] = {};
+  // Up to N rays reaching the floor, by lane (unneeded lanes stay zero), and what floorLanes finds there.
+  template <int N>
+  struct FloorRays {
+    float originX[N] = {}, originY[N] = {}, directionX[N] = {}, directionY[N] = {}, directionZ[N] = {};
+    float t[N] = {}, distance[N] = {};  // along the ray to the floor; from the eye (the footprint's cone)
+    bool needed[N] = {};
   };
-  struct FloorLanes8 {
-    float x[8] = {}, y[8] = {};         // the floor point
-    float haze[8] = {}, lightZ[8] = {};  // the horizon haze's share; the light direction's z there
-    float albedo[3][8] = {};             // the pattern over the pixel's footprint, by channel
+  template <int N>
+  struct FloorPoints {
+    float x[N] = {}, y[N] = {};         // the floor point
+    float haze[N] = {}, lightZ[N] = {};  // the horizon haze's share; the light direction's z there
+    float albedo[3][N] = {};             // the pattern over the pixel's footprint, by channel
   };
-  // floorFootprint, the pattern and litFloor's haze and light direction, 8 lanes at a time (AVX2 builds).
-  void floorLanes8(const FloorRays8& rays, FloorLanes8& lanes) const;
+  // floorFootprint, the pattern and litFloor's haze and light direction, N lanes at a time (N = 8
+  // with AVX2, 16 with AVX-512: render/wide_lanes.h; a lane's result is the same for either N).
+  template <int N>
+  void floorLanes(const FloorRays<N>& rays, FloorPoints<N>& points) const;
+  // traceFloorOrSky for N ≥ count rays at once.
+  template <int N>
+  void traceFloorOrSkyLanes(const glm::vec3& eye, const float* directionX, const float* directionY,
+                            const float* directionZ, int count, TraceCounters& counters, glm::vec3* colors) const;
   // Half extents on the floor of the pixel cone's footprint, `distance` from the eye along `direction`.
   glm::vec2 floorFootprint(const glm::vec3& direction, float distance) const;
   // The floor's FloorShading at `point` once its albedo is known.
