@@ -7,6 +7,7 @@
 #include "core/settings_io.h"
 #include "render/floor_texture.h"
 #include "render/renderer.h"
+#include "render/wide_lanes.h"
 
 #include <benchmark/benchmark.h>
 
@@ -78,6 +79,41 @@ void floorAlbedo(benchmark::State& state) {
   state.SetLabel(patterns[state.range(0)]);
 }
 BENCHMARK(floorAlbedo)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
+
+// The planks N lookups at a time (FloorTexture::albedoLanes: 8 lanes with AVX2, 16 with AVX-512), on
+// the same grid as floorAlbedo; items are lookups.
+template <int N>
+void floorAlbedoLanes(benchmark::State& state) {
+  const FloorTexture floor(defaultSettings().floor);
+  constexpr int kSide = 64;
+  static_assert(kSide % N == 0, "whole runs of lanes along a row");
+  float x[N], y[N], footprintX[N], footprintY[N], channels[3][N];
+  bool active[N];
+  for (int i = 0; i < N; ++i) {
+    footprintX[i] = 4e-4f;
+    footprintY[i] = 2.5e-4f;
+    active[i] = true;
+  }
+  float sum = 0.0f;
+  for (auto _ : state) {
+    for (int j = 0; j < kSide; ++j) {
+      for (int i0 = 0; i0 < kSide; i0 += N) {
+        for (int i = 0; i < N; ++i) {
+          x[i] = -0.15f + 0.3f * static_cast<float>(i0 + i) / kSide;
+          y[i] = -0.12f + 0.3f * static_cast<float>(j) / kSide;
+        }
+        floor.albedoLanes<N>(x, y, footprintX, footprintY, active, channels);
+        sum += channels[0][0];
+      }
+    }
+  }
+  benchmark::DoNotOptimize(sum);
+  state.SetItemsProcessed(state.iterations() * kSide * kSide);
+}
+BENCHMARK(floorAlbedoLanes<8>)->Unit(benchmark::kMicrosecond);
+#if defined(SLIME_WIDE_LANES) && defined(__AVX512F__)
+BENCHMARK(floorAlbedoLanes<16>)->Unit(benchmark::kMicrosecond);
+#endif
 
 }  // namespace
 }  // namespace slime
