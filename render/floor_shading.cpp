@@ -1,16 +1,15 @@
 // The floor and the sky as the Whitted tracer sees them: where a ray meets the plane z = 0, the
 // pixel's footprint there, the pattern over it, the light and the horizon haze (litFloor), one ray
-// at a time or 8 lanes at a time; and the sky's gradient. The floor has no slime in it: the tracer
-// adds the slime's shadow (whitted_tracer.cpp).
-#include "render/lanes.h"
+// at a time or in lanes (8 or 16 at a time, render/wide_lanes.h); and the sky's gradient. The floor
+// has no slime in it: the tracer adds the slime's shadow (whitted_tracer.cpp).
 #include "render/optics.h"
 #include "render/whitted_tracer.h"
+#include "render/wide_lanes.h"
 
 #include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <cmath>
-
 
 namespace slime {
 namespace {
@@ -23,7 +22,6 @@ float phongLobe(const glm::vec3& normal, const glm::vec3& toLight, const glm::ve
   if (cosine <= 0.0f || shininess * (1.0f - cosine) > 8.5f) return 0.0f;
   return std::pow(cosine, shininess);
 }
-
 
 }  // namespace
 

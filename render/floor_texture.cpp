@@ -2,6 +2,7 @@
 
 #include "core/settings_io.h"
 #include "render/image_io.h"
+#include "render/wide_lanes.h"
 
 #include <glm/common.hpp>
 #include <glm/exponential.hpp>
@@ -9,8 +10,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-
-#include "render/wide_lanes.h"
 
 namespace slime {
 namespace {
