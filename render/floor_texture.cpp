@@ -261,7 +261,7 @@ void FloorTexture::planksLanes(const float* x, const float* y, const float* foot
 
 template void FloorTexture::albedoLanes<8>(const float*, const float*, const float*, const float*, const bool*,
                                            float (*)[8]) const;
-#if defined(SLIME_WIDE_LANES) && defined(__AVX512F__)
+#if defined(SLIME_WIDE_LANES_16)
 template void FloorTexture::albedoLanes<16>(const float*, const float*, const float*, const float*, const bool*,
                                             float (*)[16]) const;
 #endif

@@ -189,6 +189,9 @@ struct Renderer::Impl {
         reusable[first + i] = 0;
       }
     };
+    const auto copied = [&](std::size_t first, int count) {  // pixels whose colours the last frame kept
+      return floorShadings && std::all_of(&reusable[first], &reusable[first] + count, [](std::uint8_t r) { return r != 0; });
+    };
     for (int y = rowBegin; y < rowEnd; ++y) {
       int count = 0;
       for (int x0 = columnBegin; x0 < columnEnd; x0 += count) {
@@ -196,9 +199,6 @@ struct Renderer::Impl {
         const std::size_t first = static_cast<std::size_t>(y) * image.width + x0;
         if (floorShadings && cachesStale) resetCaches(first, count);
         const bool outside = footprint && footprint->outside(x0, count, y);
-        const auto copied = [&](std::size_t from, int size) {  // outside, with colours kept from the last frame
-          return floorShadings && std::all_of(&reusable[from], &reusable[from] + size, [](std::uint8_t r) { return r != 0; });
-        };
         if (outside && copied(first, count)) {
           // Outside the last frame's footprint too, the last frame copied or stored exactly these colours.
           const bool inPlace = imageInPlace && lastFootprint.outside(x0, count, y);

@@ -23,8 +23,9 @@ struct Wide {
   typedef std::uint32_t U __attribute__((vector_size(4 * N)));
 };
 
-// The widest the build has: 16 with AVX-512, else 8.
+// The widest the build has: 16 with AVX-512 (SLIME_WIDE_LANES_16), else 8.
 #if defined(__AVX512F__)
+#define SLIME_WIDE_LANES_16 1
 constexpr int kWidestLanes = 16;
 #else
 constexpr int kWidestLanes = 8;
@@ -72,7 +73,7 @@ inline Wide<8>::F fmaLanes(Wide<8>::F a, Wide<8>::F b, Wide<8>::F c) {
 // Lane i of a mask as bit i.
 inline unsigned maskBits(Wide<8>::I mask) { return static_cast<unsigned>(_mm256_movemask_ps((__m256)mask)); }
 
-#if defined(__AVX512F__)
+#if defined(SLIME_WIDE_LANES_16)
 // (The zero-masked forms: GCC 12 warns that the plain ones read an uninitialised vector.)
 inline Wide<16>::F floorLanes(Wide<16>::F x) {
   return (Wide<16>::F)_mm512_maskz_roundscale_ps(0xFFFF, (__m512)x, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);

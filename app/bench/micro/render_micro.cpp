@@ -111,7 +111,7 @@ void floorAlbedoLanes(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * kSide * kSide);
 }
 BENCHMARK(floorAlbedoLanes<8>)->Unit(benchmark::kMicrosecond);
-#if defined(SLIME_WIDE_LANES) && defined(__AVX512F__)
+#if defined(SLIME_WIDE_LANES_16)
 BENCHMARK(floorAlbedoLanes<16>)->Unit(benchmark::kMicrosecond);
 #endif
 
