@@ -124,7 +124,8 @@ void EmbreeScene::attachMesh(const SlimeGeometry& geometry) {
 }
 
 void EmbreeScene::update(const SlimeGeometry& geometry, bool topologyChanged) {
-  if (topologyChanged || !mesh_) {
+  const bool newMesh = topologyChanged || !mesh_;
+  if (newMesh) {
     attachMesh(geometry);
     builtRadius_ = geometry.boundRadius;
     refitsSinceBuild_ = 0;
@@ -161,6 +162,9 @@ void EmbreeScene::update(const SlimeGeometry& geometry, bool topologyChanged) {
   rtcCommitScene(scene_);
   throwOnError("refitting the slime");
   buildNonSupporting(geometry);
+  geometry_ = &geometry;
+  if (newMesh) exitWalk_.connect(geometry.triangles);
+  if (!geometry.analyticSphere) exitWalk_.map(geometry);
   lightGrid_.stale = eyeGrid_.stale = true;
 }
 
@@ -195,6 +199,12 @@ bool EmbreeScene::lightCrossings8(const Ray* rays, const bool* active, SegmentCr
 bool EmbreeScene::primaryHits8(const Ray* rays, const bool* active, SlimeHit* hits) const {
   if (!eyeGrid_.serves()) return false;
   for (int i = 0; i < 8; ++i) hits[i] = active[i] ? eyeGrid_.grid.nearest(rays[i]) : SlimeHit{};
+  return true;
+}
+
+bool EmbreeScene::supportingExits8(const Ray* rays, const glm::vec3* exitPoints, const bool* active, SlimeHit* hits) const {
+  if (!geometry_ || geometry_->analyticSphere) return false;
+  exitWalk_.supportingExits8(*geometry_, rays, exitPoints, active, hits);
   return true;
 }
 

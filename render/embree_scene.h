@@ -3,10 +3,12 @@
 // the analytic sphere of slime.shape=sphere as a one-point sphere primitive; and a second scene of the
 // frame's non-supporting triangles alone, built anew each frame. Beside Embree, two grids of the
 // triangles as the light and the eye see them (render/pencil_grid.h) answer the shadow rays and the
-// primary rays, where they can. The floor and sky are not in Embree: they are analytic (see
+// primary rays, and a walk over the surface (render/exit_walk.h) where rays inside leave it, where
+// they can. The floor and sky are not in Embree: they are analytic (see
 // whitted_tracer.h).
 #pragma once
 
+#include "render/exit_walk.h"
 #include "render/pencil_grid.h"
 #include "render/ray.h"
 #include "render/slime_geometry.h"
@@ -43,6 +45,9 @@ class EmbreeScene final : public SlimeIntersector {
   // The same for the primary rays from `eye` (binning only the triangles that face it) and primaryHits8.
   void prepareEye(const SlimeGeometry& geometry, const glm::vec3& eye, bool wanted);
   bool primaryHits8(const Ray* rays, const bool* active, SlimeHit* hits) const override;
+  // Where rays inside leave through a supporting triangle, from the walk over the surface mapped by
+  // update (not for the analytic sphere).
+  bool supportingExits8(const Ray* rays, const glm::vec3* exitPoints, const bool* active, SlimeHit* hits) const override;
 
   int rebuildCount() const { return rebuilds_; }
 
@@ -72,6 +77,8 @@ class EmbreeScene final : public SlimeIntersector {
     void prepare(const SlimeGeometry& geometry, const glm::vec3& apex, bool wanted);
     bool serves() const { return !stale && grid.ready(); }
   };
+  const SlimeGeometry* geometry_ = nullptr;  // the one update() last read
+  ExitWalk exitWalk_;
   ApexGrid lightGrid_;
   ApexGrid eyeGrid_{PencilGrid{}, true, true};
   bool sphereEnabled_ = false;

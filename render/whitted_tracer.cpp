@@ -127,6 +127,8 @@ void WhittedTracer::tracePrimary8(const Ray* rays, const SlimeHit* hits, int cou
 }
 
 void WhittedTracer::findHits(std::vector<PendingRay>& rays, TraceCounters& counters) const {
+  // The intersector's packet: rays from outside, and chords from inside the walk left (asked back
+  // from beyond the bounding sphere), each with its check of the non-supporting triangles.
   Ray packet[8], checks[8];
   bool active[8] = {};
   bool checked[8] = {};  // the ray also asks for its first non-supporting crossing on its way out
@@ -136,7 +138,12 @@ void WhittedTracer::findHits(std::vector<PendingRay>& rays, TraceCounters& count
   const auto flush = [&] {
     SlimeHit found[8], crossings[8];
     intersector_.intersect8(packet, active, found);
-    if (checkCount > 0) intersector_.intersectNonSupporting8(checks, checked, crossings);
+    if (checkCount > 0) {
+      // A crossing with the non-supporting triangles counts only before the last crossing, just found.
+      for (int k = 0; k < size; ++k)
+        if (checked[k] && found[k].valid()) checks[k].tFar = std::min(checks[k].tFar, reversedFrom[k] - found[k].t + kRayOffset);
+      intersector_.intersectNonSupporting8(checks, checked, crossings);
+    }
     counters.slimeQueries += static_cast<std::uint64_t>(size + checkCount);
     for (int k = 0; k < size; ++k) {
       const Ray& ray = rays[members[k]].ray;
@@ -155,28 +162,13 @@ void WhittedTracer::findHits(std::vector<PendingRay>& rays, TraceCounters& count
     size = checkCount = 0;
   };
   const bool convex = geometry_.isConvex(), backwards = geometry_.fewNonSupporting();
-  for (std::size_t r = 0; r < rays.size(); ++r) {
-    PendingRay& ray = rays[r];
-    if (ray.hitKnown) continue;
-    ray.hitKnown = true;
-    ray.hit = SlimeHit{};
-    // A ray leaving through a supporting triangle cannot meet the slime again; others only if they
-    // reach its bounds.
-    if (ray.path.leavesSlime || !geometry_.mayHit(ray.ray)) continue;
-    packet[size] = ray.ray;
-    const float beyond = ray.path.inside && backwards ? geometry_.boundExitDistance(ray.ray) + kReverseMargin : 0.0f;
-    if (beyond > 0.0f && beyond < kMaxReverseDistance) {
-      // A ray inside the slime that leaves it through a supporting triangle is then above that
-      // triangle's plane, with all the slime below: it never comes back, and where it leaves is its
-      // last crossing, the first one met by the ray coming back from beyond the bounding sphere, a
-      // query from outside the jelly (about twice as fast in Embree as one from inside, across it).
-      // A ray that leaves through a non-supporting triangle may come back, but it has crossed
-      // nothing before (had it left through a supporting one first, it could not have come back):
-      // its first crossing with the non-supporting triangles, asked beside, from a far smaller set,
-      // is where it leaves. Convex: there are none, and no second query.
-      packet[size] = Ray{ray.ray.origin + beyond * ray.ray.direction, -ray.ray.direction, 0.0f, beyond - kRayOffset};
+  const auto ask = [&](std::size_t r, float beyond) {  // into the intersector's packet
+    const Ray& ray = rays[r].ray;
+    packet[size] = ray;
+    if (beyond > 0.0f) {
+      packet[size] = Ray{ray.origin + beyond * ray.direction, -ray.direction, 0.0f, beyond - kRayOffset};
       reversedFrom[size] = beyond;
-      checks[size] = Ray{ray.ray.origin, ray.ray.direction, ray.ray.tNear, std::min(ray.ray.tFar, beyond)};
+      checks[size] = Ray{ray.origin, ray.direction, ray.tNear, std::min(ray.tFar, beyond)};
       if (!convex && geometry_.mayCrossNonSupporting(checks[size])) {
         checked[size] = true;
         ++checkCount;
@@ -185,8 +177,80 @@ void WhittedTracer::findHits(std::vector<PendingRay>& rays, TraceCounters& count
     active[size] = true;
     members[size] = r;
     if (++size == 8) flush();
+  };
+  // The walkers' batch: chords from inside, eight at a time; and the checks of those it settled.
+  Ray walkers[8], walkedChecks[8];
+  glm::vec3 exitPoints[8];
+  float walkerBeyond[8] = {};
+  bool walking[8] = {}, walkedChecked[8] = {};
+  std::size_t walkerMembers[8] = {}, walkedMembers[8] = {};
+  int walkerCount = 0, walkedCount = 0;
+  const auto flushChecks = [&] {
+    SlimeHit crossings[8];
+    intersector_.intersectNonSupporting8(walkedChecks, walkedChecked, crossings);
+    counters.slimeQueries += static_cast<std::uint64_t>(walkedCount);
+    for (int k = 0; k < walkedCount; ++k) {
+      if (crossings[k].valid()) rays[walkedMembers[k]].hit = crossings[k];
+      walkedChecked[k] = false;
+    }
+    walkedCount = 0;
+  };
+  const auto walk = [&] {  // the batch's chords: found by the walk, or into the intersector's packet
+    SlimeHit exits[8];
+    if (!intersector_.supportingExits8(walkers, exitPoints, walking, exits))
+      for (SlimeHit& exit : exits) exit = SlimeHit{};
+    for (int k = 0; k < walkerCount; ++k) {
+      const std::size_t r = walkerMembers[k];
+      if (!exits[k].valid()) {
+        ask(r, walkerBeyond[k]);
+      } else {
+        rays[r].hit = exits[k];
+        const Ray& ray = rays[r].ray;
+        const Ray check{ray.origin, ray.direction, ray.tNear, exits[k].t + kRayOffset};
+        if (!convex && geometry_.mayCrossNonSupporting(check)) {
+          walkedChecks[walkedCount] = check;
+          walkedChecked[walkedCount] = true;
+          walkedMembers[walkedCount] = r;
+          if (++walkedCount == 8) flushChecks();
+        }
+      }
+      walking[k] = false;
+    }
+    walkerCount = 0;
+  };
+  for (std::size_t r = 0; r < rays.size(); ++r) {
+    PendingRay& ray = rays[r];
+    if (ray.hitKnown) continue;
+    ray.hitKnown = true;
+    ray.hit = SlimeHit{};
+    // A ray leaving through a supporting triangle cannot meet the slime again; others only if they
+    // reach its bounds.
+    if (ray.path.leavesSlime || !geometry_.mayHit(ray.ray)) continue;
+    const float beyond = ray.path.inside && backwards ? geometry_.boundExitDistance(ray.ray) + kReverseMargin : 0.0f;
+    if (!(beyond > 0.0f && beyond < kMaxReverseDistance)) {
+      ask(r, 0.0f);
+      continue;
+    }
+    // A ray inside the slime that leaves it through a supporting triangle is then above that
+    // triangle's plane, with all the slime below: it never comes back, and where it leaves is its
+    // only crossing with a supporting triangle. The walk over the surface (render/exit_walk.h)
+    // finds it most of the time without a query; else it is the ray's last crossing, the first one
+    // met by the ray coming back from beyond the bounding sphere, a query from outside the jelly
+    // (about twice as fast in Embree as one from inside, across it).
+    // A ray that leaves through a non-supporting triangle may come back, but it has crossed nothing
+    // before (had it left through a supporting one first, it could not have come back): its first
+    // crossing with the non-supporting triangles, asked beside, from a far smaller set, is where it
+    // leaves. Convex: there are none, and no second query.
+    walkers[walkerCount] = Ray{ray.ray.origin, ray.ray.direction, std::max(ray.ray.tNear, kRayOffset), std::min(ray.ray.tFar, beyond)};
+    exitPoints[walkerCount] = ray.ray.origin + beyond * ray.ray.direction;
+    walkerBeyond[walkerCount] = beyond;
+    walking[walkerCount] = true;
+    walkerMembers[walkerCount] = r;
+    if (++walkerCount == 8) walk();
   }
+  if (walkerCount > 0) walk();
   if (size > 0) flush();
+  if (walkedCount > 0) flushChecks();
 }
 
 void WhittedTracer::lookUpFloors(const std::vector<PendingRay>& rays, std::vector<FloorShading>& floors) const {
