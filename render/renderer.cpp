@@ -6,6 +6,8 @@
 #include "render/embree_util.h"
 #include "render/floor_texture.h"
 #include "render/image_io.h"
+#include "render/primary_view.h"
+#include "render/primary_visibility.h"
 #include "render/screen_footprint.h"
 #include "render/slime_geometry.h"
 #include "render/tsan_handoff.h"
@@ -63,56 +65,14 @@ FloorCacheKey floorCacheKey(const Camera& camera, const ShadingParameters& p, in
           zenith.z,          static_cast<double>(p.depth), p.shadows ? 1.0 : 0.0, pixelOffset.x, pixelOffset.y};
 }
 
-// Camera::rayDirection in float for the tiles: the ray through image point (x, y) (in pixels from
-// the top-left corner) points along forward + (2x/width − 1) right + (1 − 2y/height) up, with right
-// and up scaled by the field of view, normalised.
-struct PrimaryView {
-  PrimaryView(const Camera& camera, int width, int height)
-      : forward(camera.forward),
-        right(camera.right * (camera.tanHalfFov * camera.aspect)),
-        up(camera.up * camera.tanHalfFov),
-        width(static_cast<float>(width)),
-        height(static_cast<float>(height)) {}
-  glm::vec3 forward, right, up;
-  float width, height;
-};
-
-// The unit directions of the 8 primary rays through (x + i, y), i = 0..7, by lane. Every primary ray
-// of a frame comes from here, so a pixel's ray is the same whichever way its packet is then traced.
-void primaryDirections8(const PrimaryView& view, float x, float y, float* directionX, float* directionY,
-                        float* directionZ) {
-#if defined(__AVX2__)
-  const __m256 column = _mm256_add_ps(_mm256_set1_ps(x), _mm256_setr_ps(0, 1, 2, 3, 4, 5, 6, 7));
-  const __m256 across = _mm256_sub_ps(_mm256_mul_ps(_mm256_set1_ps(2.0f), _mm256_div_ps(column, _mm256_set1_ps(view.width))),
-                                      _mm256_set1_ps(1.0f));
-  const float down = 1.0f - 2.0f * (y / view.height);
-  __m256 d[3];
-  for (int c = 0; c < 3; ++c)
-    d[c] = _mm256_add_ps(_mm256_add_ps(_mm256_set1_ps(view.forward[c]), _mm256_mul_ps(across, _mm256_set1_ps(view.right[c]))),
-                         _mm256_set1_ps(down * view.up[c]));
-  const __m256 length2 = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(d[0], d[0]), _mm256_mul_ps(d[1], d[1])), _mm256_mul_ps(d[2], d[2]));
-  const __m256 inverse = _mm256_div_ps(_mm256_set1_ps(1.0f), _mm256_sqrt_ps(length2));
-  _mm256_storeu_ps(directionX, _mm256_mul_ps(d[0], inverse));
-  _mm256_storeu_ps(directionY, _mm256_mul_ps(d[1], inverse));
-  _mm256_storeu_ps(directionZ, _mm256_mul_ps(d[2], inverse));
-#else
-  const float down = 1.0f - 2.0f * (y / view.height);
-  for (int i = 0; i < 8; ++i) {
-    const float across = 2.0f * ((x + static_cast<float>(i)) / view.width) - 1.0f;
-    const glm::vec3 d = glm::normalize(view.forward + across * view.right + down * view.up);
-    directionX[i] = d.x;
-    directionY[i] = d.y;
-    directionZ[i] = d.z;
-  }
-#endif
-}
-
 }  // namespace
 
 struct Renderer::Impl {
   SlimeGeometry geometry;
   EmbreeScene embree;
   BruteTracer brute{geometry};
+  // The primary rays' first hits, found in object order for the frame (one sample per pixel).
+  PrimaryVisibility visibility;
   FloorSettings floorSettings;
   FloorTexture floor;
   int threads = 0;
@@ -225,7 +185,7 @@ struct Renderer::Impl {
             const float offsetY = samplesPerAxis == 1 ? pixelOffset.y : (sampleY + 0.5f) / samplesPerAxis;
             float directionX[kFloorLanes], directionY[kFloorLanes], directionZ[kFloorLanes];
             for (int from = 0; from < count; from += kPacket)
-              primaryDirections8(view, x0 + from + offsetX, y + offsetY, directionX + from, directionY + from, directionZ + from);
+              primaryDirections8(view, x0 + from, offsetX, y + offsetY, directionX + from, directionY + from, directionZ + from);
             glm::vec3 colors[kFloorLanes];
             if (outside) {
               // Nothing here can meet the slime or its shadow: the floor or the sky, in lanes.
@@ -242,7 +202,8 @@ struct Renderer::Impl {
               }
               if (activeCount > 0) {
                 counts.slimeQueries += static_cast<std::uint64_t>(activeCount);
-                if (!intersector.primaryHits8(rays, active, hits)) intersector.intersect8(rays, active, hits);
+                if (visibility.ready()) visibility.hits8(x0, y, count, active, hits);
+                else if (!intersector.primaryHits8(rays, active, hits)) intersector.intersect8(rays, active, hits);
               }
               tracer.tracePrimary8(rays, hits, count, counts, floorShadings ? floorShadings + first : nullptr, colors);
             }
@@ -312,8 +273,15 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
   const auto footprintOfTheSlime = [&] {
     slimeFootprint(camera, impl.geometry, parameters, image.width, image.height, impl.footprint);
   };
+  // The primary rays' first hits in object order where one sample a pixel is traced; else the eye's grid.
+  const auto primaryHits = [&] {
+    const bool found = samplesPerAxis == 1 && impl.visibility.build(impl.geometry, camera, image.width, image.height, pixelOffset);
+    if (!found) impl.visibility.clear();
+    impl.embree.prepareEye(impl.geometry, glm::vec3(camera.position), !found);
+  };
   if (brute) {
     footprintOfTheSlime();
+    impl.visibility.clear();
     impl.embree.prepareLight(impl.geometry, parameters.lightPosition, false);
     impl.embree.prepareEye(impl.geometry, glm::vec3(camera.position), false);
   } else {
@@ -328,7 +296,7 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
     impl.arena->execute([&] {
       tbb::parallel_invoke(task(footprintOfTheSlime),
                            task([&] { impl.embree.prepareLight(impl.geometry, parameters.lightPosition, parameters.shadows); }),
-                           task([&] { impl.embree.prepareEye(impl.geometry, glm::vec3(camera.position), true); }));
+                           task(primaryHits));
     });
     takeOver(&impl);
   }

@@ -204,6 +204,7 @@ void WhittedTracer::findHits(std::vector<PendingRay>& rays, TraceCounters& count
       if (!exits[k].valid()) {
         ask(r, walkerBeyond[k]);
       } else {
+        ++counters.slimeQueries;  // a query answered by the walk, as a grid's answer counts one
         rays[r].hit = exits[k];
         const Ray& ray = rays[r].ray;
         const Ray check{ray.origin, ray.direction, ray.tNear, exits[k].t + kRayOffset};

@@ -26,7 +26,7 @@ namespace slime {
 // What a tracing thread counts (no shared writes): rays by kind plus slime queries actually made.
 struct TraceCounters {
   RayCounts rays;
-  std::uint64_t slimeQueries = 0;  // rays that reached Embree / the triangle loop
+  std::uint64_t slimeQueries = 0;  // rays asked of the slime (Embree, the brute force, a grid, the walk, the visibility: one each)
   std::uint64_t nonFinitePixels = 0;
   std::uint64_t cachedFloorPixels = 0;  // primary floor hits whose FloorShading came from the cache
   std::uint64_t reusedPixels = 0;       // pixels copied from the last frame (RenderStats::reusedPixels)
