@@ -91,12 +91,11 @@ void WhittedTracer::tracePrimary8(const Ray* rays, const SlimeHit* hits, int cou
       else shadeFloorWith(rays[i], tFloors[i], shadings[i], Path{}, glm::vec3(1.0f), i, wavefront, counters, colors);
       continue;
     }
-    PendingRay primary;
+    PendingRay& primary = wavefront.current.emplace_back();  // written in place (see shadeSlimes8)
     primary.ray = rays[i];
     primary.hit = hits[i];
     primary.hitKnown = true;
     primary.pixel = i;
-    wavefront.current.push_back(primary);
   }
   wavefront.current.insert(wavefront.current.end(), wavefront.next.begin(), wavefront.next.end());
   // Generation by generation: the queries of all the packet's rays of one depth, then their shading,
@@ -423,42 +422,36 @@ void WhittedTracer::shadeSlimes8(const PendingRay* const* pending, int count, Wa
       if (!refracted) reflectWeight += p.transmission;
     }
     const glm::vec3 weight = path.weight * inside;
-    PendingRay child;
-    child.pixel = ray.pixel;
-    child.path.segment = path.segment + 1;
-    child.path.travelled = path.travelled + ray.hit.t;
+    // A child written in place in the next generation: one built aside and copied in stalls on
+    // reading back its just-written fields (store forwarding), a measurable cost at this rate.
+    const auto spawn = [&](Kind kind, const glm::vec3& along, const glm::vec3& childWeight, bool childInside, bool leaves,
+                           const glm::vec3& factor) {
+      PendingRay& child = wavefront.next.emplace_back();
+      child.ray = Ray{offsetRayOrigin(point, facing, along), along, 0.0f, kInfinity};
+      child.path = Path{path.segment + 1, childWeight, path.travelled + ray.hit.t, childInside, leaves};
+      child.factor = factor;
+      child.pixel = ray.pixel;
+      child.kind = kind;
+      child.hitKnown = kind == Kind::Environment;
+    };
     if (path.segment < p.depth) {
       if (reflectWeight > 0.0f && largest(weight * reflectWeight) >= kMinRayWeight) {
         glm::vec3 reflected = reflect(direction, normal);
         if (glm::dot(reflected, facing) <= 0.0f) reflected = reflect(direction, facing);
         ++counters.rays.reflection;
-        child.kind = Kind::Reflection;
-        child.path.weight = weight * reflectWeight;
-        child.path.inside = !enters;
-        child.path.leavesSlime = enters && geometry_.supports(ray.hit.primitive);
-        child.factor = ray.factor * inside * reflectWeight;
-        child.ray = Ray{offsetRayOrigin(point, facing, reflected), reflected, 0.0f, kInfinity};
-        wavefront.next.push_back(child);
+        spawn(Kind::Reflection, reflected, weight * reflectWeight, !enters, enters && geometry_.supports(ray.hit.primitive),
+              ray.factor * inside * reflectWeight);
       }
       if (refracted && refractWeight > 0.0f && largest(weight * refractWeight) >= kMinRayWeight) {
         ++counters.rays.refraction;
-        child.kind = Kind::Refraction;
-        child.path.weight = weight * refractWeight;
-        child.path.inside = enters;
-        child.path.leavesSlime = !enters && geometry_.supports(ray.hit.primitive);
-        child.factor = ray.factor * inside * refractWeight;
-        child.ray = Ray{offsetRayOrigin(point, facing, transmitted), transmitted, 0.0f, kInfinity};
-        wavefront.next.push_back(child);
+        spawn(Kind::Refraction, transmitted, weight * refractWeight, enters, !enters && geometry_.supports(ray.hit.primitive),
+              ray.factor * inside * refractWeight);
       }
     } else if (!enters && refracted && refractWeight > 0.0f) {
       // Out of segments on the way out of the jelly: what lies beyond is the analytic floor or sky,
       // looked up with the next generation's floors (no query, no shadow, no mirror).
       ++counters.rays.refraction;
-      child.kind = Kind::Environment;
-      child.hitKnown = true;
-      child.factor = ray.factor * inside * refractWeight;
-      child.ray = Ray{offsetRayOrigin(point, facing, transmitted), transmitted, 0.0f, kInfinity};
-      wavefront.next.push_back(child);
+      spawn(Kind::Environment, transmitted, glm::vec3(1.0f), false, false, ray.factor * inside * refractWeight);
     }
   }
 }
@@ -501,14 +494,13 @@ void WhittedTracer::shadeFloorWith(const Ray& ray, float t, const FloorShading& 
   if (path.segment < p.depth && p.floorSpecular > 0.0f && largest(path.weight * p.floorSpecular) >= kMinRayWeight) {
     // The varnish mirrors what is above: the reflected ray (d_x, d_y, −d_z).
     ++counters.rays.reflection;
-    PendingRay child;
+    PendingRay& child = wavefront.next.emplace_back();  // written in place (see shadeSlimes8)
     child.pixel = pixel;
     child.kind = Kind::Reflection;
     child.path = Path{path.segment + 1, path.weight * p.floorSpecular, distance, path.inside, false};
     child.factor = nearFactor * p.floorSpecular;
     child.ray = Ray{point + glm::vec3(0.0f, 0.0f, kRayOffset), {ray.direction.x, ray.direction.y, -ray.direction.z}, 0.0f,
                     kInfinity};
-    wavefront.next.push_back(child);
   }
 }
 
@@ -526,7 +518,10 @@ void WhittedTracer::addLight(const glm::vec3& origin, const glm::vec3& multiplie
     colors[pixel] += multiplier;
     return;
   }
-  wavefront.shadows.push_back({ray, multiplier, pixel});
+  PendingShadow& shadow = wavefront.shadows.emplace_back();  // written in place (see shadeSlimes8)
+  shadow.ray = ray;
+  shadow.multiplier = multiplier;
+  shadow.pixel = pixel;
 }
 
 }  // namespace slime
