@@ -202,9 +202,9 @@ bool EmbreeScene::primaryHits8(const Ray* rays, const bool* active, SlimeHit* hi
   return true;
 }
 
-bool EmbreeScene::supportingExits8(const Ray* rays, const glm::vec3* exitPoints, const bool* active, SlimeHit* hits) const {
+bool EmbreeScene::supportingExits(const Ray* rays, const glm::vec3* exitPoints, const bool* active, SlimeHit* hits) const {
   if (!geometry_ || geometry_->analyticSphere) return false;
-  exitWalk_.supportingExits8(*geometry_, rays, exitPoints, active, hits);
+  exitWalk_.supportingExits(*geometry_, rays, exitPoints, active, hits);
   return true;
 }
 

@@ -47,7 +47,7 @@ class EmbreeScene final : public SlimeIntersector {
   bool primaryHits8(const Ray* rays, const bool* active, SlimeHit* hits) const override;
   // Where rays inside leave through a supporting triangle, from the walk over the surface mapped by
   // update (not for the analytic sphere).
-  bool supportingExits8(const Ray* rays, const glm::vec3* exitPoints, const bool* active, SlimeHit* hits) const override;
+  bool supportingExits(const Ray* rays, const glm::vec3* exitPoints, const bool* active, SlimeHit* hits) const override;
 
   int rebuildCount() const { return rebuilds_; }
 

@@ -83,12 +83,13 @@ void ExitWalk::map(const SlimeGeometry& geometry) {
   }
 }
 
-void ExitWalk::supportingExits8(const SlimeGeometry& geometry, const Ray* rays, const glm::vec3* exitPoints,
-                                const bool* active, SlimeHit* hits) const {
+void ExitWalk::supportingExits(const SlimeGeometry& geometry, const Ray* rays, const glm::vec3* exitPoints,
+                               const bool* active, SlimeHit* hits) const {
 #if defined(SLIME_WIDE_LANES)
-  walkInLanes(geometry, rays, exitPoints, active, hits);
+  for (int first = 0; first < kBatch; first += kWidestLanes)
+    walkInLanes<kWidestLanes>(geometry, rays + first, exitPoints + first, active + first, hits + first);
 #else
-  walkOneByOne(geometry, rays, exitPoints, active, hits);
+  for (int first = 0; first < kBatch; first += 8) walkOneByOne(geometry, rays + first, exitPoints + first, active + first, hits + first);
 #endif
 }
 
@@ -154,35 +155,53 @@ void ExitWalk::walkOneByOne(const SlimeGeometry& geometry, const Ray* rays, cons
 #if defined(SLIME_WIDE_LANES)
 namespace {
 
-using F8 = Wide<8>::F;
-using I8 = Wide<8>::I;
-
-F8 gather(const float* base, I8 index) { return (F8)_mm256_i32gather_ps(base, (__m256i)index, 4); }
-I8 gather(const std::uint32_t* base, I8 index) {
-  return (I8)_mm256_i32gather_epi32(reinterpret_cast<const int*>(base), (__m256i)index, 4);
+// base[index] lane by lane, in the build's widest lanes. (The zero-masked forms with AVX-512: GCC 12
+// warns that the plain ones read an uninitialised vector.)
+#if defined(SLIME_WIDE_LANES_16)
+Wide<16>::F gather(const float* base, Wide<16>::I index) {
+  return (Wide<16>::F)_mm512_mask_i32gather_ps(_mm512_setzero_ps(), 0xFFFF, (__m512i)index, base, 4);
 }
+Wide<16>::I gather(const std::uint32_t* base, Wide<16>::I index) {
+  return (Wide<16>::I)_mm512_mask_i32gather_epi32(_mm512_setzero_si512(), 0xFFFF, (__m512i)index,
+                                                   reinterpret_cast<const int*>(base), 4);
+}
+#else
+Wide<8>::F gather(const float* base, Wide<8>::I index) { return (Wide<8>::F)_mm256_i32gather_ps(base, (__m256i)index, 4); }
+Wide<8>::I gather(const std::uint32_t* base, Wide<8>::I index) {
+  return (Wide<8>::I)_mm256_i32gather_epi32(reinterpret_cast<const int*>(base), (__m256i)index, 4);
+}
+#endif
 
-struct Vector8 {
-  F8 x, y, z;
+template <int N>
+struct Vectors {
+  typename Wide<N>::F x, y, z;
 };
 // glm::cross and glm::dot, lane by lane, in their order of operations.
-Vector8 cross(const Vector8& a, const Vector8& b) {
+template <int N>
+Vectors<N> cross(const Vectors<N>& a, const Vectors<N>& b) {
   return {a.y * b.z - b.y * a.z, a.z * b.x - b.z * a.x, a.x * b.y - b.x * a.y};
 }
-F8 dot(const Vector8& a, const Vector8& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+template <int N>
+typename Wide<N>::F dot(const Vectors<N>& a, const Vectors<N>& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 
 }  // namespace
 
+template <int N>
 void ExitWalk::walkInLanes(const SlimeGeometry& geometry, const Ray* rays, const glm::vec3* exitPoints,
                            const bool* active, SlimeHit* hits) const {
-  for (int i = 0; i < 8; ++i) hits[i] = SlimeHit{};
+  using F = typename Wide<N>::F;
+  using I = typename Wide<N>::I;
+  using V = Vectors<N>;
+  for (int i = 0; i < N; ++i) hits[i] = SlimeHit{};
   const bool ready = !cells_.empty() && corners_.size() == geometry.triangles.size() &&
                      neighbours_.size() == 3 * geometry.triangles.size();
   if (!ready) return;
-  Vector8 origin, direction, exitPoint;
-  F8 tNear, tFar;
-  I8 walking{};
-  for (int i = 0; i < 8; ++i) {
+  V origin, direction, exitPoint;
+  F tNear, tFar;
+  I walking{};
+  for (int i = 0; i < N; ++i) {
     const Ray& ray = active[i] ? rays[i] : rays[0];  // an inactive lane walks a copy, unused
     origin.x[i] = ray.origin.x, origin.y[i] = ray.origin.y, origin.z[i] = ray.origin.z;
     direction.x[i] = ray.direction.x, direction.y[i] = ray.direction.y, direction.z[i] = ray.direction.z;
@@ -193,71 +212,71 @@ void ExitWalk::walkInLanes(const SlimeGeometry& geometry, const Ray* rays, const
   }
   const float* corner = &corners_[0].a.x;
   constexpr int kStride = sizeof(Corner) / sizeof(float);
-  const F8 none{};
-  const F8 sideHalf = splat<F8>(0.5f * static_cast<float>(side_));
-  const F8 lastCell = splat<F8>(static_cast<float>(side_ - 1));
+  const F none{};
+  const F sideHalf = splat<F>(0.5f * static_cast<float>(side_));
+  const F lastCell = splat<F>(static_cast<float>(side_ - 1));
   // cell() in lanes.
-  const auto cellOf = [&](const Vector8& d) {
-    const F8 ax = absLanes(d.x), ay = absLanes(d.y), az = absLanes(d.z);
-    const I8 alongX = (ax >= ay) & (ax >= az), alongY = ~alongX & (ay >= az);
-    const F8 major = alongX ? ax : alongY ? ay : az;
-    const F8 s = alongX ? d.y : alongY ? d.z : d.x;
-    const F8 t = alongX ? d.z : alongY ? d.x : d.y;
-    const I8 positive = alongX ? (d.x >= 0.0f) : alongY ? (d.y >= 0.0f) : (d.z >= 0.0f);
-    const I8 face = (alongX ? I8{} + 0 : alongY ? I8{} + 2 : I8{} + 4) + (positive ? I8{} : I8{} + 1);
-    const F8 scale = sideHalf / major;
+  const auto cellOf = [&](const V& d) {
+    const F ax = absLanes(d.x), ay = absLanes(d.y), az = absLanes(d.z);
+    const I alongX = (ax >= ay) & (ax >= az), alongY = ~alongX & (ay >= az);
+    const F major = alongX ? ax : alongY ? ay : az;
+    const F s = alongX ? d.y : alongY ? d.z : d.x;
+    const F t = alongX ? d.z : alongY ? d.x : d.y;
+    const I positive = alongX ? (d.x >= 0.0f) : alongY ? (d.y >= 0.0f) : (d.z >= 0.0f);
+    const I face = (alongX ? I{} + 0 : alongY ? I{} + 2 : I{} + 4) + (positive ? I{} : I{} + 1);
+    const F scale = sideHalf / major;
     // std::clamp(int(x), 0, side − 1): the conversion truncates; clamping before it keeps it in range.
-    const I8 column = __builtin_convertvector(minLanes(maxLanes((s + major) * scale, none), lastCell), I8);
-    const I8 row = __builtin_convertvector(minLanes(maxLanes((t + major) * scale, none), lastCell), I8);
+    const I column = __builtin_convertvector(minLanes(maxLanes((s + major) * scale, none), lastCell), I);
+    const I row = __builtin_convertvector(minLanes(maxLanes((t + major) * scale, none), lastCell), I);
     return (face * side_ + row) * side_ + column;
   };
-  const auto field = [&](I8 f, int offset) { return gather(corner + offset, f * kStride); };
-  const Vector8 fromCenter{exitPoint.x - center_.x, exitPoint.y - center_.y, exitPoint.z - center_.z};
+  const auto field = [&](I f, int offset) { return gather(corner + offset, f * kStride); };
+  const V fromCenter{exitPoint.x - center_.x, exitPoint.y - center_.y, exitPoint.z - center_.z};
   walking &= dot(fromCenter, fromCenter) > 0.0f;
-  I8 f = gather(cells_.data(), walking ? cellOf(fromCenter) : I8{});
+  I f = gather(cells_.data(), walking ? cellOf(fromCenter) : I{});
   {
     // A better guess: the cell in the direction where the ray meets the first guess's plane.
-    const Vector8 a{field(f, 0), field(f, 1), field(f, 2)}, normal{field(f, 9), field(f, 10), field(f, 11)};
-    const Vector8 toCorner{a.x - origin.x, a.y - origin.y, a.z - origin.z};
-    const F8 distance = dot(normal, toCorner) / dot(normal, direction);
-    const Vector8 seen{origin.x + distance * direction.x - center_.x, origin.y + distance * direction.y - center_.y,
-                       origin.z + distance * direction.z - center_.z};
-    const I8 better = walking & (distance > 0.0f) & (distance <= tFar) & (dot(seen, seen) > 0.0f);
-    if (maskBits(better) != 0) f = better ? gather(cells_.data(), better ? cellOf(seen) : I8{}) : f;
+    const V a{field(f, 0), field(f, 1), field(f, 2)}, normal{field(f, 9), field(f, 10), field(f, 11)};
+    const V toCorner{a.x - origin.x, a.y - origin.y, a.z - origin.z};
+    const F distance = dot(normal, toCorner) / dot(normal, direction);
+    const V seen{origin.x + distance * direction.x - center_.x, origin.y + distance * direction.y - center_.y,
+                 origin.z + distance * direction.z - center_.z};
+    const I better = walking & (distance > 0.0f) & (distance <= tFar) & (dot(seen, seen) > 0.0f);
+    if (maskBits(better) != 0) f = better ? gather(cells_.data(), better ? cellOf(seen) : I{}) : f;
   }
-  I8 found{};
-  F8 foundT{}, foundU{}, foundV{};
+  I found{};
+  F foundT{}, foundU{}, foundV{};
   for (int step = 0; step < kMaxSteps && maskBits(walking) != 0; ++step) {
-    const I8 at = walking ? f : I8{};
-    const Vector8 a{field(at, 0), field(at, 1), field(at, 2)};
-    const Vector8 edge1{field(at, 3), field(at, 4), field(at, 5)}, edge2{field(at, 6), field(at, 7), field(at, 8)};
-    const Vector8 p = cross(direction, edge2);
-    const F8 determinant = dot(edge1, p);
-    const Vector8 s{origin.x - a.x, origin.y - a.y, origin.z - a.z};
-    const Vector8 q = cross(s, edge1);
-    const F8 sign = determinant > 0.0f ? splat<F8>(1.0f) : splat<F8>(-1.0f);
-    const F8 su = dot(s, p), sv = dot(direction, q);
-    const F8 u = sign * su, v = sign * sv, w = sign * determinant - u - v;
-    const I8 inside = walking & (u >= 0.0f) & (v >= 0.0f) & (w >= 0.0f);
+    const I at = walking ? f : I{};
+    const V a{field(at, 0), field(at, 1), field(at, 2)};
+    const V edge1{field(at, 3), field(at, 4), field(at, 5)}, edge2{field(at, 6), field(at, 7), field(at, 8)};
+    const V p = cross(direction, edge2);
+    const F determinant = dot(edge1, p);
+    const V s{origin.x - a.x, origin.y - a.y, origin.z - a.z};
+    const V q = cross(s, edge1);
+    const F sign = determinant > 0.0f ? splat<F>(1.0f) : splat<F>(-1.0f);
+    const F su = dot(s, p), sv = dot(direction, q);
+    const F u = sign * su, v = sign * sv, w = sign * determinant - u - v;
+    const I inside = walking & (u >= 0.0f) & (v >= 0.0f) & (w >= 0.0f);
     if (maskBits(inside) != 0) {
       // The scalar test's checks, then t, u, v divided by the determinant as intersectTriangle does.
-      const F8 inverse = 1.0f / determinant;
-      const F8 distance = dot(edge2, q) * inverse;
-      const I8 finite = (determinant != 0.0f) & (absLanes(determinant) <= splat<F8>(3.402823466e38f));
-      const I8 accepted = inside & finite & (distance >= tNear) & (distance <= tFar);
+      const F inverse = 1.0f / determinant;
+      const F distance = dot(edge2, q) * inverse;
+      const I finite = (determinant != 0.0f) & (absLanes(determinant) <= splat<F>(3.402823466e38f));
+      const I accepted = inside & finite & (distance >= tNear) & (distance <= tFar);
       found |= accepted;
       foundT = accepted ? distance : foundT;
       foundU = accepted ? su * inverse : foundU;
       foundV = accepted ? sv * inverse : foundV;
     }
     // Over the edge opposite the most negative coordinate: (b, c) for w, (c, a) for u, (a, b) for v.
-    const I8 edge = (w <= u) & (w <= v) ? I8{} : (u <= v) ? I8{} + 1 : I8{} + 2;
-    const I8 stepping = walking & ~inside;
-    const I8 next = gather(neighbours_.data(), stepping ? at * 3 + edge : I8{});
+    const I edge = (w <= u) & (w <= v) ? I{} : (u <= v) ? I{} + 1 : I{} + 2;
+    const I stepping = walking & ~inside;
+    const I next = gather(neighbours_.data(), stepping ? at * 3 + edge : I{});
     f = stepping ? next : f;
     walking = stepping & (next != static_cast<std::int32_t>(kNoPrimitive));
   }
-  for (int i = 0; i < 8; ++i) {
+  for (int i = 0; i < N; ++i) {
     if (found[i] == 0 || !geometry.supports(static_cast<std::uint32_t>(f[i]))) continue;
     hits[i] = SlimeHit{foundT[i], static_cast<std::uint32_t>(f[i]), foundU[i], foundV[i]};
   }

@@ -34,12 +34,13 @@ class ExitWalk {
   // This frame's shape: the triangles as the test reads them, and the map of directions.
   void map(const SlimeGeometry& geometry);
 
-  // For each active ray (origin inside the slime), its crossing with a supporting triangle in
-  // [tNear, tFar], or an invalid hit where the walk gives up. `exitPoints[i]`: where ray i leaves
-  // the bounding sphere (the first guess).
-  void supportingExits8(const SlimeGeometry& geometry, const Ray* rays, const glm::vec3* exitPoints, const bool* active,
-                        SlimeHit* hits) const;
-  // The same, one ray after another whatever the build (the lanes' oracle in the tests).
+  // For each of kBatch rays that is active (origin inside the slime), its crossing with a supporting
+  // triangle in [tNear, tFar], or an invalid hit where the walk gives up. `exitPoints[i]`: where ray
+  // i leaves the bounding sphere (the first guess).
+  static constexpr int kBatch = SlimeIntersector::kExitRays;  // 16 lanes with AVX-512, twice 8 with AVX2
+  void supportingExits(const SlimeGeometry& geometry, const Ray* rays, const glm::vec3* exitPoints, const bool* active,
+                       SlimeHit* hits) const;
+  // The same for 8 rays, one after another whatever the build (the lanes' oracle in the tests).
   void supportingExits8OneByOne(const SlimeGeometry& geometry, const Ray* rays, const glm::vec3* exitPoints,
                                 const bool* active, SlimeHit* hits) const {
     walkOneByOne(geometry, rays, exitPoints, active, hits);
@@ -48,10 +49,11 @@ class ExitWalk {
  private:
   // The cube map's cell in direction `direction` from the centre (any length, not zero).
   std::size_t cell(const glm::vec3& direction) const;
-  // supportingExits8 one ray after another (no AVX2), and in AVX2 lanes: the same operations in the
-  // same order, so the same hits bit for bit.
+  // 8 rays of supportingExits one after another (no AVX2), and N in lanes (8 with AVX2, 16 with
+  // AVX-512): the same operations in the same order, so the same hits bit for bit.
   void walkOneByOne(const SlimeGeometry& geometry, const Ray* rays, const glm::vec3* exitPoints, const bool* active,
                     SlimeHit* hits) const;
+  template <int N>
   void walkInLanes(const SlimeGeometry& geometry, const Ray* rays, const glm::vec3* exitPoints, const bool* active,
                    SlimeHit* hits) const;
 

@@ -135,7 +135,7 @@ void WhittedTracer::traceFloorOrSkyLanes(const glm::vec3& eye, const float* dire
                                          const float* directionZ, int count, TraceCounters& counters,
                                          glm::vec3* colors) const {
   // floorDistance, floorShading8 and shadeFloorWith's sums (with the light unshadowed) in lanes:
-  // the same operations in the same order, so each pixel equals tracePrimary8's bit for bit.
+  // the same operations in the same order, so each pixel equals tracePrimaries's bit for bit.
   // floorDistance in lanes; the lanes that do not see the floor (or are past `count`) stay zero.
   using F = typename Wide<N>::F;
   using I = typename Wide<N>::I;
@@ -189,15 +189,15 @@ void WhittedTracer::traceFloorOrSky(const glm::vec3& eye, const float* direction
     return;
   }
 #endif
-  // A shiny floor (or no AVX2): tracePrimary8's general path, 8 rays at a time.
-  counters.rays.primary -= static_cast<std::uint64_t>(count);  // tracePrimary8 counts them
+  // A shiny floor (or no AVX2): tracePrimaries's general path, 8 rays at a time.
+  counters.rays.primary -= static_cast<std::uint64_t>(count);  // tracePrimaries counts them
   for (int first = 0; first < count; first += 8) {
     const int size = std::min(8, count - first);
     Ray rays[8];
     SlimeHit misses[8];
     for (int i = 0; i < size; ++i)
       rays[i] = Ray{eye, {directionX[first + i], directionY[first + i], directionZ[first + i]}, 0.0f, kInfinity};
-    tracePrimary8(rays, misses, size, counters, nullptr, colors + first, true);
+    tracePrimaries(rays, misses, size, counters, nullptr, colors + first, true);
   }
 }
 

@@ -57,11 +57,12 @@ class SlimeIntersector {
     (void)rays, (void)active, (void)crossings;
     return false;
   }
-  // For up to 8 rays whose origins lie inside the slime: where each leaves it through a supporting
-  // triangle (render/exit_walk.h), found without a query where it can be, else an invalid hit;
-  // `exitPoints[i]` is a point of ray i beyond the slime. True if this back-end answers such
-  // questions, false (nothing written) if the caller must ask intersect8 (the reversed query).
-  virtual bool supportingExits8(const Ray* rays, const glm::vec3* exitPoints, const bool* active, SlimeHit* hits) const {
+  // For kExitRays rays (those active) whose origins lie inside the slime: where each leaves it through
+  // a supporting triangle (render/exit_walk.h), found without a query where it can be, else an
+  // invalid hit; `exitPoints[i]` is a point of ray i beyond the slime. True if this back-end answers
+  // such questions, false (nothing written) if the caller must ask intersect8 (the reversed query).
+  static constexpr int kExitRays = 16;
+  virtual bool supportingExits(const Ray* rays, const glm::vec3* exitPoints, const bool* active, SlimeHit* hits) const {
     (void)rays, (void)exitPoints, (void)active, (void)hits;
     return false;
   }

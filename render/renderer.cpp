@@ -38,6 +38,8 @@ constexpr int kTileColumns = 32;  // a multiple of the 8-ray packet width
 constexpr int kPacket = 8;
 // Pixels seen to lie outside the slime's footprint are shaded this many at a time (8 with AVX2, 16 with AVX-512).
 constexpr int kFloorLanes = WhittedTracer::kFloorOrSkyRays;
+constexpr int kWavefrontPixels = WhittedTracer::kMaxPrimaries;  // pixels whose Whitted trees are traced together
+constexpr int kRunPixels = std::max(kFloorLanes, kWavefrontPixels);
 
 double millisecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -176,36 +178,45 @@ struct Renderer::Impl {
           if (floorShadings && cachesStale) resetCaches(first + kPacket, next);
           if (footprint->outside(x0 + kPacket, next, y) && !copied(first + kPacket, next)) count += next;
         }
-        glm::vec3 sums[kFloorLanes] = {};
+        if (!outside && count == kPacket && x0 + kPacket < columnEnd) {
+          // Two packets of the slime's reach traced together: their Whitted trees as one wavefront.
+          const int next = std::min(kPacket, columnEnd - x0 - kPacket);
+          if (floorShadings && cachesStale) resetCaches(first + kPacket, next);
+          if (!footprint || !footprint->outside(x0 + kPacket, next, y)) count += next;
+        }
+        glm::vec3 sums[kRunPixels] = {};
         for (int sampleY = 0; sampleY < samplesPerAxis; ++sampleY) {
           for (int sampleX = 0; sampleX < samplesPerAxis; ++sampleX) {
             // One sample: the caller's point of the pixel; more: the centre of each cell of an n × n
             // grid in the pixel (stratified supersampling).
             const float offsetX = samplesPerAxis == 1 ? pixelOffset.x : (sampleX + 0.5f) / samplesPerAxis;
             const float offsetY = samplesPerAxis == 1 ? pixelOffset.y : (sampleY + 0.5f) / samplesPerAxis;
-            float directionX[kFloorLanes], directionY[kFloorLanes], directionZ[kFloorLanes];
+            float directionX[kRunPixels], directionY[kRunPixels], directionZ[kRunPixels];
             for (int from = 0; from < count; from += kPacket)
               primaryDirections8(view, x0 + from, offsetX, y + offsetY, directionX + from, directionY + from, directionZ + from);
-            glm::vec3 colors[kFloorLanes];
+            glm::vec3 colors[kRunPixels];
             if (outside) {
               // Nothing here can meet the slime or its shadow: the floor or the sky, in lanes.
               tracer.traceFloorOrSky(eye, directionX, directionY, directionZ, count, counts, colors);
             } else {
-              Ray rays[kPacket];
-              bool active[kPacket] = {};
-              SlimeHit hits[kPacket];
-              int activeCount = 0;
-              for (int i = 0; i < count; ++i) {
-                rays[i] = Ray{eye, {directionX[i], directionY[i], directionZ[i]}, 0.0f, kInfinity};
-                active[i] = geometry.mayHit(rays[i]);
-                activeCount += active[i];
-              }
-              if (activeCount > 0) {
+              Ray rays[kWavefrontPixels];
+              bool active[kWavefrontPixels] = {};
+              SlimeHit hits[kWavefrontPixels];
+              for (int from = 0; from < count; from += kPacket) {  // the primaries' hits, 8 at a time
+                const int size = std::min(kPacket, count - from);
+                int activeCount = 0;
+                for (int i = from; i < from + size; ++i) {
+                  rays[i] = Ray{eye, {directionX[i], directionY[i], directionZ[i]}, 0.0f, kInfinity};
+                  active[i] = geometry.mayHit(rays[i]);
+                  activeCount += active[i];
+                }
+                if (activeCount == 0) continue;
                 counts.slimeQueries += static_cast<std::uint64_t>(activeCount);
-                if (visibility.ready()) visibility.hits8(x0, y, count, active, hits);
-                else if (!intersector.primaryHits8(rays, active, hits)) intersector.intersect8(rays, active, hits);
+                if (visibility.ready()) visibility.hits8(x0 + from, y, size, active + from, hits + from);
+                else if (!intersector.primaryHits8(rays + from, active + from, hits + from))
+                  intersector.intersect8(rays + from, active + from, hits + from);
               }
-              tracer.tracePrimary8(rays, hits, count, counts, floorShadings ? floorShadings + first : nullptr, colors);
+              tracer.tracePrimaries(rays, hits, count, counts, floorShadings ? floorShadings + first : nullptr, colors);
             }
             for (int i = 0; i < count; ++i) sums[i] += colors[i];
           }

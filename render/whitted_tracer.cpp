@@ -48,29 +48,32 @@ WhittedTracer::Wavefront& threadWavefront() {
 glm::vec3 WhittedTracer::tracePrimary(const Ray& ray, const SlimeHit& hit, TraceCounters& counters,
                                       FloorShading* floorCache) const {
   glm::vec3 color;
-  tracePrimary8(&ray, &hit, 1, counters, floorCache, &color);
+  tracePrimaries(&ray, &hit, 1, counters, floorCache, &color);
   return color;
 }
 
-void WhittedTracer::tracePrimary8(const Ray* rays, const SlimeHit* hits, int count, TraceCounters& counters,
-                                  FloorShading* floorCache, glm::vec3* colors, bool outOfReach) const {
+void WhittedTracer::tracePrimaries(const Ray* rays, const SlimeHit* hits, int count, TraceCounters& counters,
+                                   FloorShading* floorCache, glm::vec3* colors, bool outOfReach) const {
   Wavefront& wavefront = threadWavefront();
   wavefront.current.clear();
   wavefront.next.clear();
   wavefront.shadows.clear();
   // Most pixels see only the floor or the sky: shaded at once, only their shadow rays may wait. The
-  // floor's pattern is looked up for all the packet's floor pixels together (FloorTexture::albedo8).
-  FloorShading packetShadings[8];
+  // floor's pattern is looked up for the wavefront's floor pixels 8 at a time (floorShading8).
+  FloorShading packetShadings[kMaxPrimaries];
   FloorShading* shadings = floorCache ? floorCache : packetShadings;
-  float tFloors[8] = {kInfinity, kInfinity, kInfinity, kInfinity, kInfinity, kInfinity, kInfinity, kInfinity};
-  bool needed[8] = {};
-  for (int i = 0; i < count; ++i) {
+  float tFloors[kMaxPrimaries];
+  bool needed[kMaxPrimaries] = {};
+  for (int i = 0; i < kMaxPrimaries; ++i) {
+    tFloors[i] = kInfinity;
+    if (i >= count) continue;
     tFloors[i] = hits[i].valid() ? kInfinity : floorDistance(rays[i]);
     if (tFloors[i] == kInfinity) continue;
     if (floorCache && floorCache[i].filled) ++counters.cachedFloorPixels;
     else needed[i] = true;
   }
-  floorShading8(rays, tFloors, tFloors, needed, shadings);
+  for (int first = 0; first < count; first += 8)
+    floorShading8(rays + first, tFloors + first, tFloors + first, needed + first, shadings + first);
   if (outOfReach && !(parameters_.floorSpecular > 0.0f)) {
     // Floor or sky only, and no slime's shadow: no query, no wavefront, and the very sums of the
     // general path below (shadeFloorWith, its shadow ray counted but not traced), so a pixel shaded
@@ -177,12 +180,13 @@ void WhittedTracer::findHits(std::vector<PendingRay>& rays, TraceCounters& count
     members[size] = r;
     if (++size == 8) flush();
   };
-  // The walkers' batch: chords from inside, eight at a time; and the checks of those it settled.
-  Ray walkers[8], walkedChecks[8];
-  glm::vec3 exitPoints[8];
-  float walkerBeyond[8] = {};
-  bool walking[8] = {}, walkedChecked[8] = {};
-  std::size_t walkerMembers[8] = {}, walkedMembers[8] = {};
+  // The walkers' batch: chords from inside, kExitRays at a time; and the checks of those it settled.
+  constexpr int kWalkers = SlimeIntersector::kExitRays;
+  Ray walkers[kWalkers], walkedChecks[8];
+  glm::vec3 exitPoints[kWalkers];
+  float walkerBeyond[kWalkers] = {};
+  bool walking[kWalkers] = {}, walkedChecked[8] = {};
+  std::size_t walkerMembers[kWalkers] = {}, walkedMembers[8] = {};
   int walkerCount = 0, walkedCount = 0;
   const auto flushChecks = [&] {
     SlimeHit crossings[8];
@@ -195,8 +199,8 @@ void WhittedTracer::findHits(std::vector<PendingRay>& rays, TraceCounters& count
     walkedCount = 0;
   };
   const auto walk = [&] {  // the batch's chords: found by the walk, or into the intersector's packet
-    SlimeHit exits[8];
-    if (!intersector_.supportingExits8(walkers, exitPoints, walking, exits))
+    SlimeHit exits[kWalkers];
+    if (!intersector_.supportingExits(walkers, exitPoints, walking, exits))
       for (SlimeHit& exit : exits) exit = SlimeHit{};
     for (int k = 0; k < walkerCount; ++k) {
       const std::size_t r = walkerMembers[k];
@@ -246,7 +250,7 @@ void WhittedTracer::findHits(std::vector<PendingRay>& rays, TraceCounters& count
     walkerBeyond[walkerCount] = beyond;
     walking[walkerCount] = true;
     walkerMembers[walkerCount] = r;
-    if (++walkerCount == 8) walk();
+    if (++walkerCount == kWalkers) walk();
   }
   if (walkerCount > 0) walk();
   if (size > 0) flush();

@@ -121,7 +121,7 @@ RayLog recordSlimeQueries(const Settings& settings, const std::vector<glm::dvec3
         for (int i = 0; i < kPacket; ++i) log.hits += packet.active[i] && hits[i].valid();
       }
       glm::vec3 colors[kPacket];
-      tracer.tracePrimary8(packet.rays.data(), hits, count, counters, nullptr, colors);
+      tracer.tracePrimaries(packet.rays.data(), hits, count, counters, nullptr, colors);
     }
   }
   return log;

@@ -51,6 +51,8 @@ std::vector<Chord> chordsInside(const SlimeGeometry& geometry, int count, unsign
   return chords;
 }
 
+constexpr int kBatch = ExitWalk::kBatch;
+
 std::vector<Shape> shapes() {
   Settings settings = smallScene();
   std::vector<Shape> all{{"ball", makeIcosphere(4, settings.slime.radius, settings.slime.position)},
@@ -69,19 +71,20 @@ TEST(ExitWalk, FindsOnlyTheLastCrossingAndMostOfThem) {
     const BruteTracer brute(geometry);
     const std::vector<Chord> chords = chordsInside(geometry, 4000, 7);
     int asked = 0, found = 0, wrong = 0, findable = 0;
-    for (std::size_t first = 0; first + 8 <= chords.size(); first += 8) {
-      Ray rays[8];
-      glm::vec3 exits[8];
-      bool active[8];
-      for (int i = 0; i < 8; ++i) {
+    for (std::size_t first = 0; first + kBatch <= chords.size(); first += kBatch) {
+      Ray rays[kBatch];
+      glm::vec3 exits[kBatch];
+      bool active[kBatch];
+      for (int i = 0; i < kBatch; ++i) {
         rays[i] = chords[first + i].ray;
         exits[i] = chords[first + i].exit;
-        active[i] = i != 3;  // an idle lane finds nothing
+        active[i] = i % 8 != 3;  // an idle lane finds nothing
       }
-      SlimeHit hits[8];
-      walk.supportingExits8(geometry, rays, exits, active, hits);
+      SlimeHit hits[kBatch];
+      walk.supportingExits(geometry, rays, exits, active, hits);
       EXPECT_FALSE(hits[3].valid()) << shape.what;
-      for (int i = 0; i < 8; ++i) {
+      EXPECT_FALSE(hits[11].valid()) << shape.what;
+      for (int i = 0; i < kBatch; ++i) {
         // The reversed query's answer: the first crossing met coming back from beyond the sphere.
         const Ray& ray = rays[i];
         const Ray back{ray.origin + ray.tFar * ray.direction, -ray.direction, 0.0f, ray.tFar - ray.tNear};
@@ -121,19 +124,20 @@ TEST(ExitWalk, LanesEqualOneRayAtATimeBitForBit) {
     walk.map(geometry);
     const std::vector<Chord> chords = chordsInside(geometry, 2000, 3);
     int differing = 0;
-    for (std::size_t first = 0; first + 8 <= chords.size(); first += 8) {
-      Ray rays[8];
-      glm::vec3 exits[8];
-      bool active[8];
-      for (int i = 0; i < 8; ++i) {
+    for (std::size_t first = 0; first + kBatch <= chords.size(); first += kBatch) {
+      Ray rays[kBatch];
+      glm::vec3 exits[kBatch];
+      bool active[kBatch];
+      for (int i = 0; i < kBatch; ++i) {
         rays[i] = chords[first + i].ray;
         exits[i] = chords[first + i].exit;
         active[i] = (first / 8 + i) % 5 != 0;
       }
-      SlimeHit lanes[8], single[8];
-      walk.supportingExits8(geometry, rays, exits, active, lanes);
+      SlimeHit lanes[kBatch], single[kBatch];
+      walk.supportingExits(geometry, rays, exits, active, lanes);
       walk.supportingExits8OneByOne(geometry, rays, exits, active, single);
-      for (int i = 0; i < 8; ++i) differing += std::memcmp(&lanes[i], &single[i], sizeof(SlimeHit)) != 0;
+      walk.supportingExits8OneByOne(geometry, rays + 8, exits + 8, active + 8, single + 8);
+      for (int i = 0; i < kBatch; ++i) differing += std::memcmp(&lanes[i], &single[i], sizeof(SlimeHit)) != 0;
     }
     EXPECT_EQ(differing, 0) << shape.what;
   }
@@ -144,14 +148,14 @@ TEST(ExitWalk, FindsNothingUntilItsShapeIsMapped) {
   const TriangleMesh ball = makeIcosphere(3, settings.slime.radius, settings.slime.position);
   SlimeGeometry geometry;
   geometry.update(ball.positions, ball.triangles);
-  const std::vector<Chord> chords = chordsInside(geometry, 8, 5);
-  Ray rays[8];
-  glm::vec3 exits[8];
-  const bool active[8] = {true, true, true, true, true, true, true, true};
-  for (int i = 0; i < 8; ++i) rays[i] = chords[i].ray, exits[i] = chords[i].exit;
+  const std::vector<Chord> chords = chordsInside(geometry, kBatch, 5);
+  Ray rays[kBatch];
+  glm::vec3 exits[kBatch];
+  bool active[kBatch];
+  for (int i = 0; i < kBatch; ++i) rays[i] = chords[i].ray, exits[i] = chords[i].exit, active[i] = true;
   const auto found = [&](const ExitWalk& walk) {
-    SlimeHit hits[8];
-    walk.supportingExits8(geometry, rays, exits, active, hits);
+    SlimeHit hits[kBatch];
+    walk.supportingExits(geometry, rays, exits, active, hits);
     int count = 0;
     for (const SlimeHit& hit : hits) count += hit.valid();
     return count;
@@ -161,7 +165,7 @@ TEST(ExitWalk, FindsNothingUntilItsShapeIsMapped) {
   walk.connect(geometry.triangles);
   EXPECT_EQ(found(walk), 0) << "connected, not mapped";
   walk.map(geometry);
-  EXPECT_GT(found(walk), 4) << "connected and mapped";
+  EXPECT_GT(found(walk), kBatch / 2) << "connected and mapped";
   const TriangleMesh finer = makeIcosphere(4, settings.slime.radius, settings.slime.position);
   geometry.update(finer.positions, finer.triangles);
   walk.map(geometry);

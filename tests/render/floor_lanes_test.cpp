@@ -1,6 +1,6 @@
 // The pixels outside the slime's reach are shaded as floor or sky in lanes (WhittedTracer::
 // traceFloorOrSky: 16 at a time with AVX-512, 8 with AVX2, render/wide_lanes.h), with the very
-// operations of the general path (tracePrimary8, one ray's Whitted tree at a time). The renderer
+// operations of the general path (tracePrimaries, one ray's Whitted tree at a time). The renderer
 // mixes the two in one frame, the footprint deciding which pixel takes which, so the two must agree
 // bit for bit, whatever the number of rays shaded together.
 #include "core/camera.h"
@@ -66,7 +66,7 @@ TEST(FloorLanes, FloorOrSkyInLanesEqualsTheGeneralPathBitForBit) {
           tracer.traceFloorOrSky(eye, directionX, directionY, directionZ, count, lanesCounters, lanes);
           for (int first = 0; first < count; first += 8) {
             const SlimeHit misses[8];
-            tracer.tracePrimary8(rays + first, misses, std::min(8, count - first), generalCounters, nullptr, general + first);
+            tracer.tracePrimaries(rays + first, misses, std::min(8, count - first), generalCounters, nullptr, general + first);
           }
           for (int i = 0; i < count; ++i) {
             ++compared;

@@ -44,7 +44,7 @@ Image traceImage(const Settings& settings, const SlimeGeometry& geometry, const 
       }
       intersector.intersect8(rays, active, hits);
       glm::vec3 colors[8];
-      tracer.tracePrimary8(rays, hits, count, counters, nullptr, colors);
+      tracer.tracePrimaries(rays, hits, count, counters, nullptr, colors);
       for (int i = 0; i < count; ++i) image.at(x0 + i, y) = colors[i];
     }
   }
