@@ -229,12 +229,4 @@ void SlimeGeometry::setAnalyticSphere(bool enabled, float radius) {
   boundRadius = analyticSphere ? sphereRadius : meshBoundRadius;
 }
 
-glm::vec3 SlimeGeometry::shadingNormal(const SlimeHit& hit, const glm::vec3& point, bool smooth) const {
-  if (analyticSphere || !smooth) return geometricNormal(hit, point);
-  const Triangle& t = triangles[hit.primitive];
-  const glm::vec3 n = (1.0f - hit.u - hit.v) * normals[t.x] + hit.u * normals[t.y] + hit.v * normals[t.z];
-  const float length = glm::length(n);
-  return length > 1e-6f && std::isfinite(length) ? n / length : geometricNormal(hit, point);
-}
-
 }  // namespace slime

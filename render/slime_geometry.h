@@ -123,8 +123,6 @@ struct SlimeGeometry {
   glm::vec3 geometricNormal(const SlimeHit& hit, const glm::vec3& point) const {
     return analyticSphere ? glm::normalize(point - sphereCenter) : faceNormals[hit.primitive];
   }
-  // Unit shading normal: interpolated vertex normals when smooth, else the geometric normal.
-  glm::vec3 shadingNormal(const SlimeHit& hit, const glm::vec3& point, bool smooth) const;
 };
 
 }  // namespace slime

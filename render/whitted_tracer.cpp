@@ -322,18 +322,33 @@ void WhittedTracer::shadeSlimes8(const PendingRay* const* pending, int count, Wa
   const Lanes t = Lanes::load(distance);
   const Lanes3 d{Lanes::load(direction[0]), Lanes::load(direction[1]), Lanes::load(direction[2])};
   const StoredLanes3 points(Lanes3{Lanes::load(origin[0]), Lanes::load(origin[1]), Lanes::load(origin[2])} + t * d);
-  float normals[6][N];  // the outward geometric normal (0–2), the interpolated shading normal (3–5)
+  // The outward geometric normals, and the unit shading normals: with smooth normals the hit
+  // triangle's vertex normals interpolated by its barycentrics and normalised (the facet's own where
+  // that sum is zero or not finite), else the geometric ones.
+  const bool interpolated = p.smoothNormals && !geometry_.analyticSphere;
+  float normals[3][N], corners[3][3][N], us[N], vs[N];  // corners[vertex][axis][lane]
   for (int i = 0; i < N; ++i) {
     const PendingRay& ray = *pending[std::min(i, count - 1)];
     const glm::vec3 outward = geometry_.geometricNormal(ray.hit, points[i]);
-    const glm::vec3 shading = geometry_.shadingNormal(ray.hit, points[i], p.smoothNormals);
-    for (int c = 0; c < 3; ++c) {
-      normals[c][i] = outward[c];
-      normals[3 + c][i] = shading[c];
-    }
+    for (int c = 0; c < 3; ++c) normals[c][i] = outward[c];
+    if (!interpolated) continue;
+    const Triangle& triangle = geometry_.triangles[ray.hit.primitive];
+    const std::uint32_t vertices[3] = {triangle.x, triangle.y, triangle.z};
+    for (int k = 0; k < 3; ++k)
+      for (int c = 0; c < 3; ++c) corners[k][c][i] = geometry_.normals[vertices[k]][c];
+    us[i] = ray.hit.u;
+    vs[i] = ray.hit.v;
   }
   const Lanes3 outward{Lanes::load(normals[0]), Lanes::load(normals[1]), Lanes::load(normals[2])};
-  const Lanes3 smooth{Lanes::load(normals[3]), Lanes::load(normals[4]), Lanes::load(normals[5])};
+  Lanes3 smooth = outward;
+  if (interpolated) {
+    const auto corner = [&](int k) { return Lanes3{Lanes::load(corners[k][0]), Lanes::load(corners[k][1]), Lanes::load(corners[k][2])}; };
+    const Lanes u = Lanes::load(us), v = Lanes::load(vs);
+    const Lanes3 n = (Lanes(1.0f) - u - v) * corner(0) + u * corner(1) + v * corner(2);
+    const Lanes length = sqrt(dot(n, n));
+    const LaneMask usable = (length > Lanes(1e-6f)) && (length < Lanes(INFINITY));  // else the facet's own
+    smooth = select(usable, Lanes3{n.x / length, n.y / length, n.z / length}, outward);
+  }
 
   // Normals facing the incoming ray: geometric (for offsets) and shading (for optics); an
   // interpolated normal behind a silhouette gives way to the geometric one.
