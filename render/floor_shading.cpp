@@ -46,12 +46,13 @@ FloorShading WhittedTracer::floorShading(const glm::vec3& point, const glm::vec3
   return litFloor(point, direction, distance, floor_.albedo({point.x, point.y}, floorFootprint(direction, distance)));
 }
 
-void WhittedTracer::floorShading8(const Ray* rays, const float* t, const float* distances, const bool* needed,
+void WhittedTracer::floorShadings(const Ray* rays, const float* t, const float* distances, const bool* needed,
                                   FloorShading* shadings) const {
 #if defined(SLIME_WIDE_LANES)
   // Ray by ray into lanes (an unneeded lane stays a harmless zero), then floorLanes.
-  FloorRays<8> lanesIn;
-  for (int i = 0; i < 8; ++i) {
+  constexpr int N = kFloorBatch;
+  FloorRays<N> lanesIn;
+  for (int i = 0; i < N; ++i) {
     lanesIn.needed[i] = needed[i];
     if (!needed[i]) continue;
     lanesIn.originX[i] = rays[i].origin.x;
@@ -62,10 +63,10 @@ void WhittedTracer::floorShading8(const Ray* rays, const float* t, const float* 
     lanesIn.t[i] = t[i];
     lanesIn.distance[i] = distances[i];
   }
-  FloorPoints<8> lanes;
+  FloorPoints<N> lanes;
   floorLanes(lanesIn, lanes);
   const ShadingParameters& p = parameters_;
-  for (int i = 0; i < 8; ++i) {
+  for (int i = 0; i < N; ++i) {
     if (!needed[i]) continue;
     const glm::vec3 albedo{lanes.albedo[0][i], lanes.albedo[1][i], lanes.albedo[2][i]};
     if (p.floorSpecular > 0.0f) {  // the floor's own highlight goes through litFloor one lane at a time
@@ -80,6 +81,7 @@ void WhittedTracer::floorShading8(const Ray* rays, const float* t, const float* 
     if (p.lightPosition.z > 0.0f) shading.lit = p.lightColor * (p.floorDiffuse * lanes.lightZ[i] * albedo);
   }
 #else
+  static_assert(kFloorBatch == 8, "without AVX2 the pattern is looked up 8 at a time");
   float x[8] = {}, y[8] = {}, footprintX[8] = {}, footprintY[8] = {};
   for (int i = 0; i < 8; ++i) {
     if (!needed[i]) continue;
@@ -134,7 +136,7 @@ template <int N>
 void WhittedTracer::traceFloorOrSkyLanes(const glm::vec3& eye, const float* directionX, const float* directionY,
                                          const float* directionZ, int count, TraceCounters& counters,
                                          glm::vec3* colors) const {
-  // floorDistance, floorShading8 and shadeFloorWith's sums (with the light unshadowed) in lanes:
+  // floorDistance, floorShadings and shadeFloorWith's sums (with the light unshadowed) in lanes:
   // the same operations in the same order, so each pixel equals tracePrimaries's bit for bit.
   // floorDistance in lanes; the lanes that do not see the floor (or are past `count`) stay zero.
   using F = typename Wide<N>::F;

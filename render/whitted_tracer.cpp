@@ -59,7 +59,7 @@ void WhittedTracer::tracePrimaries(const Ray* rays, const SlimeHit* hits, int co
   wavefront.next.clear();
   wavefront.shadows.clear();
   // Most pixels see only the floor or the sky: shaded at once, only their shadow rays may wait. The
-  // floor's pattern is looked up for the wavefront's floor pixels 8 at a time (floorShading8).
+  // floor's pattern is looked up for the wavefront's floor pixels together (floorShadings).
   FloorShading packetShadings[kMaxPrimaries];
   FloorShading* shadings = floorCache ? floorCache : packetShadings;
   float tFloors[kMaxPrimaries];
@@ -72,8 +72,8 @@ void WhittedTracer::tracePrimaries(const Ray* rays, const SlimeHit* hits, int co
     if (floorCache && floorCache[i].filled) ++counters.cachedFloorPixels;
     else needed[i] = true;
   }
-  for (int first = 0; first < count; first += 8)
-    floorShading8(rays + first, tFloors + first, tFloors + first, needed + first, shadings + first);
+  for (int first = 0; first < count; first += kFloorBatch)
+    floorShadings(rays + first, tFloors + first, tFloors + first, needed + first, shadings + first);
   if (outOfReach && !(parameters_.floorSpecular > 0.0f)) {
     // Floor or sky only, and no slime's shadow: no query, no wavefront, and the very sums of the
     // general path below (shadeFloorWith, its shadow ray counted but not traced), so a pixel shaded
@@ -259,14 +259,14 @@ void WhittedTracer::findHits(std::vector<PendingRay>& rays, TraceCounters& count
 
 void WhittedTracer::lookUpFloors(const std::vector<PendingRay>& rays, std::vector<FloorShading>& floors) const {
   floors.assign(rays.size(), FloorShading{});
-  Ray packet[8];
-  float t[8], distances[8];
-  bool needed[8] = {};
-  std::size_t members[8] = {};
+  Ray packet[kFloorBatch];
+  float t[kFloorBatch], distances[kFloorBatch];
+  bool needed[kFloorBatch] = {};
+  std::size_t members[kFloorBatch] = {};
   int size = 0;
   const auto flush = [&] {
-    FloorShading found[8];
-    floorShading8(packet, t, distances, needed, found);
+    FloorShading found[kFloorBatch];
+    floorShadings(packet, t, distances, needed, found);
     for (int k = 0; k < size; ++k) floors[members[k]] = found[k];
     for (bool& n : needed) n = false;
     size = 0;
@@ -281,7 +281,7 @@ void WhittedTracer::lookUpFloors(const std::vector<PendingRay>& rays, std::vecto
     distances[size] = ray.path.travelled + tFloor;
     needed[size] = true;
     members[size] = r;
-    if (++size == 8) flush();
+    if (++size == kFloorBatch) flush();
   }
   if (size > 0) flush();
 }

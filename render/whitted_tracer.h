@@ -113,7 +113,7 @@ class WhittedTracer {
   // The slime hits of the rays that do not know theirs, queried 8 at a time.
   void findHits(std::vector<PendingRay>& rays, TraceCounters& counters) const;
   // The floor's shading of every ray of a generation that sees the floor (primaries excepted), looked
-  // up 8 at a time; floors[r] is left unfilled for the others.
+  // up kFloorBatch at a time; floors[r] is left unfilled for the others.
   void lookUpFloors(const std::vector<PendingRay>& rays, std::vector<FloorShading>& floors) const;
   // `floor`: the ray's floor shading if lookUpFloors found it (else computed here as needed).
   void shade(const PendingRay& ray, const FloorShading& floor, Wavefront& wavefront, TraceCounters& counters,
@@ -131,15 +131,17 @@ class WhittedTracer {
                 Wavefront& wavefront, TraceCounters& counters, glm::vec3* colors) const;
   // Traces the packet's queued shadow rays 8 at a time and adds what reaches each pixel.
   void traceShadows(const std::vector<PendingShadow>& shadows, TraceCounters& counters, glm::vec3* colors) const;
-  // The same floor shading, its FloorShading already known (from the cache or floorShading8).
+  // The same floor shading, its FloorShading already known (from the cache or floorShadings).
   // `unshadowed`: nothing can shadow this floor point (outside the slime's footprint).
   void shadeFloorWith(const Ray& ray, float t, const FloorShading& shading, const Path& path, const glm::vec3& factor,
                       int pixel, Wavefront& wavefront, TraceCounters& counters, glm::vec3* colors,
                       bool unshadowed = false) const;
   FloorShading floorShading(const glm::vec3& point, const glm::vec3& direction, float distance) const;
-  // floorShading for up to 8 rays that reach the floor at t[i] along them, distances[i] from the eye
-  // (needed[i]), the pattern looked up 8 at a time; writes shadings[i] of those only.
-  void floorShading8(const Ray* rays, const float* t, const float* distances, const bool* needed,
+  // floorShading for up to kFloorBatch rays that reach the floor at t[i] along them, distances[i]
+  // from the eye (needed[i]), the pattern looked up in lanes (16 with AVX-512, 8 with AVX2 or
+  // without); writes shadings[i] of those only.
+  static constexpr int kFloorBatch = kFloorOrSkyRays;
+  void floorShadings(const Ray* rays, const float* t, const float* distances, const bool* needed,
                      FloorShading* shadings) const;
   // Up to N rays reaching the floor, by lane (unneeded lanes stay zero), and what floorLanes finds there.
   template <int N>
