@@ -110,8 +110,9 @@ TEST(PrimaryVisibility, DoesNotServeAnEyeAtTheSlimeOrASlimeBehindTheCamera) {
   };
   EXPECT_TRUE(serves(settings));
   EXPECT_TRUE(visibility.ready());
-  Settings inside = settings;  // the eye within 1.2 bounding radii of the slime's centre
-  inside.camera.position = settings.slime.position + glm::dvec3(0.0, 0.0, 1.1 * settings.slime.radius);
+  Settings inside = settings;  // the eye within 1.2 bounding radii of the slime's centre, looking at it
+  inside.camera.fov = 120.0;
+  lookAt(inside.camera, settings.slime.position + glm::dvec3(0.0, 0.0, 1.1 * settings.slime.radius), settings.slime.position);
   EXPECT_FALSE(serves(inside));
   EXPECT_FALSE(visibility.ready());
   Settings away = settings;  // looking away: the slime behind the camera
