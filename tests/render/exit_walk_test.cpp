@@ -61,27 +61,47 @@ std::vector<Shape> shapes() {
   return all;
 }
 
-TEST(ExitWalk, FindsOnlyTheLastCrossingAndMostOfThem) {
-  for (const Shape& shape : shapes()) {
-    SlimeGeometry geometry;
-    geometry.update(shape.mesh.positions, shape.mesh.triangles);
-    ExitWalk walk;
+// A shape's geometry and its walk, connected and mapped.
+struct Mapped {
+  explicit Mapped(const TriangleMesh& mesh) {
+    geometry.update(mesh.positions, mesh.triangles);
     walk.connect(geometry.triangles);
     walk.map(geometry);
+  }
+  SlimeGeometry geometry;
+  ExitWalk walk;
+};
+
+// kBatch chords from `first` as the walk is asked them; lane i asked when active(i).
+struct Batch {
+  Ray rays[kBatch];
+  glm::vec3 exits[kBatch];
+  bool active[kBatch];
+};
+template <typename Active>
+Batch batchOf(const std::vector<Chord>& chords, std::size_t first, Active active) {
+  Batch batch;
+  for (int i = 0; i < kBatch; ++i) {
+    batch.rays[i] = chords[first + i].ray;
+    batch.exits[i] = chords[first + i].exit;
+    batch.active[i] = active(i);
+  }
+  return batch;
+}
+
+TEST(ExitWalk, FindsOnlyTheLastCrossingAndMostOfThem) {
+  for (const Shape& shape : shapes()) {
+    const Mapped mapped(shape.mesh);
+    const SlimeGeometry& geometry = mapped.geometry;
     const BruteTracer brute(geometry);
     const std::vector<Chord> chords = chordsInside(geometry, 4000, 7);
     int asked = 0, found = 0, wrong = 0, findable = 0;
     for (std::size_t first = 0; first + kBatch <= chords.size(); first += kBatch) {
-      Ray rays[kBatch];
-      glm::vec3 exits[kBatch];
-      bool active[kBatch];
-      for (int i = 0; i < kBatch; ++i) {
-        rays[i] = chords[first + i].ray;
-        exits[i] = chords[first + i].exit;
-        active[i] = i % 8 != 3;  // an idle lane finds nothing
-      }
+      const Batch batch = batchOf(chords, first, [](int i) { return i % 8 != 3; });  // an idle lane finds nothing
+      const Ray* rays = batch.rays;
+      const bool* active = batch.active;
       SlimeHit hits[kBatch];
-      walk.supportingExits(geometry, rays, exits, active, hits);
+      mapped.walk.supportingExits(geometry, rays, batch.exits, active, hits);
       EXPECT_FALSE(hits[3].valid()) << shape.what;
       EXPECT_FALSE(hits[11].valid()) << shape.what;
       for (int i = 0; i < kBatch; ++i) {
@@ -117,26 +137,15 @@ TEST(ExitWalk, FindsOnlyTheLastCrossingAndMostOfThem) {
 
 TEST(ExitWalk, LanesEqualOneRayAtATimeBitForBit) {
   for (const Shape& shape : shapes()) {
-    SlimeGeometry geometry;
-    geometry.update(shape.mesh.positions, shape.mesh.triangles);
-    ExitWalk walk;
-    walk.connect(geometry.triangles);
-    walk.map(geometry);
-    const std::vector<Chord> chords = chordsInside(geometry, 2000, 3);
+    const Mapped mapped(shape.mesh);
+    const std::vector<Chord> chords = chordsInside(mapped.geometry, 2000, 3);
     int differing = 0;
     for (std::size_t first = 0; first + kBatch <= chords.size(); first += kBatch) {
-      Ray rays[kBatch];
-      glm::vec3 exits[kBatch];
-      bool active[kBatch];
-      for (int i = 0; i < kBatch; ++i) {
-        rays[i] = chords[first + i].ray;
-        exits[i] = chords[first + i].exit;
-        active[i] = (first / 8 + i) % 5 != 0;
-      }
+      const Batch b = batchOf(chords, first, [first](int i) { return (first / 8 + i) % 5 != 0; });
       SlimeHit lanes[kBatch], single[kBatch];
-      walk.supportingExits(geometry, rays, exits, active, lanes);
-      walk.supportingExits8OneByOne(geometry, rays, exits, active, single);
-      walk.supportingExits8OneByOne(geometry, rays + 8, exits + 8, active + 8, single + 8);
+      mapped.walk.supportingExits(mapped.geometry, b.rays, b.exits, b.active, lanes);
+      mapped.walk.supportingExits8OneByOne(mapped.geometry, b.rays, b.exits, b.active, single);
+      mapped.walk.supportingExits8OneByOne(mapped.geometry, b.rays + 8, b.exits + 8, b.active + 8, single + 8);
       for (int i = 0; i < kBatch; ++i) differing += std::memcmp(&lanes[i], &single[i], sizeof(SlimeHit)) != 0;
     }
     EXPECT_EQ(differing, 0) << shape.what;
