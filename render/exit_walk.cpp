@@ -83,6 +83,10 @@ void ExitWalk::map(const SlimeGeometry& geometry) {
   }
 }
 
+bool ExitWalk::ready(const SlimeGeometry& geometry) const {
+  return !cells_.empty() && corners_.size() == geometry.triangles.size() && neighbours_.size() == 3 * geometry.triangles.size();
+}
+
 void ExitWalk::supportingExits(const SlimeGeometry& geometry, const Ray* rays, const glm::vec3* exitPoints,
                                const bool* active, SlimeHit* hits) const {
 #if defined(SLIME_WIDE_LANES)
@@ -97,12 +101,11 @@ void ExitWalk::walkOneByOne(const SlimeGeometry& geometry, const Ray* rays, cons
                             const bool* active, SlimeHit* hits) const {
   std::uint32_t at[8];
   bool walking[8];
-  const bool ready = !cells_.empty() && corners_.size() == geometry.triangles.size() &&
-                     neighbours_.size() == 3 * geometry.triangles.size();
+  const bool walks = ready(geometry);
   for (int i = 0; i < 8; ++i) {
     hits[i] = SlimeHit{};
     walking[i] = false;
-    if (!active[i] || !ready) continue;
+    if (!active[i] || !walks) continue;
     const Ray& ray = rays[i];
     const glm::vec3 direction = exitPoints[i] - center_;
     if (!(glm::dot(direction, direction) > 0.0f)) continue;
@@ -195,9 +198,7 @@ void ExitWalk::walkInLanes(const SlimeGeometry& geometry, const Ray* rays, const
   using I = typename Wide<N>::I;
   using V = Vectors<N>;
   for (int i = 0; i < N; ++i) hits[i] = SlimeHit{};
-  const bool ready = !cells_.empty() && corners_.size() == geometry.triangles.size() &&
-                     neighbours_.size() == 3 * geometry.triangles.size();
-  if (!ready) return;
+  if (!ready(geometry)) return;
   V origin, direction, exitPoint;
   F tNear, tFar;
   I walking{};

@@ -2,14 +2,15 @@
 // crossing is the ray's only crossing with a supporting triangle (after it the ray is above that
 // triangle's plane, and the whole slime below: see SlimeGeometry::supporting), so a supporting
 // triangle the ray is seen to cross ahead of its origin is the one the reversed query would find.
-// The walk guesses it from a map of the surface seen from the bounding sphere's centre (the triangle
-// in the direction where the ray leaves that sphere, then the one in the direction where the ray
-// meets the guess's plane), then steps over the triangles' edges towards the ray, each step one
+// The walk guesses it from a map of the surface seen from the centre of the mesh's bounds (the
+// triangle in the direction where the ray leaves the bounding sphere, then the one in the direction
+// where the ray meets the guess's plane), then steps over the triangles' edges towards the ray, each step one
 // Möller–Trumbore test (the brute force's): it crosses the edge whose barycentric coordinate of the
 // ray's crossing with the triangle's plane is the most negative, as a walk through a planar
 // triangulation locates a point. It gives up (the caller then asks the intersector) after
 // kMaxSteps, at a triangle that does not support the slime, or at a crossing outside the segment.
-// Eight rays walk side by side; each lane's result depends on its own ray alone.
+// Sixteen rays walk side by side (eight at a time with AVX2); each lane's result depends on its own
+// ray alone.
 #pragma once
 
 #include "core/icosphere.h"
@@ -49,6 +50,8 @@ class ExitWalk {
  private:
   // The cube map's cell in direction `direction` from the centre (any length, not zero).
   std::size_t cell(const glm::vec3& direction) const;
+  // Connected and mapped for `geometry`'s triangles (else the walk finds nothing).
+  bool ready(const SlimeGeometry& geometry) const;
   // 8 rays of supportingExits one after another (no AVX2), and N in lanes (8 with AVX2, 16 with
   // AVX-512): the same operations in the same order, so the same hits bit for bit.
   void walkOneByOne(const SlimeGeometry& geometry, const Ray* rays, const glm::vec3* exitPoints, const bool* active,
