@@ -12,6 +12,7 @@
 #include <iterator>
 #include <string>
 #include <sys/wait.h>
+#include <vector>
 
 namespace {
 
@@ -170,12 +171,24 @@ std::string fileBytes(const std::string& path) {
   return bytes;
 }
 
-// Files in the output directory whose name holds `part` (a clip's temporary files hold ".partial").
-int filesNamed(const std::string& part) {
-  int count = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(SLIME_TEST_OUTPUT_DIR))
-    count += entry.path().filename().string().find(part) != std::string::npos;
-  return count;
+// Temporary files beside `output` (a clip is written to ".<name>.partial-XXXXXX" and renamed): only
+// this output's, since tests running beside it (ctest -j) write their own clips in the same directory.
+std::vector<std::filesystem::path> partialFilesOf(const std::string& output) {
+  const std::filesystem::path path(output);
+  const std::filesystem::path directory = path.has_parent_path() ? path.parent_path() : ".";
+  std::vector<std::filesystem::path> found;
+  if (!std::filesystem::is_directory(directory)) return found;
+  const std::string prefix = "." + path.filename().string() + ".partial";
+  for (const auto& entry : std::filesystem::directory_iterator(directory))
+    if (entry.path().filename().string().rfind(prefix, 0) == 0) found.push_back(entry.path());
+  return found;
+}
+
+// Before a run: no clip and no temporary file left by an earlier run (a failed one may have left them).
+void removeClipAndItsPartials(const std::string& output) {
+  std::error_code ignored;
+  std::filesystem::remove(output, ignored);
+  for (const auto& partial : partialFilesOf(output)) std::filesystem::remove(partial, ignored);
 }
 
 const std::string kRecordScenario = " --scenario " SLIME_SOURCE_DIR "/tests/scenarios/grab_and_stretch.json";
@@ -191,7 +204,7 @@ class Record : public testing::Test {
 TEST_F(Record, Mp4HasTheFramesAndSizeAskedForAndIsTheSameBytesWhenRepeated) {
   const std::string first = outputPath("clip1.mp4"), second = outputPath("clip2.mp4");
   for (const std::string& path : {first, second}) {
-    std::filesystem::remove(path);
+    removeClipAndItsPartials(path);
     const CommandResult run = runSlime("record -o " + path + kRecordScenario + " --seconds 1.2 --fps 10 --size 96x64");
     ASSERT_EQ(run.exitCode, 0) << run.output;
   }
@@ -201,7 +214,7 @@ TEST_F(Record, Mp4HasTheFramesAndSizeAskedForAndIsTheSameBytesWhenRepeated) {
   const std::string bytes = fileBytes(first);
   EXPECT_FALSE(bytes.empty());
   EXPECT_TRUE(bytes == fileBytes(second)) << "two recordings of the same scenario differ";
-  EXPECT_EQ(filesNamed(".partial"), 0);
+  EXPECT_EQ(partialFilesOf(first).size() + partialFilesOf(second).size(), 0u);
 }
 
 TEST_F(Record, GifAndWebpHaveEveryFrame) {
@@ -229,41 +242,50 @@ struct BadRecord {
   const char* mentions;
 };
 
+void PrintTo(const BadRecord& bad, std::ostream* out) { *out << bad.arguments << " -> " << bad.output; }
+
+// Each case writes its own file name: ctest runs the cases side by side.
 class RecordRejects : public testing::TestWithParam<BadRecord> {};
 
 TEST_P(RecordRejects, WithExitCodeTwoAndNoFile) {
   const BadRecord& bad = GetParam();
-  std::filesystem::remove(bad.output);
+  removeClipAndItsPartials(bad.output);
   const CommandResult run = runSlime("record -o " + std::string(bad.output) + kRecordScenario + " " + bad.arguments);
   EXPECT_EQ(run.exitCode, 2) << bad.arguments << "\n" << run.output;
   EXPECT_NE(run.output.find(bad.mentions), std::string::npos) << bad.arguments << "\n" << run.output;
   EXPECT_FALSE(std::filesystem::exists(bad.output)) << bad.output;
-  EXPECT_EQ(filesNamed(".partial"), 0);
+  EXPECT_EQ(partialFilesOf(bad.output).size(), 0u);
 }
 
 INSTANTIATE_TEST_SUITE_P(
     Cli, RecordRejects,
     testing::Values(BadRecord{"--seconds 1", SLIME_TEST_OUTPUT_DIR "/bad.avi", ".mp4, .gif or .webp"},
-                    BadRecord{"--seconds 0", SLIME_TEST_OUTPUT_DIR "/bad.mp4", "--seconds"},
-                    BadRecord{"--seconds -2", SLIME_TEST_OUTPUT_DIR "/bad.mp4", "--seconds"},
-                    BadRecord{"--seconds 1 --fps 0", SLIME_TEST_OUTPUT_DIR "/bad.mp4", "--fps"},
-                    BadRecord{"--seconds 1 --size 95x64", SLIME_TEST_OUTPUT_DIR "/bad.mp4", "even"},
+                    BadRecord{"--seconds 0", SLIME_TEST_OUTPUT_DIR "/bad_seconds_zero.mp4", "--seconds"},
+                    BadRecord{"--seconds -2", SLIME_TEST_OUTPUT_DIR "/bad_seconds_negative.mp4", "--seconds"},
+                    BadRecord{"--seconds 1 --fps 0", SLIME_TEST_OUTPUT_DIR "/bad_fps.mp4", "--fps"},
+                    BadRecord{"--seconds 1 --size 95x64", SLIME_TEST_OUTPUT_DIR "/bad_size.mp4", "even"},
                     BadRecord{"--seconds 1", "/nonexistent/dir/bad.mp4", "does not exist"},
                     BadRecord{"--seconds 1", "/proc/bad.mp4", "cannot write in /proc"},
-                    BadRecord{"--seconds 1 --set slime.level=12", SLIME_TEST_OUTPUT_DIR "/bad.mp4", "slime.level"},
+                    BadRecord{"--seconds 1 --set slime.level=12", SLIME_TEST_OUTPUT_DIR "/bad_level.mp4", "slime.level"},
                     // Found once ffmpeg runs: the clip's temporary file must go too.
                     BadRecord{"--seconds 1 --set floor.pattern=image --set floor.image=/nonexistent.png",
-                              SLIME_TEST_OUTPUT_DIR "/bad.mp4", "floor.image"}));
+                              SLIME_TEST_OUTPUT_DIR "/bad_floor_image.mp4", "floor.image"}),
+    // Named by their place in the list and what they expect to be named (not the pointers' bytes).
+    [](const testing::TestParamInfo<BadRecord>& info) {
+      std::string name = std::to_string(info.index) + "_";
+      for (const char* c = info.param.mentions; *c; ++c) name += std::isalnum(static_cast<unsigned char>(*c)) ? *c : '_';
+      return name;
+    });
 
 TEST(Cli, RecordWithoutFfmpegSaysSoAndLeavesNoFile) {
   const std::string path = outputPath("no_ffmpeg.mp4");
-  std::filesystem::remove(path);
+  removeClipAndItsPartials(path);
   const std::string output =
       runShell("env PATH=/nonexistent " + std::string(SLIME_BINARY) + " record -o " + path + " --seconds 1; echo exit=$?");
   EXPECT_NE(output.find("ffmpeg"), std::string::npos) << output;
   EXPECT_NE(output.find("exit=2"), std::string::npos) << output;
   EXPECT_FALSE(std::filesystem::exists(path));
-  EXPECT_EQ(filesNamed(".partial"), 0);
+  EXPECT_EQ(partialFilesOf(path).size(), 0u);
 }
 
 }  // namespace
