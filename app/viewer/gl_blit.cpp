@@ -93,7 +93,7 @@ void GlBlit::draw(glm::ivec2 framebufferSize, int left) const {
   // Nothing traced yet, or a strip left of the image (under the panel column): background.
   if (textureSize_.x == 0 || left > 0) {
     glViewport(0, 0, framebufferSize.x, framebufferSize.y);
-    glClearColor(0.08f, 0.08f, 0.09f, 1.0f);
+    glClearColor(kViewerBackground[0], kViewerBackground[1], kViewerBackground[2], kViewerBackground[3]);
     glClear(GL_COLOR_BUFFER_BIT);
     if (textureSize_.x == 0) return;
   }

@@ -13,6 +13,9 @@
 
 namespace slime {
 
+// The colour behind the image and the panels (where nothing is drawn yet, and under the column).
+inline constexpr float kViewerBackground[4] = {0.08f, 0.08f, 0.09f, 1.0f};
+
 class GlBlit {
  public:
   GlBlit();  // needs a current GL 3.3 core context; throws std::runtime_error if a shader fails

@@ -264,7 +264,13 @@ PanelRequests drawPanels(Settings& draft, std::string& scenePath, const PanelVie
   ImGui::SetNextWindowBgAlpha(0.9f);
   const ImGuiWindowFlags flags =
       ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoSavedSettings;
-  if (ImGui::Begin("Controls (F1: help)", nullptr, flags)) {
+  // No border: the column meets the image edge to edge, and ImGui draws a window's border line up to
+  // a pixel past its right edge, onto the image's first column (and out of the kept column that
+  // app/viewer/panel_layer.h copies instead of drawing it every frame).
+  ImGui::PushStyleVar(ImGuiStyleVar_WindowBorderSize, 0.0f);
+  const bool open = ImGui::Begin("Controls (F1: help)", nullptr, flags);
+  ImGui::PopStyleVar();
+  if (open) {
     requests.columnWidth = width;
     ImGui::PushItemWidth(width * 0.55f);
     ImGui::SetNextItemOpen(true, ImGuiCond_Once);

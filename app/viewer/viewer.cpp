@@ -501,7 +501,7 @@ void Viewer::present() {
     const glm::ivec2 window = backend_.windowSize();
     const int left = window.x > 0 ? static_cast<int>(std::lround(columnWidth_ * framebuffer.x / window.x)) : 0;
     blit_.draw(framebuffer, left);
-    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    panelLayer_.draw(*ImGui::GetDrawData(), framebuffer, left);
     for (const std::string& path : screenshotPaths_) {
       writeFramebufferPng(framebuffer, path);
       std::printf("slime: wrote %s\n", path.c_str());

@@ -13,6 +13,7 @@
 #include "app/viewer/frame_log.h"
 #include "app/viewer/frame_stats.h"
 #include "app/viewer/gl_blit.h"
+#include "app/viewer/panel_layer.h"
 #include "app/viewer/interaction.h"
 #include "app/viewer/panels.h"
 #include "app/viewer/physics_clock.h"
@@ -154,6 +155,7 @@ class Viewer {
   AccumulationBuffer refinement_;         // a still image's frames, averaged (progressive AA)
   Image sampleImage_;                     // one of those frames, traced off the pixels' centres
   GlBlit blit_;
+  PanelLayer panelLayer_;
   CameraController cameraController_;
   GrabInteraction grab_;
   PhysicsClock clock_;
