@@ -71,8 +71,8 @@ bool Viewer::frame() {
   if (options_.maxFrames > 0 && stats_.frames + 1 >= options_.maxFrames) quit_ = true;
   if (quit_ && !options_.screenshotOnExit.empty()) requestScreenshot(options_.screenshotOnExit);
   // Physics runs beside the panels: this frame traces the slime as the last frame's steps left it,
-  // then this frame's steps run on a second thread while the main thread draws the panels and
-  // presents, and refit the drawn slime for the next frame's trace there too (the refit, ~1 ms,
+  // then this frame's steps run on a second thread while the main thread uploads the image, draws
+  // the panels and presents, and refit the drawn slime for the next frame's trace there too (the refit, ~1 ms,
   // then no longer holds up the trace). The trace has both cores to itself; the panels are mostly
   // one thread's work (measured: 28.5 fps with the physics beside the trace, 29.6 beside the
   // panels). So that nothing is shared meanwhile, the steps hand back what they did
@@ -91,7 +91,6 @@ bool Viewer::frame() {
     present();
   } else {
     traceImage();
-    uploadImage();
     const GrabMarks marks = grabMarks();
     const int imageHeight = tracedImageSize().y;  // asked here: the window is the main thread's to ask
     PhysicsOutcome outcome;
@@ -99,6 +98,7 @@ bool Viewer::frame() {
       outcome = stepPhysics(input.elapsedSeconds, target);
       refitBeside(outcome, imageHeight);
     });
+    uploadImage();
     requests = drawPanelsAndOverlay(marks);
     present();
     physics.join();
