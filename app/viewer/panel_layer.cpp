@@ -8,7 +8,6 @@
 
 #include <algorithm>
 
-
 namespace slime {
 namespace {
 
@@ -102,6 +101,7 @@ void PanelLayer::draw(const ImDrawData& data, glm::ivec2 framebufferSize, int co
     GLint target = 0, source = 0;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
     glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &source);
+    const GLboolean scissor = glIsEnabled(GL_SCISSOR_TEST);
     const bool same = kept_.framebufferSize == framebufferSize && kept_.columnPixels == columnPixels &&
                       kept_.bytes == current_;
     if (same) {
@@ -114,7 +114,6 @@ void PanelLayer::draw(const ImDrawData& data, glm::ivec2 framebufferSize, int co
       ++columnDraws_;
     }
     // The kept column, texel for pixel (a copy: no scissor, no blending).
-    const GLboolean scissor = glIsEnabled(GL_SCISSOR_TEST);
     glDisable(GL_SCISSOR_TEST);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(target));
     glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_);
