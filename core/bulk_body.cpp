@@ -34,6 +34,7 @@ BulkBody buildBulkBody(const SlimeSettings& slime) {
     body.restVolume += body.rest.back().volume;
   }
   body.maxwellInverse.assign(mesh.tetrahedra.size(), glm::dmat3(1.0));
+  body.maxwellMetric.assign(mesh.tetrahedra.size(), glm::dmat3(1.0));
   body.edges = tetrahedronEdges(mesh.tetrahedra);
   body.drawn = makeIcosphere(slime.level, slime.radius, slime.position);
   if (slime.level >= mesh.shellLevel) {
@@ -175,7 +176,9 @@ void relaxBulk(BulkBody& body, double dt) {
   for (std::size_t e = 0; e < body.mesh.tetrahedra.size(); ++e) {
     const Tetrahedron& t = body.mesh.tetrahedra[e];
     const glm::dmat3 f = deformationGradient(body.rest[e], x[t.x], x[t.y], x[t.z], x[t.w]);
-    body.maxwellInverse[e] = relaxMaxwellBranch(f, body.maxwellInverse[e], decay);
+    const MaxwellRest flowed = relaxMaxwellBranch(f, {body.maxwellMetric[e], body.maxwellInverse[e]}, decay);
+    body.maxwellMetric[e] = flowed.metric;
+    body.maxwellInverse[e] = flowed.inverse;
   }
 }
 

@@ -38,6 +38,7 @@ struct BulkBody {
   std::vector<double> freeInverseMasses;  // inverse masses when nothing pins a node
   std::vector<TetRest> rest;              // per tetrahedron
   std::vector<glm::dmat3> maxwellInverse; // per tetrahedron, B_v (identity at rest)
+  std::vector<glm::dmat3> maxwellMetric;  // per tetrahedron, G_v = B_v⁻¹, which the flow blends
   std::vector<glm::u32vec2> edges;        // every tetrahedron edge once
   std::vector<double> edgeDamping;        // k_d per edge, N·s/m
   ViscoelasticMaterial material;

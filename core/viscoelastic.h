@@ -76,7 +76,15 @@ inline glm::dmat3 firstPiolaStress(const ViscoelasticMaterial& material, const g
 // Energy density Ψ at F with B_v, J/m³.
 double energyDensity(const ViscoelasticMaterial& material, const glm::dmat3& f, const glm::dmat3& maxwellInverse);
 
-// The Maxwell branch's flow over Δt: returns the new B_v for the current F.
-glm::dmat3 relaxMaxwellBranch(const glm::dmat3& f, const glm::dmat3& maxwellInverse, double decay);
+// The Maxwell branch's rest state: its metric G_v and the inverse B_v that the stress uses, kept
+// together so that the flow inverts once (B_v = (G/s)⁻¹ = s·G⁻¹ after the blend G, s = det G^(1/3)).
+struct MaxwellRest {
+  glm::dmat3 metric{1.0};   // G_v, symmetric, det 1
+  glm::dmat3 inverse{1.0};  // B_v = G_v⁻¹
+};
+
+// The Maxwell branch's flow over Δt (decay = exp(−Δt/τ)): the new rest state for the current F.
+// An inverted element (det ≤ 0 after the blend) keeps its rest state this step.
+MaxwellRest relaxMaxwellBranch(const glm::dmat3& f, const MaxwellRest& rest, double decay);
 
 }  // namespace slime
