@@ -20,6 +20,26 @@ std::size_t edgeIndex(const std::vector<glm::u32vec2>& edges, std::uint32_t a, s
   return static_cast<std::size_t>(it - edges.begin());
 }
 
+// One lane's 3×3 matrix from entries stored [3·column + row][lane], and back.
+inline glm::dmat3 laneMatrix(const double (&entries)[9][kTetLanes], std::size_t lane) {
+  return glm::dmat3(entries[0][lane], entries[1][lane], entries[2][lane], entries[3][lane], entries[4][lane],
+                    entries[5][lane], entries[6][lane], entries[7][lane], entries[8][lane]);
+}
+inline void setLaneMatrix(double (&entries)[9][kTetLanes], std::size_t lane, const glm::dmat3& m) {
+  for (int entry = 0; entry < 9; ++entry) entries[entry][lane] = m[entry / 3][entry % 3];
+}
+
+// Nodal forces H = P·forceMap (P the first Piola stress at F = Ds·Dm⁻¹) of a block of tetrahedra,
+// one per lane; the loop over lanes is the one the compiler vectorises.
+void blockStressForces(const ViscoelasticMaterial& material, const TetBlock& rest, const double (&shape)[9][kTetLanes],
+                       const double (&maxwellInverse)[9][kTetLanes], double (&forces)[9][kTetLanes]) {
+  for (std::size_t lane = 0; lane < kTetLanes; ++lane) {
+    const glm::dmat3 f = laneMatrix(shape, lane) * laneMatrix(rest.restInverse, lane);
+    const glm::dmat3 p = firstPiolaStress(material, f, laneMatrix(maxwellInverse, lane));
+    setLaneMatrix(forces, lane, p * laneMatrix(rest.forceMap, lane));
+  }
+}
+
 }  // namespace
 
 BulkBody buildBulkBody(const SlimeSettings& slime) {
@@ -32,6 +52,14 @@ BulkBody buildBulkBody(const SlimeSettings& slime) {
   for (const Tetrahedron& t : mesh.tetrahedra) {
     body.rest.push_back(makeTetRest(mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z], mesh.positions[t.w]));
     body.restVolume += body.rest.back().volume;
+  }
+  body.restBlocks.resize((mesh.tetrahedra.size() + kTetLanes - 1) / kTetLanes);
+  for (std::size_t e = 0; e < mesh.tetrahedra.size(); ++e) {
+    TetBlock& block = body.restBlocks[e / kTetLanes];
+    for (int entry = 0; entry < 9; ++entry) {
+      block.restInverse[entry][e % kTetLanes] = body.rest[e].restInverse[entry / 3][entry % 3];
+      block.forceMap[entry][e % kTetLanes] = body.rest[e].forceMap[entry / 3][entry % 3];
+    }
   }
   body.maxwellInverse.assign(mesh.tetrahedra.size(), glm::dmat3(1.0));
   body.maxwellMetric.assign(mesh.tetrahedra.size(), glm::dmat3(1.0));
@@ -94,17 +122,35 @@ void bulkInternalForces(const BulkBody& body, const std::vector<glm::dvec3>& x, 
                         std::vector<glm::dvec3>& forces, bool dampers) {
   forces.assign(x.size(), glm::dvec3(0.0));
   const std::vector<Tetrahedron>& tetrahedra = body.mesh.tetrahedra;
-  // Elastic and Maxwell branches: f = −V0 P Dm⁻ᵀ on nodes 1..3, the opposite of their sum on node 0.
-  for (std::size_t e = 0; e < tetrahedra.size(); ++e) {
-    const Tetrahedron& t = tetrahedra[e];
-    const TetRest& rest = body.rest[e];
-    const glm::dmat3 f = deformationGradient(rest, x[t.x], x[t.y], x[t.z], x[t.w]);
-    const glm::dmat3 p = firstPiolaStress(body.material, f, body.maxwellInverse[e]);
-    const glm::dmat3 h = p * rest.forceMap;
-    forces[t.y] += h[0];
-    forces[t.z] += h[1];
-    forces[t.w] += h[2];
-    forces[t.x] -= h[0] + h[1] + h[2];
+  // Elastic and Maxwell branches: f = −V0 P Dm⁻ᵀ on nodes 1..3, the opposite of their sum on node 0,
+  // a block of tetrahedra at a time: gather Ds and B_v into lanes, the stress, scatter in order.
+  for (std::size_t block = 0; block < body.restBlocks.size(); ++block) {
+    const std::size_t first = block * kTetLanes;
+    const std::size_t count = std::min(kTetLanes, tetrahedra.size() - first);
+    alignas(64) double shape[9][kTetLanes];
+    alignas(64) double maxwellInverse[9][kTetLanes];
+    alignas(64) double h[9][kTetLanes];
+    for (std::size_t lane = 0; lane < count; ++lane) {
+      const Tetrahedron& t = tetrahedra[first + lane];
+      const glm::dvec3 edges[3] = {x[t.y] - x[t.x], x[t.z] - x[t.x], x[t.w] - x[t.x]};
+      const glm::dmat3& b = body.maxwellInverse[first + lane];
+      for (int entry = 0; entry < 9; ++entry) {
+        shape[entry][lane] = edges[entry / 3][entry % 3];
+        maxwellInverse[entry][lane] = b[entry / 3][entry % 3];
+      }
+    }
+    for (std::size_t lane = count; lane < kTetLanes; ++lane)  // the last block's empty lanes
+      for (int entry = 0; entry < 9; ++entry) shape[entry][lane] = maxwellInverse[entry][lane] = 0.0;
+    blockStressForces(body.material, body.restBlocks[block], shape, maxwellInverse, h);
+    for (std::size_t lane = 0; lane < count; ++lane) {
+      const Tetrahedron& t = tetrahedra[first + lane];
+      const glm::dvec3 h0(h[0][lane], h[1][lane], h[2][lane]), h1(h[3][lane], h[4][lane], h[5][lane]),
+          h2(h[6][lane], h[7][lane], h[8][lane]);
+      forces[t.y] += h0;
+      forces[t.z] += h1;
+      forces[t.w] += h2;
+      forces[t.x] -= h0 + h1 + h2;
+    }
   }
   // The seed's damper along each edge: −k_d ((v_j − v_i)·u) u on i's side, u the unit edge.
   if (dampers) {

@@ -32,11 +32,23 @@
 
 namespace slime {
 
+// The force loop takes the tetrahedra kTetLanes at a time, one per vector lane: a few vector
+// registers' worth, so that the stores that gather a block have left before its arithmetic reads them.
+constexpr std::size_t kTetLanes = 64;
+
+// The rest data of kTetLanes tetrahedra with each matrix entry's lanes side by side (structure of
+// arrays within the block), entry [3·column + row]. Lanes past the last tetrahedron hold zeros.
+struct TetBlock {
+  alignas(64) double restInverse[9][kTetLanes] = {};  // Dm⁻¹
+  alignas(64) double forceMap[9][kTetLanes] = {};     // −V0 Dm⁻ᵀ
+};
+
 struct BulkBody {
   TetMesh mesh;                           // at rest at slime.position
   ParticleState state;
   std::vector<double> freeInverseMasses;  // inverse masses when nothing pins a node
   std::vector<TetRest> rest;              // per tetrahedron
+  std::vector<TetBlock> restBlocks;       // the same by kTetLanes, for the force loop
   std::vector<glm::dmat3> maxwellInverse; // per tetrahedron, B_v (identity at rest)
   std::vector<glm::dmat3> maxwellMetric;  // per tetrahedron, G_v = B_v⁻¹, which the flow blends
   std::vector<glm::u32vec2> edges;        // every tetrahedron edge once
