@@ -32,11 +32,37 @@ inline void setLaneMatrix(double (&entries)[9][kTetLanes], std::size_t lane, con
 // Nodal forces H = P·forceMap (P the first Piola stress at F = Ds·Dm⁻¹) of a block of tetrahedra,
 // one per lane; the loop over lanes is the one the compiler vectorises.
 void blockStressForces(const ViscoelasticMaterial& material, const TetBlock& rest, const double (&shape)[9][kTetLanes],
-                       const double (&maxwellInverse)[9][kTetLanes], double (&forces)[9][kTetLanes]) {
+                       const double (&maxwell)[9][kTetLanes], double (&forces)[9][kTetLanes]) {
   for (std::size_t lane = 0; lane < kTetLanes; ++lane) {
     const glm::dmat3 f = laneMatrix(shape, lane) * laneMatrix(rest.restInverse, lane);
-    const glm::dmat3 p = firstPiolaStress(material, f, laneMatrix(maxwellInverse, lane));
+    const glm::dmat3 p = firstPiolaStress(material, f, laneMatrix(maxwell, lane));
     setLaneMatrix(forces, lane, p * laneMatrix(rest.forceMap, lane));
+  }
+}
+
+// Ds = [x1 − x0, x2 − x0, x3 − x0] of a block's tetrahedra into lanes (zero past the last one).
+void gatherShapes(const std::vector<Tetrahedron>& tetrahedra, const std::vector<glm::dvec3>& x, std::size_t block,
+                  double (&shape)[9][kTetLanes]) {
+  const std::size_t first = block * kTetLanes;
+  const std::size_t count = std::min(kTetLanes, tetrahedra.size() - first);
+  for (std::size_t lane = 0; lane < count; ++lane) {
+    const Tetrahedron& t = tetrahedra[first + lane];
+    const glm::dvec3 edges[3] = {x[t.y] - x[t.x], x[t.z] - x[t.x], x[t.w] - x[t.x]};
+    for (int entry = 0; entry < 9; ++entry) shape[entry][lane] = edges[entry / 3][entry % 3];
+  }
+  for (std::size_t lane = count; lane < kTetLanes; ++lane)
+    for (int entry = 0; entry < 9; ++entry) shape[entry][lane] = 0.0;
+}
+
+// The Maxwell branches' flow (relaxMaxwellBranch) of a block of tetrahedra, one per lane (lanes past
+// the last tetrahedron flow too, with F = 0, and are never read).
+void blockRelax(const TetBlock& rest, const double (&shape)[9][kTetLanes], double decay, MaxwellBlock& maxwell) {
+  for (std::size_t lane = 0; lane < kTetLanes; ++lane) {
+    const glm::dmat3 f = laneMatrix(shape, lane) * laneMatrix(rest.restInverse, lane);
+    const MaxwellRest flowed =
+        relaxMaxwellBranch(f, {laneMatrix(maxwell.metric, lane), laneMatrix(maxwell.inverse, lane)}, decay);
+    setLaneMatrix(maxwell.metric, lane, flowed.metric);
+    setLaneMatrix(maxwell.inverse, lane, flowed.inverse);
   }
 }
 
@@ -61,8 +87,12 @@ BulkBody buildBulkBody(const SlimeSettings& slime) {
       block.forceMap[entry][e % kTetLanes] = body.rest[e].forceMap[entry / 3][entry % 3];
     }
   }
-  body.maxwellInverse.assign(mesh.tetrahedra.size(), glm::dmat3(1.0));
-  body.maxwellMetric.assign(mesh.tetrahedra.size(), glm::dmat3(1.0));
+  body.maxwell.resize(body.restBlocks.size());
+  for (MaxwellBlock& block : body.maxwell)
+    for (std::size_t lane = 0; lane < kTetLanes; ++lane) {
+      setLaneMatrix(block.inverse, lane, glm::dmat3(1.0));
+      setLaneMatrix(block.metric, lane, glm::dmat3(1.0));
+    }
   body.edges = tetrahedronEdges(mesh.tetrahedra);
   body.drawn = makeIcosphere(slime.level, slime.radius, slime.position);
   if (slime.level >= mesh.shellLevel) {
@@ -85,6 +115,10 @@ BulkBody buildBulkBody(const SlimeSettings& slime) {
   }
   applyBulkMaterial(body, slime);
   return body;
+}
+
+glm::dmat3 maxwellInverse(const BulkBody& body, std::size_t tetrahedron) {
+  return laneMatrix(body.maxwell[tetrahedron / kTetLanes].inverse, tetrahedron % kTetLanes);
 }
 
 void applyBulkMaterial(BulkBody& body, const SlimeSettings& slime) {
@@ -123,25 +157,14 @@ void bulkInternalForces(const BulkBody& body, const std::vector<glm::dvec3>& x, 
   forces.assign(x.size(), glm::dvec3(0.0));
   const std::vector<Tetrahedron>& tetrahedra = body.mesh.tetrahedra;
   // Elastic and Maxwell branches: f = −V0 P Dm⁻ᵀ on nodes 1..3, the opposite of their sum on node 0,
-  // a block of tetrahedra at a time: gather Ds and B_v into lanes, the stress, scatter in order.
+  // a block of tetrahedra at a time: gather Ds into lanes, the stress, scatter in order.
   for (std::size_t block = 0; block < body.restBlocks.size(); ++block) {
     const std::size_t first = block * kTetLanes;
     const std::size_t count = std::min(kTetLanes, tetrahedra.size() - first);
     alignas(64) double shape[9][kTetLanes];
-    alignas(64) double maxwellInverse[9][kTetLanes];
     alignas(64) double h[9][kTetLanes];
-    for (std::size_t lane = 0; lane < count; ++lane) {
-      const Tetrahedron& t = tetrahedra[first + lane];
-      const glm::dvec3 edges[3] = {x[t.y] - x[t.x], x[t.z] - x[t.x], x[t.w] - x[t.x]};
-      const glm::dmat3& b = body.maxwellInverse[first + lane];
-      for (int entry = 0; entry < 9; ++entry) {
-        shape[entry][lane] = edges[entry / 3][entry % 3];
-        maxwellInverse[entry][lane] = b[entry / 3][entry % 3];
-      }
-    }
-    for (std::size_t lane = count; lane < kTetLanes; ++lane)  // the last block's empty lanes
-      for (int entry = 0; entry < 9; ++entry) shape[entry][lane] = maxwellInverse[entry][lane] = 0.0;
-    blockStressForces(body.material, body.restBlocks[block], shape, maxwellInverse, h);
+    gatherShapes(tetrahedra, x, block, shape);
+    blockStressForces(body.material, body.restBlocks[block], shape, body.maxwell[block].inverse, h);
     for (std::size_t lane = 0; lane < count; ++lane) {
       const Tetrahedron& t = tetrahedra[first + lane];
       const glm::dvec3 h0(h[0][lane], h[1][lane], h[2][lane]), h1(h[3][lane], h[4][lane], h[5][lane]),
@@ -210,7 +233,7 @@ double bulkElasticEnergy(const BulkBody& body, const std::vector<glm::dvec3>& x)
   for (std::size_t e = 0; e < body.mesh.tetrahedra.size(); ++e) {
     const Tetrahedron& t = body.mesh.tetrahedra[e];
     const glm::dmat3 f = deformationGradient(body.rest[e], x[t.x], x[t.y], x[t.z], x[t.w]);
-    energy += body.rest[e].volume * energyDensity(body.material, f, body.maxwellInverse[e]);
+    energy += body.rest[e].volume * energyDensity(body.material, f, maxwellInverse(body, e));
   }
   return energy;
 }
@@ -218,13 +241,10 @@ double bulkElasticEnergy(const BulkBody& body, const std::vector<glm::dvec3>& x)
 void relaxBulk(BulkBody& body, double dt) {
   if (body.material.maxwellShear <= 0.0) return;
   const double decay = std::exp(-dt / body.material.relaxationTime);
-  const std::vector<glm::dvec3>& x = body.state.positions;
-  for (std::size_t e = 0; e < body.mesh.tetrahedra.size(); ++e) {
-    const Tetrahedron& t = body.mesh.tetrahedra[e];
-    const glm::dmat3 f = deformationGradient(body.rest[e], x[t.x], x[t.y], x[t.z], x[t.w]);
-    const MaxwellRest flowed = relaxMaxwellBranch(f, {body.maxwellMetric[e], body.maxwellInverse[e]}, decay);
-    body.maxwellMetric[e] = flowed.metric;
-    body.maxwellInverse[e] = flowed.inverse;
+  for (std::size_t block = 0; block < body.restBlocks.size(); ++block) {
+    alignas(64) double shape[9][kTetLanes];
+    gatherShapes(body.mesh.tetrahedra, body.state.positions, block, shape);
+    blockRelax(body.restBlocks[block], shape, decay, body.maxwell[block]);
   }
 }
 

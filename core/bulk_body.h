@@ -43,14 +43,20 @@ struct TetBlock {
   alignas(64) double forceMap[9][kTetLanes] = {};     // −V0 Dm⁻ᵀ
 };
 
+// The Maxwell branches' rest states (viscoelastic.h's MaxwellRest) of a block's tetrahedra, laid
+// out as TetBlock; identity at rest.
+struct MaxwellBlock {
+  alignas(64) double inverse[9][kTetLanes] = {};  // B_v
+  alignas(64) double metric[9][kTetLanes] = {};   // G_v = B_v⁻¹, which the flow blends
+};
+
 struct BulkBody {
   TetMesh mesh;                           // at rest at slime.position
   ParticleState state;
   std::vector<double> freeInverseMasses;  // inverse masses when nothing pins a node
   std::vector<TetRest> rest;              // per tetrahedron
   std::vector<TetBlock> restBlocks;       // the same by kTetLanes, for the force loop
-  std::vector<glm::dmat3> maxwellInverse; // per tetrahedron, B_v (identity at rest)
-  std::vector<glm::dmat3> maxwellMetric;  // per tetrahedron, G_v = B_v⁻¹, which the flow blends
+  std::vector<MaxwellBlock> maxwell;      // per block of kTetLanes tetrahedra, B_v and G_v
   std::vector<glm::u32vec2> edges;        // every tetrahedron edge once
   std::vector<double> edgeDamping;        // k_d per edge, N·s/m
   ViscoelasticMaterial material;
@@ -61,6 +67,9 @@ struct BulkBody {
 };
 
 BulkBody buildBulkBody(const SlimeSettings& slime);
+
+// B_v of one tetrahedron.
+glm::dmat3 maxwellInverse(const BulkBody& body, std::size_t tetrahedron);
 
 // Live material changes that keep the geometry: mass, modulus, longTerm, relaxation, poisson, viscosity.
 void applyBulkMaterial(BulkBody& body, const SlimeSettings& slime);

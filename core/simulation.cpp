@@ -310,8 +310,7 @@ void Simulation::driveGrabbedPoints(double h) {
 
 void Simulation::saveGoodState() {
   goodState_ = activeState();
-  goodMaxwellInverse_ = bulkBody_.maxwellInverse;
-  goodMaxwellMetric_ = bulkBody_.maxwellMetric;
+  goodMaxwell_ = bulkBody_.maxwell;
   goodTime_ = time_;
   goodStep_ = stepCount_;
 }
@@ -327,8 +326,7 @@ void Simulation::rollBack(const std::string& what) {
                std::to_string(substepsPerStep()) + " substeps per step";
   divergences_.push_back(event);
   activeState() = goodState_;
-  bulkBody_.maxwellInverse = goodMaxwellInverse_;
-  bulkBody_.maxwellMetric = goodMaxwellMetric_;
+  bulkBody_.maxwell = goodMaxwell_;
   drawnStale_ = true;
   time_ = goodTime_;
   stepCount_ = goodStep_;
