@@ -197,18 +197,29 @@ void dampEdges(const BulkBody& body, double h, BulkScratch& scratch, ParticleSta
       scratch.edgeDecay[s] = 1.0 - std::exp(-body.edgeDamping[s] * (w[body.edges[s].x] + w[body.edges[s].y]) * h);
     scratch.decayStep = h;
   }
-  std::vector<glm::dvec3>& x = state.positions;
+  // Pair after pair in the edges' order, each seeing the velocities the earlier ones left. The edges
+  // are sorted by i, so v_i stays in a register while its edges pass (j > i: never the same node).
+  // The change is (w_i, w_j)·a·((v_j − v_i)·d) d with a = decay/(|d|² (w_i + w_j)), found apart from
+  // the velocities, so that only a dot product and two multiply-adds wait on the previous pair.
+  const std::vector<glm::u32vec2>& edges = body.edges;
+  const std::vector<glm::dvec3>& x = state.positions;
   std::vector<glm::dvec3>& v = state.velocities;
-  for (std::size_t s = 0; s < body.edges.size(); ++s) {
-    const std::uint32_t i = body.edges[s].x, j = body.edges[s].y;
-    const double inverseMassSum = w[i] + w[j];
-    if (inverseMassSum <= 0.0) continue;
-    const glm::dvec3 d = x[j] - x[i];
-    const double lengthSquared = glm::dot(d, d);
-    if (lengthSquared <= 0.0) continue;
-    const glm::dvec3 change = (scratch.edgeDecay[s] * glm::dot(v[j] - v[i], d) / (lengthSquared * inverseMassSum)) * d;
-    v[i] += w[i] * change;
-    v[j] -= w[j] * change;
+  for (std::size_t s = 0; s < edges.size();) {
+    const std::uint32_t i = edges[s].x;
+    glm::dvec3 velocity = v[i];
+    for (; s < edges.size() && edges[s].x == i; ++s) {
+      const std::uint32_t j = edges[s].y;
+      const double inverseMassSum = w[i] + w[j];
+      if (inverseMassSum <= 0.0) continue;
+      const glm::dvec3 d = x[j] - x[i];
+      const double lengthSquared = glm::dot(d, d);
+      if (lengthSquared <= 0.0) continue;
+      const double share = scratch.edgeDecay[s] / (lengthSquared * inverseMassSum);
+      const double relativeSpeed = glm::dot(v[j] - velocity, d);
+      velocity += (w[i] * share * relativeSpeed) * d;
+      v[j] -= (w[j] * share * relativeSpeed) * d;
+    }
+    v[i] = velocity;
   }
 }
 
