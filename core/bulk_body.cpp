@@ -268,10 +268,11 @@ std::size_t resolveDrawnFloorContact(BulkBody& body, double friction) {
   std::size_t touched = 0;
   for (std::size_t s = 0; s < body.mesh.surface.size(); ++s) {
     const Triangle& triangle = body.mesh.surface[s];
+    // lowest > span/2, in squares (no square roots): a triangle well above the floor.
     const double lowest = std::min({x[triangle.x].z, x[triangle.y].z, x[triangle.z].z});
-    const double span = std::max({glm::length(x[triangle.y] - x[triangle.x]), glm::length(x[triangle.z] - x[triangle.y]),
-                                  glm::length(x[triangle.x] - x[triangle.z])});
-    if (lowest > 0.5 * span) continue;
+    const glm::dvec3 a = x[triangle.y] - x[triangle.x], b = x[triangle.z] - x[triangle.y], c = x[triangle.x] - x[triangle.z];
+    const double spanSquared = std::max({glm::dot(a, a), glm::dot(b, b), glm::dot(c, c)});
+    if (lowest > 0.0 && lowest * lowest > 0.25 * spanSquared) continue;
     for (std::uint32_t vertex : embedding.verticesOfSurfaceTriangle[s]) {
       const Tetrahedron& t = embedding.nodes[vertex];
       const glm::dvec4& w = embedding.weights[vertex];
