@@ -20,6 +20,52 @@ std::size_t edgeIndex(const std::vector<glm::u32vec2>& edges, std::uint32_t a, s
   return static_cast<std::size_t>(it - edges.begin());
 }
 
+// One lane's 3×3 matrix from entries stored [3·column + row][lane], and back.
+inline glm::dmat3 laneMatrix(const double (&entries)[9][kTetLanes], std::size_t lane) {
+  return glm::dmat3(entries[0][lane], entries[1][lane], entries[2][lane], entries[3][lane], entries[4][lane],
+                    entries[5][lane], entries[6][lane], entries[7][lane], entries[8][lane]);
+}
+inline void setLaneMatrix(double (&entries)[9][kTetLanes], std::size_t lane, const glm::dmat3& m) {
+  for (int entry = 0; entry < 9; ++entry) entries[entry][lane] = m[entry / 3][entry % 3];
+}
+
+// Nodal forces H = P·forceMap (P the first Piola stress at F = Ds·Dm⁻¹) of a block of tetrahedra,
+// one per lane; the loop over lanes is the one the compiler vectorises.
+void blockStressForces(const ViscoelasticMaterial& material, const TetBlock& rest, const double (&shape)[9][kTetLanes],
+                       const double (&maxwell)[9][kTetLanes], double (&forces)[9][kTetLanes]) {
+  for (std::size_t lane = 0; lane < kTetLanes; ++lane) {
+    const glm::dmat3 f = laneMatrix(shape, lane) * laneMatrix(rest.restInverse, lane);
+    const glm::dmat3 p = firstPiolaStress(material, f, laneMatrix(maxwell, lane));
+    setLaneMatrix(forces, lane, p * laneMatrix(rest.forceMap, lane));
+  }
+}
+
+// Ds = [x1 − x0, x2 − x0, x3 − x0] of a block's tetrahedra into lanes (zero past the last one).
+void gatherShapes(const std::vector<Tetrahedron>& tetrahedra, const std::vector<glm::dvec3>& x, std::size_t block,
+                  double (&shape)[9][kTetLanes]) {
+  const std::size_t first = block * kTetLanes;
+  const std::size_t count = std::min(kTetLanes, tetrahedra.size() - first);
+  for (std::size_t lane = 0; lane < count; ++lane) {
+    const Tetrahedron& t = tetrahedra[first + lane];
+    const glm::dvec3 edges[3] = {x[t.y] - x[t.x], x[t.z] - x[t.x], x[t.w] - x[t.x]};
+    for (int entry = 0; entry < 9; ++entry) shape[entry][lane] = edges[entry / 3][entry % 3];
+  }
+  for (std::size_t lane = count; lane < kTetLanes; ++lane)
+    for (int entry = 0; entry < 9; ++entry) shape[entry][lane] = 0.0;
+}
+
+// The Maxwell branches' flow (relaxMaxwellBranch) of a block of tetrahedra, one per lane (lanes past
+// the last tetrahedron flow too, with F = 0, and are never read).
+void blockRelax(const TetBlock& rest, const double (&shape)[9][kTetLanes], double decay, MaxwellBlock& maxwell) {
+  for (std::size_t lane = 0; lane < kTetLanes; ++lane) {
+    const glm::dmat3 f = laneMatrix(shape, lane) * laneMatrix(rest.restInverse, lane);
+    const MaxwellRest flowed =
+        relaxMaxwellBranch(f, {laneMatrix(maxwell.metric, lane), laneMatrix(maxwell.inverse, lane)}, decay);
+    setLaneMatrix(maxwell.metric, lane, flowed.metric);
+    setLaneMatrix(maxwell.inverse, lane, flowed.inverse);
+  }
+}
+
 }  // namespace
 
 BulkBody buildBulkBody(const SlimeSettings& slime) {
@@ -33,7 +79,20 @@ BulkBody buildBulkBody(const SlimeSettings& slime) {
     body.rest.push_back(makeTetRest(mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z], mesh.positions[t.w]));
     body.restVolume += body.rest.back().volume;
   }
-  body.maxwellInverse.assign(mesh.tetrahedra.size(), glm::dmat3(1.0));
+  body.restBlocks.resize((mesh.tetrahedra.size() + kTetLanes - 1) / kTetLanes);
+  for (std::size_t e = 0; e < mesh.tetrahedra.size(); ++e) {
+    TetBlock& block = body.restBlocks[e / kTetLanes];
+    for (int entry = 0; entry < 9; ++entry) {
+      block.restInverse[entry][e % kTetLanes] = body.rest[e].restInverse[entry / 3][entry % 3];
+      block.forceMap[entry][e % kTetLanes] = body.rest[e].forceMap[entry / 3][entry % 3];
+    }
+  }
+  body.maxwell.resize(body.restBlocks.size());
+  for (MaxwellBlock& block : body.maxwell)
+    for (std::size_t lane = 0; lane < kTetLanes; ++lane) {
+      setLaneMatrix(block.inverse, lane, glm::dmat3(1.0));
+      setLaneMatrix(block.metric, lane, glm::dmat3(1.0));
+    }
   body.edges = tetrahedronEdges(mesh.tetrahedra);
   body.drawn = makeIcosphere(slime.level, slime.radius, slime.position);
   if (slime.level >= mesh.shellLevel) {
@@ -56,6 +115,10 @@ BulkBody buildBulkBody(const SlimeSettings& slime) {
   }
   applyBulkMaterial(body, slime);
   return body;
+}
+
+glm::dmat3 maxwellInverse(const BulkBody& body, std::size_t tetrahedron) {
+  return laneMatrix(body.maxwell[tetrahedron / kTetLanes].inverse, tetrahedron % kTetLanes);
 }
 
 void applyBulkMaterial(BulkBody& body, const SlimeSettings& slime) {
@@ -93,17 +156,24 @@ void bulkInternalForces(const BulkBody& body, const std::vector<glm::dvec3>& x, 
                         std::vector<glm::dvec3>& forces, bool dampers) {
   forces.assign(x.size(), glm::dvec3(0.0));
   const std::vector<Tetrahedron>& tetrahedra = body.mesh.tetrahedra;
-  // Elastic and Maxwell branches: f = −V0 P Dm⁻ᵀ on nodes 1..3, the opposite of their sum on node 0.
-  for (std::size_t e = 0; e < tetrahedra.size(); ++e) {
-    const Tetrahedron& t = tetrahedra[e];
-    const TetRest& rest = body.rest[e];
-    const glm::dmat3 f = deformationGradient(rest, x[t.x], x[t.y], x[t.z], x[t.w]);
-    const glm::dmat3 p = firstPiolaStress(body.material, f, body.maxwellInverse[e]);
-    const glm::dmat3 h = p * rest.forceMap;
-    forces[t.y] += h[0];
-    forces[t.z] += h[1];
-    forces[t.w] += h[2];
-    forces[t.x] -= h[0] + h[1] + h[2];
+  // Elastic and Maxwell branches: f = −V0 P Dm⁻ᵀ on nodes 1..3, the opposite of their sum on node 0,
+  // a block of tetrahedra at a time: gather Ds into lanes, the stress, scatter in order.
+  for (std::size_t block = 0; block < body.restBlocks.size(); ++block) {
+    const std::size_t first = block * kTetLanes;
+    const std::size_t count = std::min(kTetLanes, tetrahedra.size() - first);
+    alignas(64) double shape[9][kTetLanes];
+    alignas(64) double h[9][kTetLanes];
+    gatherShapes(tetrahedra, x, block, shape);
+    blockStressForces(body.material, body.restBlocks[block], shape, body.maxwell[block].inverse, h);
+    for (std::size_t lane = 0; lane < count; ++lane) {
+      const Tetrahedron& t = tetrahedra[first + lane];
+      const glm::dvec3 h0(h[0][lane], h[1][lane], h[2][lane]), h1(h[3][lane], h[4][lane], h[5][lane]),
+          h2(h[6][lane], h[7][lane], h[8][lane]);
+      forces[t.y] += h0;
+      forces[t.z] += h1;
+      forces[t.w] += h2;
+      forces[t.x] -= h0 + h1 + h2;
+    }
   }
   // The seed's damper along each edge: −k_d ((v_j − v_i)·u) u on i's side, u the unit edge.
   if (dampers) {
@@ -127,18 +197,29 @@ void dampEdges(const BulkBody& body, double h, BulkScratch& scratch, ParticleSta
       scratch.edgeDecay[s] = 1.0 - std::exp(-body.edgeDamping[s] * (w[body.edges[s].x] + w[body.edges[s].y]) * h);
     scratch.decayStep = h;
   }
-  std::vector<glm::dvec3>& x = state.positions;
+  // Pair after pair in the edges' order, each seeing the velocities the earlier ones left. The edges
+  // are sorted by i, so v_i stays in a register while its edges pass (j > i: never the same node).
+  // The change is (w_i, w_j)·a·((v_j − v_i)·d) d with a = decay/(|d|² (w_i + w_j)), found apart from
+  // the velocities, so that only a dot product and two multiply-adds wait on the previous pair.
+  const std::vector<glm::u32vec2>& edges = body.edges;
+  const std::vector<glm::dvec3>& x = state.positions;
   std::vector<glm::dvec3>& v = state.velocities;
-  for (std::size_t s = 0; s < body.edges.size(); ++s) {
-    const std::uint32_t i = body.edges[s].x, j = body.edges[s].y;
-    const double inverseMassSum = w[i] + w[j];
-    if (inverseMassSum <= 0.0) continue;
-    const glm::dvec3 d = x[j] - x[i];
-    const double lengthSquared = glm::dot(d, d);
-    if (lengthSquared <= 0.0) continue;
-    const glm::dvec3 change = (scratch.edgeDecay[s] * glm::dot(v[j] - v[i], d) / (lengthSquared * inverseMassSum)) * d;
-    v[i] += w[i] * change;
-    v[j] -= w[j] * change;
+  for (std::size_t s = 0; s < edges.size();) {
+    const std::uint32_t i = edges[s].x;
+    glm::dvec3 velocity = v[i];
+    for (; s < edges.size() && edges[s].x == i; ++s) {
+      const std::uint32_t j = edges[s].y;
+      const double inverseMassSum = w[i] + w[j];
+      if (inverseMassSum <= 0.0) continue;
+      const glm::dvec3 d = x[j] - x[i];
+      const double lengthSquared = glm::dot(d, d);
+      if (lengthSquared <= 0.0) continue;
+      const double share = scratch.edgeDecay[s] / (lengthSquared * inverseMassSum);
+      const double relativeSpeed = glm::dot(v[j] - velocity, d);
+      velocity += (w[i] * share * relativeSpeed) * d;
+      v[j] -= (w[j] * share * relativeSpeed) * d;
+    }
+    v[i] = velocity;
   }
 }
 
@@ -163,7 +244,7 @@ double bulkElasticEnergy(const BulkBody& body, const std::vector<glm::dvec3>& x)
   for (std::size_t e = 0; e < body.mesh.tetrahedra.size(); ++e) {
     const Tetrahedron& t = body.mesh.tetrahedra[e];
     const glm::dmat3 f = deformationGradient(body.rest[e], x[t.x], x[t.y], x[t.z], x[t.w]);
-    energy += body.rest[e].volume * energyDensity(body.material, f, body.maxwellInverse[e]);
+    energy += body.rest[e].volume * energyDensity(body.material, f, maxwellInverse(body, e));
   }
   return energy;
 }
@@ -171,11 +252,10 @@ double bulkElasticEnergy(const BulkBody& body, const std::vector<glm::dvec3>& x)
 void relaxBulk(BulkBody& body, double dt) {
   if (body.material.maxwellShear <= 0.0) return;
   const double decay = std::exp(-dt / body.material.relaxationTime);
-  const std::vector<glm::dvec3>& x = body.state.positions;
-  for (std::size_t e = 0; e < body.mesh.tetrahedra.size(); ++e) {
-    const Tetrahedron& t = body.mesh.tetrahedra[e];
-    const glm::dmat3 f = deformationGradient(body.rest[e], x[t.x], x[t.y], x[t.z], x[t.w]);
-    body.maxwellInverse[e] = relaxMaxwellBranch(f, body.maxwellInverse[e], decay);
+  for (std::size_t block = 0; block < body.restBlocks.size(); ++block) {
+    alignas(64) double shape[9][kTetLanes];
+    gatherShapes(body.mesh.tetrahedra, body.state.positions, block, shape);
+    blockRelax(body.restBlocks[block], shape, decay, body.maxwell[block]);
   }
 }
 
@@ -188,10 +268,11 @@ std::size_t resolveDrawnFloorContact(BulkBody& body, double friction) {
   std::size_t touched = 0;
   for (std::size_t s = 0; s < body.mesh.surface.size(); ++s) {
     const Triangle& triangle = body.mesh.surface[s];
+    // lowest > span/2, in squares (no square roots): a triangle well above the floor.
     const double lowest = std::min({x[triangle.x].z, x[triangle.y].z, x[triangle.z].z});
-    const double span = std::max({glm::length(x[triangle.y] - x[triangle.x]), glm::length(x[triangle.z] - x[triangle.y]),
-                                  glm::length(x[triangle.x] - x[triangle.z])});
-    if (lowest > 0.5 * span) continue;
+    const glm::dvec3 a = x[triangle.y] - x[triangle.x], b = x[triangle.z] - x[triangle.y], c = x[triangle.x] - x[triangle.z];
+    const double spanSquared = std::max({glm::dot(a, a), glm::dot(b, b), glm::dot(c, c)});
+    if (lowest > 0.0 && lowest * lowest > 0.25 * spanSquared) continue;
     for (std::uint32_t vertex : embedding.verticesOfSurfaceTriangle[s]) {
       const Tetrahedron& t = embedding.nodes[vertex];
       const glm::dvec4& w = embedding.weights[vertex];

@@ -32,12 +32,31 @@
 
 namespace slime {
 
+// The force loop takes the tetrahedra kTetLanes at a time, one per vector lane: a few vector
+// registers' worth, so that the stores that gather a block have left before its arithmetic reads them.
+constexpr std::size_t kTetLanes = 64;
+
+// The rest data of kTetLanes tetrahedra with each matrix entry's lanes side by side (structure of
+// arrays within the block), entry [3·column + row]. Lanes past the last tetrahedron hold zeros.
+struct TetBlock {
+  alignas(64) double restInverse[9][kTetLanes] = {};  // Dm⁻¹
+  alignas(64) double forceMap[9][kTetLanes] = {};     // −V0 Dm⁻ᵀ
+};
+
+// The Maxwell branches' rest states (viscoelastic.h's MaxwellRest) of a block's tetrahedra, laid
+// out as TetBlock; identity at rest.
+struct MaxwellBlock {
+  alignas(64) double inverse[9][kTetLanes] = {};  // B_v
+  alignas(64) double metric[9][kTetLanes] = {};   // G_v = B_v⁻¹, which the flow blends
+};
+
 struct BulkBody {
   TetMesh mesh;                           // at rest at slime.position
   ParticleState state;
   std::vector<double> freeInverseMasses;  // inverse masses when nothing pins a node
   std::vector<TetRest> rest;              // per tetrahedron
-  std::vector<glm::dmat3> maxwellInverse; // per tetrahedron, B_v (identity at rest)
+  std::vector<TetBlock> restBlocks;       // the same by kTetLanes, for the force loop
+  std::vector<MaxwellBlock> maxwell;      // per block of kTetLanes tetrahedra, B_v and G_v
   std::vector<glm::u32vec2> edges;        // every tetrahedron edge once
   std::vector<double> edgeDamping;        // k_d per edge, N·s/m
   ViscoelasticMaterial material;
@@ -48,6 +67,9 @@ struct BulkBody {
 };
 
 BulkBody buildBulkBody(const SlimeSettings& slime);
+
+// B_v of one tetrahedron.
+glm::dmat3 maxwellInverse(const BulkBody& body, std::size_t tetrahedron);
 
 // Live material changes that keep the geometry: mass, modulus, longTerm, relaxation, poisson, viscosity.
 void applyBulkMaterial(BulkBody& body, const SlimeSettings& slime);

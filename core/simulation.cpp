@@ -310,7 +310,7 @@ void Simulation::driveGrabbedPoints(double h) {
 
 void Simulation::saveGoodState() {
   goodState_ = activeState();
-  goodMaxwell_ = bulkBody_.maxwellInverse;
+  goodMaxwell_ = bulkBody_.maxwell;
   goodTime_ = time_;
   goodStep_ = stepCount_;
 }
@@ -326,7 +326,7 @@ void Simulation::rollBack(const std::string& what) {
                std::to_string(substepsPerStep()) + " substeps per step";
   divergences_.push_back(event);
   activeState() = goodState_;
-  bulkBody_.maxwellInverse = goodMaxwell_;
+  bulkBody_.maxwell = goodMaxwell_;
   drawnStale_ = true;
   time_ = goodTime_;
   stepCount_ = goodStep_;

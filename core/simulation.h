@@ -147,7 +147,7 @@ class Simulation {
 
   // The last good state the guard rolls back to.
   ParticleState goodState_;
-  std::vector<glm::dmat3> goodMaxwell_;
+  std::vector<MaxwellBlock> goodMaxwell_;  // the bulk's B_v and G_v then
   double goodTime_ = 0.0;
   std::int64_t goodStep_ = 0;
 

@@ -39,13 +39,4 @@ double energyDensity(const ViscoelasticMaterial& material, const glm::dmat3& f, 
          material.maxwellShear * (0.5 * (traceCB - 3.0) - (j - 1.0));
 }
 
-glm::dmat3 relaxMaxwellBranch(const glm::dmat3& f, const glm::dmat3& maxwellInverse, double decay) {
-  const glm::dmat3 c = glm::transpose(f) * f;
-  glm::dmat3 metric = c + (glm::inverse(maxwellInverse) - c) * decay;
-  const double det = glm::determinant(metric);
-  if (!(det > 0.0)) return maxwellInverse;  // an inverted element keeps its rest state this step
-  metric /= std::cbrt(det);
-  return glm::inverse(metric);
-}
-
 }  // namespace slime

@@ -17,6 +17,8 @@
 // stress its creep has the time constant τ_c = τ (μ∞ + μ1)/μ∞.
 #pragma once
 
+#include "core/cube_root.h"
+
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
@@ -76,7 +78,43 @@ inline glm::dmat3 firstPiolaStress(const ViscoelasticMaterial& material, const g
 // Energy density Ψ at F with B_v, J/m³.
 double energyDensity(const ViscoelasticMaterial& material, const glm::dmat3& f, const glm::dmat3& maxwellInverse);
 
-// The Maxwell branch's flow over Δt: returns the new B_v for the current F.
-glm::dmat3 relaxMaxwellBranch(const glm::dmat3& f, const glm::dmat3& maxwellInverse, double decay);
+// The Maxwell branch's rest state: its metric G_v and the inverse B_v that the stress uses, kept
+// together so that the flow inverts once (B_v = (G/s)⁻¹ = s·G⁻¹ after the blend G, s = det G^(1/3)).
+struct MaxwellRest {
+  glm::dmat3 metric{1.0};   // G_v, symmetric, det 1
+  glm::dmat3 inverse{1.0};  // B_v = G_v⁻¹
+};
+
+// The Maxwell branch's flow over Δt (decay = exp(−Δt/τ)): the new rest state for the current F.
+// An inverted element (det ≤ 0 after the blend) keeps its rest state this step. Inline and without
+// branches or calls, so that bulk_body.cpp's loop over a block of elements vectorises.
+inline MaxwellRest relaxMaxwellBranch(const glm::dmat3& f, const MaxwellRest& rest, double decay) {
+  // G = C + (G_v − C)·decay with C = FᵀF (C_ij = f_i·f_j for F's columns), all symmetric: six entries.
+  const glm::dmat3& g = rest.metric;
+  const double c00 = glm::dot(f[0], f[0]), c11 = glm::dot(f[1], f[1]), c22 = glm::dot(f[2], f[2]);
+  const double c01 = glm::dot(f[0], f[1]), c02 = glm::dot(f[0], f[2]), c12 = glm::dot(f[1], f[2]);
+  const double m00 = c00 + (g[0][0] - c00) * decay, m11 = c11 + (g[1][1] - c11) * decay;
+  const double m22 = c22 + (g[2][2] - c22) * decay, m01 = c01 + (g[0][1] - c01) * decay;
+  const double m02 = c02 + (g[0][2] - c02) * decay, m12 = c12 + (g[1][2] - c12) * decay;
+  // Its adjugate (cofactors) and determinant.
+  const double a00 = m11 * m22 - m12 * m12, a11 = m00 * m22 - m02 * m02, a22 = m00 * m11 - m01 * m01;
+  const double a01 = m02 * m12 - m01 * m22, a02 = m01 * m12 - m02 * m11, a12 = m01 * m02 - m00 * m12;
+  const double det = m00 * a00 + m01 * a01 + m02 * a02;
+  // G_v = G·det^(−1/3) and B_v = G_v⁻¹ = adj G · det^(1/3)/det = adj G · det^(−2/3). (An infinite det,
+  // from an element already blown up, gives NaN, which the divergence guard catches.)
+  const double scale = inverseCubeRootOfPositive(det);
+  const double inverseScale = scale * scale;
+  const glm::dmat3 metric = glm::dmat3(m00, m01, m02, m01, m11, m12, m02, m12, m22) * scale;
+  const glm::dmat3 inverse = glm::dmat3(a00, a01, a02, a01, a11, a12, a02, a12, a22) * inverseScale;
+  // An inverted element keeps its rest state this step (chosen entry by entry, which vectorises).
+  const bool flows = det > 0.0;
+  MaxwellRest flowed;
+  for (int column = 0; column < 3; ++column)
+    for (int row = 0; row < 3; ++row) {
+      flowed.metric[column][row] = flows ? metric[column][row] : rest.metric[column][row];
+      flowed.inverse[column][row] = flows ? inverse[column][row] : rest.inverse[column][row];
+    }
+  return flowed;
+}
 
 }  // namespace slime

@@ -133,7 +133,8 @@ TEST(Viscoelastic, RestFreeLinearAtSmallStrainAndTheEnergysDerivative) {
     }
   // dΨ/dF by central differences at a large, sheared and flowed state.
   const glm::dmat3 f(1.2, 0.1, -0.3, 0.2, 0.8, 0.1, 0.05, -0.2, 1.1);
-  const glm::dmat3 flowed = relaxMaxwellBranch(glm::dmat3(1.1, 0.0, 0.1, 0.0, 0.95, 0.0, 0.1, 0.0, 0.97), identity, 0.0);
+  const glm::dmat3 flowed =
+      relaxMaxwellBranch(glm::dmat3(1.1, 0.0, 0.1, 0.0, 0.95, 0.0, 0.1, 0.0, 0.97), MaxwellRest{}, 0.0).inverse;
   const glm::dmat3 stress = firstPiolaStress(m, f, flowed);
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
@@ -152,11 +153,37 @@ TEST(Viscoelastic, TheMaxwellBranchIsStressFreeWhereItFlowed) {
   maxwellOnly.maxwellShear = 800.0;
   const glm::dmat3 u(1.6, 0.2, 0.0, 0.2, 0.9, -0.1, 0.0, -0.1, 0.8);  // symmetric, det 1 after scaling
   const glm::dmat3 stretch = u / std::cbrt(glm::determinant(u));
-  const glm::dmat3 flowed = relaxMaxwellBranch(stretch, glm::dmat3(1.0), 0.0);  // fully flowed: B_v = U⁻²
+  const glm::dmat3 flowed = relaxMaxwellBranch(stretch, MaxwellRest{}, 0.0).inverse;  // fully flowed: B_v = U⁻²
   const glm::dmat3 rotation = glm::dmat3(std::cos(0.3), std::sin(0.3), 0.0, -std::sin(0.3), std::cos(0.3), 0.0, 0.0, 0.0, 1.0);
   const glm::dmat3 p = firstPiolaStress(maxwellOnly, rotation * stretch, flowed);
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) EXPECT_NEAR(p[i][j], 0.0, 1e-9 * maxwellOnly.maxwellShear) << i << "," << j;
+}
+
+// The flow carries G_v and B_v together: after many steps of a changing strain they are still each
+// other's inverse, det G_v = 1, and B_v is what blending inverse(B_v) and inverting twice gave.
+TEST(Viscoelastic, TheFlowKeepsTheMetricAndItsInverseTogether) {
+  MaxwellRest rest;
+  glm::dmat3 twoInverses(1.0);
+  const double decay = std::exp(-0.004 / 0.05);
+  for (int k = 0; k < 200; ++k) {
+    const double phase = 0.1 * k;
+    const glm::dmat3 f(1.0 + 0.3 * std::sin(phase), 0.2 * std::cos(phase), 0.05, 0.1, 0.8 + 0.1 * std::cos(phase),
+                       -0.2 * std::sin(phase), 0.03, 0.1, 1.1);
+    rest = relaxMaxwellBranch(f, rest, decay);
+    const glm::dmat3 c = glm::transpose(f) * f;
+    const glm::dmat3 metric = c + (glm::inverse(twoInverses) - c) * decay;
+    twoInverses = glm::inverse(metric / std::cbrt(glm::determinant(metric)));
+  }
+  EXPECT_NEAR(glm::determinant(rest.metric), 1.0, 1e-13);
+  const glm::dmat3 product = rest.metric * rest.inverse;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      EXPECT_NEAR(product[i][j], i == j ? 1.0 : 0.0, 1e-13) << i << "," << j;
+      EXPECT_NEAR(rest.inverse[i][j], twoInverses[i][j], 1e-13) << i << "," << j;
+      EXPECT_EQ(rest.metric[i][j], rest.metric[j][i]);
+      EXPECT_EQ(rest.inverse[i][j], rest.inverse[j][i]);
+    }
 }
 
 // Shear stress of the element at a shear strain γ held from t = 0: σ(t) = (μ∞ + μ1 e^(−t/τ)) γ,
@@ -166,12 +193,12 @@ TEST(Viscoelastic, RelaxationUnderAHeldShearMatchesTheClosedForm) {
   const double gamma = 1e-4;
   glm::dmat3 f(1.0);
   f[1][0] = gamma;  // F = I + γ e_x e_yᵀ (column 1, row 0)
-  glm::dmat3 maxwell(1.0);
+  MaxwellRest maxwell;
   const double dt = 0.01;
   for (int k = 1; k <= 100; ++k) {
     maxwell = relaxMaxwellBranch(f, maxwell, std::exp(-dt / m.relaxationTime));
     const double t = k * dt;
-    const double shear = firstPiolaStress(m, f, maxwell)[1][0];
+    const double shear = firstPiolaStress(m, f, maxwell.inverse)[1][0];
     const double expected = (m.longTermShear + m.maxwellShear * std::exp(-t / m.relaxationTime)) * gamma;
     EXPECT_NEAR(shear, expected, 1e-3 * m.maxwellShear * gamma) << "t = " << t;
   }
@@ -188,7 +215,7 @@ TEST(Viscoelastic, CreepUnderAHeldShearStressConvergesAtFirstOrder) {
   const double tauC = creepTimeConstant(m);
   EXPECT_NEAR(tauC, m.relaxationTime * mu0 / m.longTermShear, 1e-12);
   auto error = [&](double dt) {
-    glm::dmat3 maxwell(1.0);
+    MaxwellRest maxwell;
     double worst = 0.0;
     for (int k = 1; k * dt <= 2.0 * tauC + 1e-12; ++k) {
       // The shear γ at which this element carries `stress` now (Newton on P_xy(γ), linear here).
@@ -198,8 +225,8 @@ TEST(Viscoelastic, CreepUnderAHeldShearStressConvergesAtFirstOrder) {
         f[1][0] = gamma;
         glm::dmat3 g = f;
         g[1][0] += 1e-7;
-        const double p = firstPiolaStress(m, f, maxwell)[1][0];
-        const double slope = (firstPiolaStress(m, g, maxwell)[1][0] - p) / 1e-7;
+        const double p = firstPiolaStress(m, f, maxwell.inverse)[1][0];
+        const double slope = (firstPiolaStress(m, g, maxwell.inverse)[1][0] - p) / 1e-7;
         gamma -= (p - stress) / slope;
       }
       glm::dmat3 f(1.0);
