@@ -1,10 +1,10 @@
-// x^(−1/3) in double precision, within 1 ulp of the correctly rounded value (std::cbrt in glibc
-// is within 3 ulps, and 1/std::cbrt within 5), for the Maxwell branch's volume normalisation
-// G_v / det^(1/3), B_v · det^(−2/3) (viscoelastic.h), where glibc's cbrt and its frexp/scalbn took
-// as long as the rest of the flow. No division: a guess from the exponent divided by three, two
-// fourth-order steps of the series r (1 − e)^(−1/3) = r (1 + e/3 + 2e²/9 + 14e³/81 + …),
-// e = 1 − x r³ (3.4 % → 1e-5 → 1e-19), then one Newton step with e found to the last bit (r³
-// split into two doubles by fma), which leaves only the final rounding.
+// x^(−1/3) in double precision, within 1 ulp of the correctly rounded value (over the unit test's
+// samples glibc's std::cbrt was up to 3 ulps off, 1/std::cbrt up to 5), for the Maxwell branch's
+// volume normalisation G_v / det^(1/3), B_v · det^(−2/3) (viscoelastic.h), where glibc's cbrt and
+// its frexp/scalbn took as long as the rest of the flow. No division: a guess from the exponent
+// divided by three, two fourth-order steps of the series r (1 − e)^(−1/3) = r (1 + e/3 + 2e²/9 +
+// 14e³/81 + …), e = 1 − x r³ (3.4 % → 1e-5 → 1e-19), then one Newton step with e found to the last
+// bit (r³ split into two doubles by fma), which leaves only the final rounding.
 #pragma once
 
 #include <bit>
