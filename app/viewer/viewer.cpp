@@ -72,13 +72,12 @@ bool Viewer::frame() {
   if (quit_ && !options_.screenshotOnExit.empty()) requestScreenshot(options_.screenshotOnExit);
   // Physics runs beside the panels: this frame traces the slime as the last frame's steps left it,
   // then this frame's steps run on a second thread while the main thread uploads the image, draws
-  // the panels and presents, and refit the drawn slime for the next frame's trace there too (the refit, ~1 ms,
-  // then no longer holds up the trace). The trace has both cores to itself; the panels are mostly
-  // one thread's work (measured: 28.5 fps with the physics beside the trace, 29.6 beside the
-  // panels). So that nothing is shared meanwhile, the steps hand back what they did
-  // (PhysicsOutcome) and the panels' requests wait; both are applied after the join. A scenario's
-  // "set" events edit the settings the trace reads, so while one is still to come the steps run
-  // first, alone; a scenario's grabs and drags run beside the panels, as the mouse's do.
+  // the panels and presents. The trace has both cores to itself; the panels are mostly one thread's
+  // work (measured: 28.5 fps with the physics beside the trace, 29.6 beside the panels). So that
+  // nothing is shared meanwhile, the steps hand back what they did (PhysicsOutcome) and the panels'
+  // requests wait; both are applied after the join. A scenario's "set" events edit the settings the
+  // trace reads, so while one is still to come the steps run first, alone; a scenario's grabs and
+  // drags run beside the panels, as the mouse's do.
   refitSlime();
   const glm::dvec3 target = grabTargetFor();
   PanelRequests requests;
@@ -92,12 +91,8 @@ bool Viewer::frame() {
   } else {
     traceImage();
     const GrabMarks marks = grabMarks();
-    const int imageHeight = tracedImageSize().y;  // asked here: the window is the main thread's to ask
     PhysicsOutcome outcome;
-    std::thread physics([this, &input, &target, &outcome, imageHeight] {
-      outcome = stepPhysics(input.elapsedSeconds, target);
-      refitBeside(outcome, imageHeight);
-    });
+    std::thread physics([this, &input, &target, &outcome] { outcome = stepPhysics(input.elapsedSeconds, target); });
     uploadImage();
     requests = drawPanelsAndOverlay(marks);
     present();
@@ -274,24 +269,9 @@ bool Viewer::scenarioSetPending() const {
                      [](const ScenarioEvent& event) { return event.kind == ScenarioEvent::Kind::Set; });
 }
 
-void Viewer::refitBeside(PhysicsOutcome& outcome, int imageHeight) {
-  if (outcome.steps == 0 || !motionWouldShow(imageHeight)) return;
-  const Stopwatch refitTime;
-  renderer_.updateSlime(simulation_.positions(), simulation_.triangles());
-  drawnPositions_ = simulation_.positions();
-  outcome.refitted = true;
-  outcome.refitMilliseconds = refitTime.milliseconds();
-}
-
 void Viewer::applyPhysicsOutcome(const PhysicsOutcome& outcome) {
-  if (outcome.refitted) {  // drawn as the steps left it: the next frame traces it without a refit
-    slimeMoved_ = false;
-    sceneChanged_ = true;
-    stats_.stages.refit += outcome.refitMilliseconds;
-  } else if (outcome.steps > 0) {
-    slimeMoved_ = true;
-  }
   if (outcome.steps > 0) {
+    slimeMoved_ = true;
     metrics_ = outcome.metrics;
     if (outcome.grabbing) peakHeightWhileGrabbing_ = std::max(peakHeightWhileGrabbing_, metrics_.height);
   }
@@ -311,7 +291,7 @@ void Viewer::applyPhysicsOutcome(const PhysicsOutcome& outcome) {
 // would show (kInvisibleMotionPixels); slow creep is traced once it adds up.
 void Viewer::refitSlime() {
   const Stopwatch refitTime;
-  if (slimeMoved_ && (sceneChanged_ || motionWouldShow(tracedImageSize().y))) {
+  if (slimeMoved_ && (sceneChanged_ || motionWouldShow())) {
     renderer_.updateSlime(simulation_.positions(), simulation_.triangles());
     drawnPositions_ = simulation_.positions();
     slimeMoved_ = false;
@@ -320,9 +300,10 @@ void Viewer::refitSlime() {
   stats_.stages.refit = refitTime.milliseconds();
 }
 
-bool Viewer::motionWouldShow(int imageHeight) const {
-  return imageHeight <= 0 || largestMotionPixels(drawnPositions_, simulation_.positions(), settings_.camera.position,
-                                                 settings_.camera.fov, imageHeight) >= kInvisibleMotionPixels;
+bool Viewer::motionWouldShow() const {
+  const glm::ivec2 size = tracedImageSize();
+  return size.y <= 0 || largestMotionPixels(drawnPositions_, simulation_.positions(), settings_.camera.position,
+                                            settings_.camera.fov, size.y) >= kInvisibleMotionPixels;
 }
 
 glm::ivec2 Viewer::fullImageSize() const {

@@ -94,18 +94,13 @@ class Viewer {
     int scenarioGrabs = 0;        // the scenario's grabs and presses that took hold during the steps
     double heightAtGrab = 0.0;    // the slime's height when the last of them took hold
     bool settingsEdited = false;  // a scenario "set" event fired
-    bool refitted = false;        // the steps' shape was refitted for the next trace (refitBeside)
-    double refitMilliseconds = 0.0;
   };
   PhysicsOutcome stepPhysics(double wallSeconds, const glm::dvec3& target);  // touches simulation_ only
-  // On the physics thread after its steps: the next frame's refit, if their motion would show in an
-  // image `imageHeight` pixels tall. Touches simulation_, renderer_ and drawnPositions_ only.
-  void refitBeside(PhysicsOutcome& outcome, int imageHeight);
   void playScenarioAt(double time, PhysicsOutcome& outcome);
   bool scenarioSetPending() const;  // a "set" event of the scenario is still to come
   void applyPhysicsOutcome(const PhysicsOutcome& outcome);
   void refitSlime();
-  bool motionWouldShow(int imageHeight) const;  // the slime moved visibly since it was last drawn
+  bool motionWouldShow() const;         // the slime moved visibly since it was last drawn
   glm::ivec2 fullImageSize() const;     // the view's framebuffer pixels; {0, 0} when minimised
   glm::ivec2 tracedImageSize() const;   // ... scaled by render.scale and the adaptive resolution
   void traceImage();
