@@ -24,10 +24,15 @@ ImDrawData subset(const ImDrawData& data, int first, int count) {
   return part;
 }
 
+// The bytes of `count` values at `values`, after those already in `bytes`.
+template <typename T>
+void append(std::vector<std::uint8_t>& bytes, const T* values, std::size_t count = 1) {
+  const auto* begin = reinterpret_cast<const std::uint8_t*>(values);
+  bytes.insert(bytes.end(), begin, begin + sizeof(T) * count);
+}
 template <typename T>
 void append(std::vector<std::uint8_t>& bytes, const ImVector<T>& values) {
-  const auto* begin = reinterpret_cast<const std::uint8_t*>(values.Data);
-  bytes.insert(bytes.end(), begin, begin + sizeof(T) * static_cast<std::size_t>(values.Size));
+  append(bytes, values.Data, static_cast<std::size_t>(values.Size));
 }
 
 }  // namespace
@@ -67,13 +72,11 @@ int PanelLayer::columnLists(const ImDrawData& data, glm::ivec2 framebufferSize, 
 // Draws the column's lists into the texture over the background, as they would be drawn in the
 // framebuffer: the same viewport (the whole framebuffer's; the texture is its left part) and scissors.
 void PanelLayer::drawColumn(const ImDrawData& data, int lists, glm::ivec2 framebufferSize, int columnPixels) {
-  const glm::ivec2 size{columnPixels, framebufferSize.y};
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer_);
-  if (textureSize_ != size) {
+  if (kept_.columnPixels != columnPixels || kept_.framebufferSize.y != framebufferSize.y) {  // a new size
     glBindTexture(GL_TEXTURE_2D, texture_);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, size.x, size.y, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, columnPixels, framebufferSize.y, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
     glFramebufferTexture2D(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture_, 0);
-    textureSize_ = size;
   }
   glDisable(GL_SCISSOR_TEST);
   glClearColor(kViewerBackground[0], kViewerBackground[1], kViewerBackground[2], kViewerBackground[3]);
@@ -93,10 +96,9 @@ void PanelLayer::draw(const ImDrawData& data, glm::ivec2 framebufferSize, int co
       append(current_, data.CmdLists[i]->IdxBuffer);
       append(current_, data.CmdLists[i]->CmdBuffer);
     }
-    const auto* placement = reinterpret_cast<const std::uint8_t*>(&data.DisplayPos);
-    current_.insert(current_.end(), placement, placement + 2 * sizeof(ImVec2));  // DisplayPos, DisplaySize
-    const auto* scale = reinterpret_cast<const std::uint8_t*>(&data.FramebufferScale);
-    current_.insert(current_.end(), scale, scale + sizeof(ImVec2));
+    append(current_, &data.DisplayPos);
+    append(current_, &data.DisplaySize);
+    append(current_, &data.FramebufferScale);
 
     GLint target = 0, source = 0;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);

@@ -35,7 +35,8 @@ class PanelLayer {
   long long columnCopies() const { return columnCopies_; }
 
  private:
-  // The bytes of the column's lists as last drawn into the texture (with what placed them).
+  // The bytes of the column's lists as last drawn into the texture (with what placed them), and the
+  // sizes it was drawn for: the texture is columnPixels × framebufferSize.y.
   struct Kept {
     std::vector<std::uint8_t> bytes;
     glm::ivec2 framebufferSize{0, 0};
@@ -47,7 +48,6 @@ class PanelLayer {
 
   unsigned framebuffer_ = 0;
   unsigned texture_ = 0;
-  glm::ivec2 textureSize_{0, 0};
   Kept kept_;
   std::vector<std::uint8_t> current_;
   long long columnDraws_ = 0, columnCopies_ = 0;
