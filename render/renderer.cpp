@@ -166,8 +166,10 @@ struct Renderer::Impl {
           const bool inPlace = imageInPlace && lastFootprint.outside(x0, count, y);
           if (!inPlace)
             for (int i = 0; i < count; ++i) image.at(x0 + i, y) = reusableColors[first + i];
-          if (srgba && !(inPlace && bytesInPlace))
+          if (srgba && !(inPlace && bytesInPlace)) {
             encodeSrgb8(&image.pixels[first], static_cast<std::size_t>(count), 4, srgba + 4 * first);
+            counts.bytesWritten = counts.bytesWritten.unitedWith({x0, y, x0 + count, y + 1});
+          }
           counts.reusedPixels += static_cast<std::uint64_t>(count);
           continue;
         }
@@ -235,7 +237,10 @@ struct Renderer::Impl {
           std::copy(pixels, pixels + count, &reusableColors[first]);
           std::fill(&reusable[first], &reusable[first] + count, std::uint8_t{1});
         }
-        if (srgba) encodeSrgb8(&image.pixels[first], static_cast<std::size_t>(count), 4, srgba + 4 * first);
+        if (srgba) {
+          encodeSrgb8(&image.pixels[first], static_cast<std::size_t>(count), 4, srgba + 4 * first);
+          counts.bytesWritten = counts.bytesWritten.unitedWith({x0, y, x0 + count, y + 1});
+        }
       }
     }
     counts.busyMs += millisecondsSince(start);
@@ -367,6 +372,7 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
     stats.cachedFloorPixels += counts.cachedFloorPixels;
     stats.reusedPixels += counts.reusedPixels;
     stats.busyMs += counts.busyMs;
+    stats.bytesWritten = stats.bytesWritten.unitedWith(counts.bytesWritten);
   }
   impl.lastPixels = image.pixels.data();
   impl.lastBytes = bytes;

@@ -42,6 +42,10 @@ struct RenderStats {
   RayCounts rays;        // every ray by kind, whether it met Embree or only the analytic floor/sky
   std::uint64_t slimeQueries = 0;  // rays that could reach the slime's bounds and were tested against it
   std::uint64_t nonFinitePixels = 0;  // pixels whose colour came out NaN/inf (written black); must stay 0
+  // With `srgba`: the smallest rectangle holding every pixel whose bytes this call wrote (all of them
+  // unless `buffersKept` let it leave some as they were); empty when it wrote none. A window need
+  // upload and draw only these pixels again.
+  PixelRect bytesWritten;
 };
 
 class Renderer {

@@ -31,6 +31,7 @@ struct TraceCounters {
   std::uint64_t cachedFloorPixels = 0;  // primary floor hits whose FloorShading came from the cache
   std::uint64_t reusedPixels = 0;       // pixels copied from the last frame (RenderStats::reusedPixels)
   double busyMs = 0.0;                  // wall time spent in tiles by this thread
+  PixelRect bytesWritten;               // the pixels whose sRGB bytes this thread wrote (RenderStats::bytesWritten)
 };
 
 // The floor seen along one ray, everything that does not depend on the slime: colour =

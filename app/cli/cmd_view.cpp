@@ -24,6 +24,7 @@ struct ViewCommandOptions {
   std::vector<double> viewInterest;  // --vi x y z
   double fov = 0.0;                  // --fov degrees; 0 = the scene's
   double targetFps = -1.0;           // --target-fps (render.targetFps); < 0: the scene's
+  bool redrawWholeWindow = false;    // --redraw-whole-window: swap whole frames (window.h)
   ViewerOptions viewer;
 };
 
@@ -93,6 +94,9 @@ void registerViewCommand(CLI::App& root, int& exitCode) {
                       "(0 = off, the default: always full resolution); sets render.targetFps")
       ->check(CLI::Range(0.0, AdaptiveResolution::kMaximumTargetFps));
   command->add_option("--screenshot-prefix", options->viewer.screenshotPrefix, "F12 writes <prefix>-<n>.png");
+  command->add_flag("--redraw-whole-window", options->redrawWholeWindow,
+                    "Draw the whole window every frame and swap buffers, instead of drawing again and "
+                    "showing only what changed (where GLX_MESA_copy_sub_buffer allows it); for comparison");
   command->callback([options, &exitCode] {
     Settings settings = loadSettings(options->scene);
     applyCameraOptions(*options, settings);
@@ -100,7 +104,7 @@ void registerViewCommand(CLI::App& root, int& exitCode) {
     checkOutputFile("--report", options->viewer.reportPath);
     checkOutputFile("--frame-log", options->viewer.frameLogPath);
     if (!options->scene.scenarioFile.empty()) options->viewer.scenario = loadScenario(options->scene.scenarioFile);
-    Window window("Slime", settings.camera.width, settings.camera.height);
+    Window window("Slime", settings.camera.width, settings.camera.height, !options->redrawWholeWindow);
     Viewer viewer(window, settings, options->viewer);
     exitCode = viewer.run();
   });

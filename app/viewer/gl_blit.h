@@ -5,6 +5,8 @@
 // steady frame allocates nothing.
 #pragma once
 
+#include "render/image.h"  // PixelRect
+
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -23,12 +25,19 @@ class GlBlit {
   GlBlit(const GlBlit&) = delete;
   GlBlit& operator=(const GlBlit&) = delete;
 
-  // Copies width × height sRGB pixels, 4 bytes each (RGBA, top row first), into the texture.
-  void upload(const std::vector<std::uint8_t>& rgba, int width, int height);
+  // Copies the pixels `changed` (image pixels, top row first) of a width × height sRGB image, 4 bytes
+  // a pixel (RGBA, top row first), into the texture; all of them when the size is new. Returns the
+  // pixels copied.
+  PixelRect upload(const std::vector<std::uint8_t>& rgba, int width, int height, PixelRect changed);
 
-  // Draws the texture over the framebuffer right of `left` pixels (the strip left of it is cleared):
-  // texel for pixel when the sizes agree, stretched bilinearly when the image is smaller.
-  void draw(glm::ivec2 framebufferSize, int left = 0) const;
+  // Draws, within `rect` of the framebuffer (pixels, top row 0), the background left of `left`
+  // pixels and the texture over the rest: texel for pixel when the sizes agree, stretched bilinearly
+  // when the image is smaller (the background everywhere before the first upload).
+  void draw(glm::ivec2 framebufferSize, int left, PixelRect rect) const;
+
+  // The framebuffer pixels that show the image pixels `changed` when drawn right of `left` (with the
+  // bilinear stretch, every pixel a changed texel reaches).
+  PixelRect framebufferPixels(PixelRect changed, glm::ivec2 framebufferSize, int left) const;
 
  private:
   unsigned program_ = 0;

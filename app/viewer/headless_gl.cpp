@@ -86,6 +86,6 @@ void HeadlessGl::newImGuiPlatformFrame() {
 
 void HeadlessGl::shutdownImGuiPlatform() { ImGui::GetIO().BackendPlatformName = nullptr; }
 
-void HeadlessGl::present() { glFinish(); }
+void HeadlessGl::present(const std::vector<PixelRect>&) { glFinish(); }
 
 }  // namespace slime

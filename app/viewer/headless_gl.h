@@ -20,7 +20,8 @@ class HeadlessGl final : public ViewerBackend {
   void initImGuiPlatform() override;
   void newImGuiPlatformFrame() override;
   void shutdownImGuiPlatform() override;
-  void present() override;
+  bool keepsFramebuffer() const override { return true; }  // an FBO: its pixels stay
+  void present(const std::vector<PixelRect>& changed) override;
 
  private:
   glm::ivec2 size_;

@@ -1,14 +1,16 @@
-// Draws Dear ImGui's frame with the panel column kept from frame to frame. Under software GL
-// (llvmpipe) drawing the column's widgets and text costs about as much as drawing the whole traced
-// image (~1.5 ms of a core at 1280×720, 2026-11-24), yet while a person drags the slime the column
-// does not change. The draw lists that lie wholly in the column (their clip rectangles end at its
-// right edge) and come first in ImGui's order are drawn into a texture of their own only when their
-// vertices, indices or commands differ from the last ones drawn there; every frame that texture is
-// copied into the column and the other lists (the Stats window, popups, the grab marks over the
-// image) are drawn live over it. The pixels are those of drawing every list live: the column is
-// drawn over the same background colour the image blit clears it to, with the same viewport,
-// projection and scissor rectangles.
+// Dear ImGui's frame in two parts: the panel column, kept from frame to frame, and the lists drawn
+// over the image. Under software GL (llvmpipe) drawing the column's widgets and text costs about as
+// much as drawing the whole traced image (~1.5 ms of a core at 1280×720, 2026-11-24), yet while a
+// person drags the slime the column does not change. The draw lists that lie wholly in the column
+// (their clip rectangles end at its right edge) and come first in ImGui's order are drawn into a
+// texture of their own only when their vertices, indices or commands differ from the last ones
+// drawn there; the other lists (the Stats window, popups, the grab marks over the image) are drawn
+// live, each time within a rectangle (app/viewer/frame_compositor.h draws only what changed). The
+// pixels are those of drawing every list live: the column is drawn over the same background colour
+// the image blit clears it to, with the same viewport, projection and scissor rectangles.
 #pragma once
+
+#include "render/image.h"  // PixelRect
 
 #include <glm/vec2.hpp>
 
@@ -26,13 +28,24 @@ class PanelLayer {
   PanelLayer(const PanelLayer&) = delete;
   PanelLayer& operator=(const PanelLayer&) = delete;
 
-  // Draws `data` into the bound draw framebuffer of `framebufferSize` pixels whose left
-  // `columnPixels` columns are the panel column, already cleared to the background (GlBlit::draw).
-  void draw(const ImDrawData& data, glm::ivec2 framebufferSize, int columnPixels);
+  // Takes this frame's `data` for a framebuffer of `framebufferSize` pixels whose left `columnPixels`
+  // columns are the panel column: finds the column's lists and draws them into the texture if they
+  // changed. True when it drew them (the column's pixels are new).
+  bool prepare(const ImDrawData& data, glm::ivec2 framebufferSize, int columnPixels);
 
-  // How many frames drew the column afresh, and how many copied the kept one.
+  // The framebuffer pixels the lists over the image (those after the column's) may touch this frame,
+  // one rectangle a list, clipped to the framebuffer.
+  std::vector<PixelRect> overlayBounds(const ImDrawData& data, glm::ivec2 framebufferSize) const;
+
+  // Into the bound draw framebuffer, within `rect` only (framebuffer pixels, top row 0): the kept
+  // column's pixels (nothing when it has no lists), then the lists over the image. `rect` must lie
+  // over pixels already drawn below them (the background and the image, GlBlit::draw).
+  void drawColumn(PixelRect rect, glm::ivec2 framebufferSize) const;
+  void drawOverlays(const ImDrawData& data, PixelRect rect, glm::ivec2 framebufferSize);
+
+  // How many frames drew the column afresh, and how many kept the texture as it was.
   long long columnDraws() const { return columnDraws_; }
-  long long columnCopies() const { return columnCopies_; }
+  long long columnKeeps() const { return columnKeeps_; }
 
  private:
   // The bytes of the column's lists as last drawn into the texture (with what placed them), and the
@@ -44,13 +57,16 @@ class PanelLayer {
   };
 
   int columnLists(const ImDrawData& data, glm::ivec2 framebufferSize, int columnPixels) const;
-  void drawColumn(const ImDrawData& data, int lists, glm::ivec2 framebufferSize, int columnPixels);
+  void drawColumnLists(const ImDrawData& data, glm::ivec2 framebufferSize, int columnPixels);
 
   unsigned framebuffer_ = 0;
   unsigned texture_ = 0;
   Kept kept_;
+  int lists_ = 0;  // this frame's column lists (the first ones of its draw data)
   std::vector<std::uint8_t> current_;
-  long long columnDraws_ = 0, columnCopies_ = 0;
+  std::vector<float> clipRects_;  // the overlays' own clip rectangles, kept while drawOverlays narrows them
+  long long columnDraws_ = 0;
+  long long columnKeeps_ = 0;
 };
 
 }  // namespace slime

@@ -342,6 +342,7 @@ void Viewer::traceImage() {
   stats_.samplesPerPixel = 1;
   image_.resize(size.x, size.y);
   const RenderStats render = renderer_.render(frameSettings(size), image_, &imageBytes_, /*buffersKept=*/true);
+  imageChanged_ = render.bytesWritten;
   stats_.stages.trace = traceTime.milliseconds();
   stats_.rays = render.rays.total();
   stats_.megaraysPerSecond = render.traceMs > 0.0 ? static_cast<double>(stats_.rays) / (render.traceMs * 1e3) : 0.0;
@@ -364,12 +365,13 @@ bool Viewer::refineImage(glm::ivec2 size) {
   if (resolution_.scale() < 1.0) return false;  // the adaptive resolution returns to full first
   sampleImage_.resize(size.x, size.y);
   renderer_.render(frameSettings(size), sampleImage_, nullptr, /*buffersKept=*/false, refinement_.nextOffset());
+  imageChanged_ = {0, 0, size.x, size.y};  // the average of every pixel
   return refinement_.add(sampleImage_, image_, &imageBytes_);
 }
 
 void Viewer::uploadImage() {
   const Stopwatch uploadTime;
-  if (imageTraced_) blit_.upload(imageBytes_, image_.width, image_.height);
+  if (imageTraced_) compositor_.upload(imageBytes_, image_.width, image_.height, imageChanged_);
   stats_.stages.upload = uploadTime.milliseconds();
 }
 
@@ -497,11 +499,12 @@ void Viewer::reloadSlime() {
 void Viewer::present() {
   const Stopwatch presentTime;
   const glm::ivec2 framebuffer = backend_.framebufferSize();
+  std::vector<PixelRect> presented;
   if (framebuffer.x > 0 && framebuffer.y > 0) {
     const glm::ivec2 window = backend_.windowSize();
     const int left = window.x > 0 ? static_cast<int>(std::lround(columnWidth_ * framebuffer.x / window.x)) : 0;
-    blit_.draw(framebuffer, left);
-    panelLayer_.draw(*ImGui::GetDrawData(), framebuffer, left);
+    // What changed since the last frame, or everything where the back-end does not keep the pixels.
+    presented = compositor_.draw(*ImGui::GetDrawData(), framebuffer, left, !backend_.keepsFramebuffer());
     for (const std::string& path : screenshotPaths_) {
       writeFramebufferPng(framebuffer, path);
       std::printf("slime: wrote %s\n", path.c_str());
@@ -509,7 +512,7 @@ void Viewer::present() {
     }
     screenshotPaths_.clear();
   }
-  backend_.present();
+  backend_.present(presented);
   stats_.stages.ui += presentTime.milliseconds();
 }
 

@@ -10,11 +10,10 @@
 
 #include "app/viewer/adaptive_resolution.h"
 #include "app/viewer/camera_controller.h"
+#include "app/viewer/frame_compositor.h"
 #include "app/viewer/frame_log.h"
 #include "app/viewer/frame_stats.h"
-#include "app/viewer/gl_blit.h"
 #include "app/viewer/interaction.h"
-#include "app/viewer/panel_layer.h"
 #include "app/viewer/panels.h"
 #include "app/viewer/physics_clock.h"
 #include "app/viewer/viewer_backend.h"
@@ -154,8 +153,8 @@ class Viewer {
   std::vector<std::uint8_t> imageBytes_;  // image_ as sRGB RGBA bytes, for the blit
   AccumulationBuffer refinement_;         // a still image's frames, averaged (progressive AA)
   Image sampleImage_;                     // one of those frames, traced off the pixels' centres
-  GlBlit blit_;
-  PanelLayer panelLayer_;
+  PixelRect imageChanged_;                // the pixels of imageBytes_ the last trace wrote
+  FrameCompositor compositor_;
   CameraController cameraController_;
   GrabInteraction grab_;
   PhysicsClock clock_;

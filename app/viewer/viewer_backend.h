@@ -4,8 +4,11 @@
 #pragma once
 
 #include "app/viewer/frame_input.h"
+#include "render/image.h"  // PixelRect
 
 #include <glm/vec2.hpp>
+
+#include <vector>
 
 namespace slime {
 
@@ -27,8 +30,13 @@ class ViewerBackend {
   virtual void newImGuiPlatformFrame() = 0;
   virtual void shutdownImGuiPlatform() = 0;
 
-  // Shows the finished frame (swap buffers; nothing for an FBO).
-  virtual void present() = 0;
+  // Whether the framebuffer keeps what was drawn into it from one frame to the next (nothing is
+  // swapped away), so that a frame need draw again only what changed (app/viewer/frame_compositor.h).
+  virtual bool keepsFramebuffer() const = 0;
+
+  // Shows the finished frame: with a kept framebuffer only the rectangles `changed` (framebuffer
+  // pixels, top row 0) are new; without one, the whole (swap buffers).
+  virtual void present(const std::vector<PixelRect>& changed) = 0;
 };
 
 }  // namespace slime

@@ -7,6 +7,16 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include <GL/glx.h>  // last: X11's macros (None, Bool, ...) would clash with the headers above
+
+// GLFW's native access (glfw3native.h would also need the XRandR headers).
+extern "C" Display* glfwGetX11Display(void);
+extern "C" GLXWindow glfwGetGLXWindow(GLFWwindow* window);
+
+namespace {
+using CopySubBufferMesa = void (*)(Display*, GLXDrawable, int x, int y, int width, int height);
+}
+
 namespace slime {
 namespace {
 
@@ -22,7 +32,7 @@ Window& owner(GLFWwindow* window) { return *static_cast<Window*>(glfwGetWindowUs
 
 }  // namespace
 
-Window::Window(const std::string& title, int width, int height) {
+Window::Window(const std::string& title, int width, int height, bool presentChanges) {
   glfwSetErrorCallback(reportGlfwError);
   if (!glfwInit()) throw std::runtime_error("cannot initialise GLFW (is there a display? try `slime snapshot --ui`)");
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
@@ -46,6 +56,12 @@ Window::Window(const std::string& title, int width, int height) {
   glfwSetMouseButtonCallback(window_, onMouseButton);
   glfwSetScrollCallback(window_, onScroll);
   glfwSetKeyCallback(window_, onKey);
+  glfwSetWindowRefreshCallback(window_, onRefresh);
+  if (presentChanges && glfwExtensionSupported("GLX_MESA_copy_sub_buffer")) {
+    display_ = glfwGetX11Display();
+    glxWindow_ = glfwGetGLXWindow(window_);
+    if (display_ && glxWindow_ != 0) copySubBuffer_ = glfwGetProcAddress("glXCopySubBufferMESA");
+  }
   lastTime_ = glfwGetTime();
 }
 
@@ -120,10 +136,31 @@ glm::ivec2 Window::windowSize() const {
 void Window::initImGuiPlatform() { ImGui_ImplGlfw_InitForOpenGL(window_, true); }
 void Window::newImGuiPlatformFrame() { ImGui_ImplGlfw_NewFrame(); }
 void Window::shutdownImGuiPlatform() { ImGui_ImplGlfw_Shutdown(); }
-void Window::present() {
-  // Minimised: nothing was drawn; wait for events a little instead of spinning at full speed.
-  if (framebufferSize() == glm::ivec2(0, 0)) glfwWaitEventsTimeout(0.05);
-  else glfwSwapBuffers(window_);
+void Window::onRefresh(GLFWwindow* window) { owner(window).exposed_ = true; }
+
+void Window::present(const std::vector<PixelRect>& changed) {
+  const glm::ivec2 size = framebufferSize();
+  if (size.x <= 0 || size.y <= 0) {  // minimised: nothing was drawn; wait for events a little
+    glfwWaitEventsTimeout(0.05);
+    return;
+  }
+  if (!copySubBuffer_) {
+    glfwSwapBuffers(window_);
+    return;
+  }
+  // The back buffer keeps every pixel: copy what changed (all of it after an expose) to the window.
+  // GLX counts rows from the bottom.
+  const auto copy = reinterpret_cast<CopySubBufferMesa>(copySubBuffer_);
+  auto* display = static_cast<Display*>(display_);
+  if (exposed_) {
+    copy(display, glxWindow_, 0, 0, size.x, size.y);
+    exposed_ = false;
+    return;
+  }
+  for (const PixelRect& rect : changed) {
+    const PixelRect part = rect.intersectedWith({0, 0, size.x, size.y});
+    if (!part.empty()) copy(display, glxWindow_, part.x0, size.y - part.y1, part.x1 - part.x0, part.y1 - part.y0);
+  }
 }
 
 }  // namespace slime

@@ -13,7 +13,11 @@ namespace slime {
 
 class Window final : public ViewerBackend {
  public:
-  Window(const std::string& title, int width, int height);  // throws std::runtime_error
+  // `presentChanges`: where the platform allows it (GLX_MESA_copy_sub_buffer, as Mesa's X11 drivers
+  // have, llvmpipe under Xvfb among them), the frames are never swapped: the back buffer keeps its
+  // pixels and each frame copies only what it drew again to the window. Otherwise, or without it,
+  // every frame is drawn whole and swapped. Throws std::runtime_error.
+  Window(const std::string& title, int width, int height, bool presentChanges = true);
   ~Window() override;
   Window(const Window&) = delete;
   Window& operator=(const Window&) = delete;
@@ -24,16 +28,24 @@ class Window final : public ViewerBackend {
   void initImGuiPlatform() override;
   void newImGuiPlatformFrame() override;
   void shutdownImGuiPlatform() override;
-  void present() override;
+  bool keepsFramebuffer() const override { return copySubBuffer_ != nullptr; }
+  void present(const std::vector<PixelRect>& changed) override;
 
  private:
   static void onMouseButton(GLFWwindow* window, int button, int action, int mods);
   static void onScroll(GLFWwindow* window, double x, double y);
   static void onKey(GLFWwindow* window, int key, int scancode, int action, int mods);
+  static void onRefresh(GLFWwindow* window);
 
   GLFWwindow* window_ = nullptr;
   double lastTime_ = 0.0;
   FrameInput pending_;  // events gathered by the callbacks since the last pollInput
+  // When presenting changes: glXCopySubBufferMESA (as GLFW hands it out), the X display and the GLX
+  // window it copies to; the whole back buffer is shown again after the window was exposed.
+  void (*copySubBuffer_)() = nullptr;
+  void* display_ = nullptr;
+  unsigned long glxWindow_ = 0;
+  bool exposed_ = true;
 };
 
 }  // namespace slime

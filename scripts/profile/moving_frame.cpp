@@ -63,27 +63,33 @@ int main(int argc, char** argv) {
       return TriangleMesh{trajectory[std::min(trajectory.size() - 1, static_cast<std::size_t>(std::lround(seconds * 60.0)))], triangles};
     };
     shapes = {at(0.6), at(0.6 + 1.0 / 60.0)};
+    if (std::getenv("SLIME_PROFILE_ONE_SHAPE")) shapes.pop_back();
   }
   Renderer renderer(settings);
   Image image;
   image.resize(width, height);
   std::vector<std::uint8_t> bytes;
-  std::vector<double> wallMs, cpuMs;
+  std::vector<double> wallMs, cpuMs, refitMs, setupMs, busyMs;
   const double yaw = settings.camera.yaw;
   for (int frame = 0; frame < frames; ++frame) {
     if (!still) settings.camera.yaw = yaw + (frame % 2 ? 1e-3 : -1e-3);  // as bench render's moving camera
     const TriangleMesh& mesh = shapes[frame % shapes.size()];
+    const auto refitStart = std::chrono::steady_clock::now();
     renderer.updateSlime(mesh.positions, mesh.triangles);
+    refitMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - refitStart).count());
     const auto start = std::chrono::steady_clock::now();
     const double cpuStart = processCpuMilliseconds();
     const RenderStats stats = renderer.render(settings, image, &bytes, true);
     cpuMs.push_back(processCpuMilliseconds() - cpuStart);
     wallMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    setupMs.push_back(stats.setupMs);
+    busyMs.push_back(stats.busyMs);
     if (frame == 0)
       std::fprintf(stderr, "rays %llu, slime queries %llu, reused pixels %llu\n",
                    static_cast<unsigned long long>(stats.rays.total()), static_cast<unsigned long long>(stats.slimeQueries),
                    static_cast<unsigned long long>(stats.reusedPixels));
   }
   if (argc > 5) writePng(image, argv[5]);
-  std::printf("median %.2f ms wall, %.2f ms CPU per frame (%d frames)\n", median(wallMs), median(cpuMs), frames);
+  std::printf("median %.2f ms wall, %.2f ms CPU per frame (%d frames); refit %.2f, set-up %.2f, tiles %.2f ms (summed over the threads)\n",
+              median(wallMs), median(cpuMs), frames, median(refitMs), median(setupMs), median(busyMs));
 }

@@ -42,7 +42,8 @@ class SteppingHeadlessGl final : public ViewerBackend {
   void initImGuiPlatform() override { gl_.initImGuiPlatform(); }
   void newImGuiPlatformFrame() override { gl_.newImGuiPlatformFrame(); }
   void shutdownImGuiPlatform() override { gl_.shutdownImGuiPlatform(); }
-  void present() override { gl_.present(); }
+  bool keepsFramebuffer() const override { return gl_.keepsFramebuffer(); }
+  void present(const std::vector<PixelRect>& changed) override { gl_.present(changed); }
 
  private:
   HeadlessGl gl_;

@@ -96,12 +96,27 @@ TEST(Invariant, FramesFromTheFloorCacheEqualFreshFrames) {
   renderer.render(settings, image, &bytes);
   auto expectFresh = [&](const Settings& s, const TriangleMesh& mesh, const char* what) {
     renderer.updateSlime(mesh.positions, mesh.triangles);
+    const std::vector<std::uint8_t> before = bytes;
     const RenderStats stats = renderer.render(s, image, &bytes, /*buffersKept=*/true);
     expectFrameEquals(image, bytes, renderMesh(s, mesh), what);
+    // A window uploads and draws again only the rectangle the renderer says it wrote: every pixel
+    // whose bytes changed must lie in it.
+    std::size_t changedOutside = 0;
+    for (int y = 0; y < image.height; ++y)
+      for (int x = 0; x < image.width; ++x) {
+        const std::size_t at = 4 * (static_cast<std::size_t>(y) * image.width + x);
+        const bool inside = x >= stats.bytesWritten.x0 && x < stats.bytesWritten.x1 && y >= stats.bytesWritten.y0 &&
+                            y < stats.bytesWritten.y1;
+        changedOutside += !inside && !std::equal(&before[at], &before[at] + 4, &bytes[at]);
+      }
+    EXPECT_EQ(changedOutside, 0u) << what << ": pixels changed outside the written rectangle";
     return stats;
   };
   const RenderStats movedStats = expectFresh(settings, moved, "slime moved");
   EXPECT_GT(movedStats.reusedPixels, image.pixels.size() / 2) << "a still view copies most of the floor";
+  const PixelRect written = movedStats.bytesWritten;
+  EXPECT_LT(static_cast<std::size_t>(written.x1 - written.x0) * (written.y1 - written.y0), image.pixels.size() * 3 / 4)
+      << "the moved slime's frame wrote bytes all over the image";
   expectFresh(settings, resting, "slime moved back");
   TriangleMesh raised = resting;
   for (auto& p : raised.positions) p += glm::dvec3(-0.02, 0.0, 0.05);  // its shadow moves away from it
@@ -137,6 +152,7 @@ TEST(Invariant, FreshBuffersAreWrittenWhole) {
     std::fill(bytes.begin(), bytes.end(), std::uint8_t{0});
     const RenderStats stats = renderer.render(settings, image, &bytes);
     EXPECT_GT(stats.reusedPixels, image.pixels.size() / 2) << "the floor is still copied from the cache";
+    EXPECT_EQ(stats.bytesWritten, (PixelRect{0, 0, image.width, image.height})) << "every pixel's bytes are written";
     expectFrameEquals(image, bytes, expected, "frame " + std::to_string(frame) + " on cleared buffers");
   }
 }

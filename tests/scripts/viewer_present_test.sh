@@ -1,0 +1,41 @@
+#!/bin/bash
+# The window shows what the frames drew. The viewer draws again, and copies to the window, only what
+# changed in a frame (app/viewer/frame_compositor.h, GLX_MESA_copy_sub_buffer under Xvfb): a region
+# it forgot would stay on screen as it was, a ring or a slime left behind. A scripted drag moves the
+# slime, its shadow and the grab ring about the image, lets go and pauses the physics while the slime
+# still wobbles; once the image has stopped refining, the window as X shows it must equal the frame's
+# own pixels (F12, read from the framebuffer), pixel for pixel.
+source "$(dirname "$0")/viewer_lib.sh"
+cat > "$OUT/scenario.json" <<'JSON'
+{"events": [
+  {"t": 0.5, "grab": {"point": [0, 0, 0.055], "radius": 0.015}},
+  {"t": 0.5, "drag": {"to": [0.02, 0, 0.075], "duration": 0.4}},
+  {"t": 0.9, "drag": {"to": [0, 0.02, 0.085], "duration": 0.3}},
+  {"t": 1.2, "drag": {"to": [-0.02, 0, 0.075], "duration": 0.3}},
+  {"t": 1.5, "drag": {"to": [0, -0.02, 0.065], "duration": 0.3}},
+  {"t": 1.8, "release": {}},
+  {"t": 2.2, "set": {"sim.paused": true}}
+]}
+JSON
+start_viewer --size 730x360 --set slime.position=0,0,0.04 --scenario "$OUT/scenario.json" ${VIEWER_EXTRA:-}
+# The window as X shows it.
+capture() { import -window "$WINDOW" "$1" 2>/dev/null || fail "cannot capture the window"; }
+still=""
+for attempt in $(seq 1 30); do
+  sleep 1
+  capture "$OUT/window-a.png"
+  sleep 0.5
+  capture "$OUT/window-b.png"
+  if [ "$(compare -metric AE "$OUT/window-a.png" "$OUT/window-b.png" null: 2>&1 | cut -d' ' -f1)" = "0" ]; then
+    still=yes
+    break
+  fi
+done
+[ -n "$still" ] || fail "the window never stopped changing (30 s after the physics paused)"
+screenshot 1
+capture "$OUT/window-c.png"
+quit_viewer
+[ "$(report '.grabs')" -ge 1 ] || fail "the scenario's grab did not take hold"
+differing=$(compare -metric AE "$OUT/window-c.png" "$OUT/shot-1.png" "$OUT/difference.png" 2>&1 | cut -d' ' -f1)
+[ "$differing" = "0" ] || fail "the window shows $differing pixels other than the frame drew (see $OUT/difference.png)"
+echo "PASS: after a drag the window shows the frame's pixels, every one (at rest after attempt $attempt)"
