@@ -16,16 +16,17 @@ source tests/scripts/viewer_lib.sh "$1" "$2"
 start_viewer   # 1280x720: the panel column takes the left 333 pixels, the slime is centred right of it
 sleep 5                                   # the slime falls and settles
 screenshot 1
-xdotool mousemove --window "$WINDOW" 845 243 mousedown 1   # on the slime's upper right
-for y in 225 205 185 165 145 125 105 85; do
-  xdotool mousemove --window "$WINDOW" 880 "$y"
+xdotool mousemove --window "$WINDOW" 845 250 mousedown 1   # on the settled slime's upper right
+sleep 0.5                                 # held until a frame has seen the press where it was made
+for y in 235 215 195 175 155 135 115 95; do
+  xdotool mousemove --window "$WINDOW" 870 "$y"
   sleep 0.15
 done
 sleep 2
 screenshot 2
 xdotool mouseup 1
 quit_viewer
-[ "$(report '.grabs')" -ge 1 ] || fail "the press at (845, 243) did not grab the slime"
+[ "$(report '.grabs')" -ge 1 ] || fail "the press at (845, 250) did not grab the slime"
 DRIVE
 xvfb-run -a -s "-screen 0 1400x900x24" bash "$work/drive.sh" "$slime" "$work/out"
 cp "$work/out/shot-1.png" docs/viewer.png
