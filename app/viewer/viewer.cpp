@@ -100,6 +100,7 @@ bool Viewer::frame() {
     applyPhysicsOutcome(outcome);
   }
   applyPanelRequests(requests);
+  if (!rendered_ && !quit_) backend_.waitForInput(kIdleFrameSeconds - frameTime.milliseconds() / 1000.0);
   finishFrame(frameTime.milliseconds());
   return !quit_;
 }
@@ -325,7 +326,7 @@ glm::ivec2 Viewer::tracedImageSize() const {
 }
 
 void Viewer::traceImage() {
-  imageTraced_ = newImageTraced_ = false;
+  imageTraced_ = newImageTraced_ = rendered_ = false;
   const glm::ivec2 size = tracedImageSize();
   tracedAtFullSize_ = size == fullImageSize();
   if (size.x <= 0) return;
@@ -342,6 +343,7 @@ void Viewer::traceImage() {
   stats_.samplesPerPixel = 1;
   image_.resize(size.x, size.y);
   const RenderStats render = renderer_.render(frameSettings(size), image_, &imageBytes_, /*buffersKept=*/true);
+  rendered_ = true;
   imageChanged_ = render.bytesWritten;
   stats_.stages.trace = traceTime.milliseconds();
   stats_.rays = render.rays.total();
@@ -365,6 +367,7 @@ bool Viewer::refineImage(glm::ivec2 size) {
   if (resolution_.scale() < 1.0) return false;  // the adaptive resolution returns to full first
   sampleImage_.resize(size.x, size.y);
   renderer_.render(frameSettings(size), sampleImage_, nullptr, /*buffersKept=*/false, refinement_.nextOffset());
+  rendered_ = true;
   imageChanged_ = {0, 0, size.x, size.y};  // the average of every pixel
   return refinement_.add(sampleImage_, image_, &imageBytes_);
 }

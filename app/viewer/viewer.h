@@ -49,6 +49,9 @@ void checkSettings(const Settings& settings, const Settings& current);
 class Viewer {
  public:
   static constexpr double kRefineAfterSeconds = 0.25;  // stillness before the image starts refining
+  // A frame that traced nothing new (the scene still, the image refined) lasts at least this long
+  // unless input arrives: a still window shows 60 frames a second, not as many as a core can draw.
+  static constexpr double kIdleFrameSeconds = 1.0 / 60.0;
   // Wall time physics may take per frame. When steps cost more than real time allows, the slime runs
   // slower than real time (the Stats panel says how much) instead of the window freezing.
   static constexpr double kPhysicsBudgetMs = 60.0;
@@ -173,6 +176,7 @@ class Viewer {
   bool imageTraced_ = false;       // this frame traced an image (a new one, or a refinement sample)
   bool newImageTraced_ = false;    // ... a new one: the view changed
   bool tracedAtFullSize_ = false;  // ... at the full size of the view
+  bool rendered_ = false;          // this frame ran the renderer (a new image or a sample of one)
   glm::dvec3 grabTargetDrawn_{0.0};  // the target the grabbed points were last pulled to
   double wallClock_ = 0.0;
   double lastInteraction_ = -1e9;

@@ -30,6 +30,11 @@ class ViewerBackend {
   virtual void newImGuiPlatformFrame() = 0;
   virtual void shutdownImGuiPlatform() = 0;
 
+  // Waits up to `seconds` for input (a window's events), returning as soon as some arrives. The
+  // viewer calls it after a frame that had nothing new to trace, so that a still window does not
+  // draw the same frame again hundreds of times a second on a whole core. Headless: returns at once.
+  virtual void waitForInput(double seconds) { (void)seconds; }
+
   // Whether the framebuffer keeps what was drawn into it from one frame to the next (nothing is
   // swapped away), so that a frame need draw again only what changed (app/viewer/frame_compositor.h).
   virtual bool keepsFramebuffer() const = 0;

@@ -138,6 +138,10 @@ void Window::newImGuiPlatformFrame() { ImGui_ImplGlfw_NewFrame(); }
 void Window::shutdownImGuiPlatform() { ImGui_ImplGlfw_Shutdown(); }
 void Window::onRefresh(GLFWwindow* window) { owner(window).exposed_ = true; }
 
+void Window::waitForInput(double seconds) {
+  if (seconds > 0.0) glfwWaitEventsTimeout(seconds);  // the events go to the callbacks, for pollInput
+}
+
 void Window::present(const std::vector<PixelRect>& changed) {
   const glm::ivec2 size = framebufferSize();
   if (size.x <= 0 || size.y <= 0) {  // minimised: nothing was drawn; wait for events a little

@@ -28,6 +28,7 @@ class Window final : public ViewerBackend {
   void initImGuiPlatform() override;
   void newImGuiPlatformFrame() override;
   void shutdownImGuiPlatform() override;
+  void waitForInput(double seconds) override;
   bool keepsFramebuffer() const override { return copySubBuffer_ != nullptr; }
   void present(const std::vector<PixelRect>& changed) override;
 

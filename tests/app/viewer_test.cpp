@@ -44,6 +44,9 @@ class SteppingHeadlessGl final : public ViewerBackend {
   void shutdownImGuiPlatform() override { gl_.shutdownImGuiPlatform(); }
   bool keepsFramebuffer() const override { return gl_.keepsFramebuffer(); }
   void present(const std::vector<PixelRect>& changed) override { gl_.present(changed); }
+  void waitForInput(double seconds) override { waits.push_back(seconds); }
+
+  std::vector<double> waits;  // every waitForInput the viewer asked for, in order
 
  private:
   HeadlessGl gl_;
@@ -91,6 +94,30 @@ TEST(HeadlessViewer, AStillImageRefinesToSixteenSamplesAndAChangeResetsIt) {
   viewer.simulationAdvanced();
   ASSERT_TRUE(viewer.frame());
   EXPECT_EQ(viewer.stats().samplesPerPixel, 1);
+}
+
+// A still scene: the frames that trace (the first image, then its 16 refining samples) never wait;
+// every other frame (waiting for stillness before refining, and after the image has its samples) has
+// nothing new to trace and waits for input up to the idle frame time (the rest of 1/60 s after its
+// own work), so a still window does not spin a core.
+TEST(HeadlessViewer, FramesWithNothingNewToTraceWaitForInput) {
+  Settings settings = smallScene();
+  settings.sim.gravity = 0.0;  // the slime floats where it starts: nothing moves
+  SteppingHeadlessGl backend(320, 240, 1.0 / 30.0);
+  ViewerOptions options;
+  Viewer viewer(backend, settings, options);
+  int frames = 0;
+  while (viewer.stats().samplesPerPixel < options.refineSamples && frames < 100) {
+    ASSERT_TRUE(viewer.frame());
+    ++frames;
+  }
+  ASSERT_EQ(viewer.stats().samplesPerPixel, options.refineSamples);
+  const int tracing = 1 + options.refineSamples;  // the first image and its samples
+  EXPECT_EQ(static_cast<int>(backend.waits.size()), frames - tracing) << "over " << frames << " frames";
+  const std::size_t before = backend.waits.size();
+  for (int frame = 0; frame < 5; ++frame) ASSERT_TRUE(viewer.frame());
+  ASSERT_EQ(backend.waits.size(), before + 5) << "a frame of a still, refined image did not wait for input";
+  for (std::size_t i = before; i < backend.waits.size(); ++i) EXPECT_LE(backend.waits[i], Viewer::kIdleFrameSeconds);
 }
 
 // `slime view --scenario` (issue 15's scripted drag): the scenario's grab takes hold of the resting
