@@ -148,10 +148,17 @@ void Window::present(const std::vector<PixelRect>& changed) {
     glfwWaitEventsTimeout(0.05);
     return;
   }
-  if (!copySubBuffer_) {
+  if (!copySubBuffer_ || size != presentedSize_) {
+    // A new size (and the first frame): swapped whole, which lets Mesa's window system code take the
+    // window's new size before any rectangle is copied from the back buffer (a copy sized for the
+    // new window from the old buffer is an X error that ends the program). A swap need not keep the
+    // back buffer: the next frame is drawn whole (keepsFramebuffer) and copied whole.
     glfwSwapBuffers(window_);
+    presentedSize_ = size;
+    swapped_ = exposed_ = true;
     return;
   }
+  swapped_ = false;
   // The back buffer keeps every pixel: copy what changed (all of it after an expose) to the window.
   // GLX counts rows from the bottom.
   const auto copy = reinterpret_cast<CopySubBufferMesa>(copySubBuffer_);

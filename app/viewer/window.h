@@ -29,7 +29,7 @@ class Window final : public ViewerBackend {
   void newImGuiPlatformFrame() override;
   void shutdownImGuiPlatform() override;
   void waitForInput(double seconds) override;
-  bool keepsFramebuffer() const override { return copySubBuffer_ != nullptr; }
+  bool keepsFramebuffer() const override { return copySubBuffer_ != nullptr && !swapped_; }
   void present(const std::vector<PixelRect>& changed) override;
 
  private:
@@ -47,6 +47,8 @@ class Window final : public ViewerBackend {
   void* display_ = nullptr;
   unsigned long glxWindow_ = 0;
   bool exposed_ = true;
+  glm::ivec2 presentedSize_{0, 0};  // the framebuffer's size at the last present
+  bool swapped_ = true;             // the last present swapped: the next frame is drawn whole
 };
 
 }  // namespace slime
