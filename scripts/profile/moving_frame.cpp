@@ -43,7 +43,7 @@ int main(int argc, char** argv) {
   Settings settings = defaultSettings();
   settings.camera.width = width;
   settings.camera.height = height;
-  settings.render.depth = 3;
+  settings.render.depth = std::getenv("SLIME_PROFILE_DEPTH") ? std::atoi(std::getenv("SLIME_PROFILE_DEPTH")) : 3;
   settings.render.threads = argc > 4 ? std::atoi(argv[4]) : 2;
   settings.slime.level = 4;
   // SLIME_PROFILE_DEFORMING=1: the headline's deforming frames (the physics' slime pulled by its top,
