@@ -26,7 +26,7 @@ void FrameCompositor::upload(const std::vector<std::uint8_t>& rgba, int width, i
 std::vector<PixelRect> FrameCompositor::draw(const ImDrawData& data, glm::ivec2 framebufferSize, int columnPixels,
                                              bool whole) {
   const bool columnChanged = panels_.prepare(data, framebufferSize, columnPixels);
-  const std::vector<PixelRect> overlays = panels_.overlayBounds(data, framebufferSize);
+  std::vector<PixelRect> overlays = panels_.overlayBounds(data, framebufferSize);
   const PixelRect framebuffer{0, 0, framebufferSize.x, framebufferSize.y};
   whole = whole || framebufferSize != lastFramebuffer_ || columnPixels != lastColumn_;
   std::vector<PixelRect> rects;
@@ -45,7 +45,7 @@ std::vector<PixelRect> FrameCompositor::draw(const ImDrawData& data, glm::ivec2 
     pixelsDrawn_ += static_cast<long long>(rect.x1 - rect.x0) * (rect.y1 - rect.y0);
   }
   imageChanged_ = {};
-  lastOverlays_ = overlays;
+  lastOverlays_.swap(overlays);
   lastFramebuffer_ = framebufferSize;
   lastColumn_ = columnPixels;
   return rects;

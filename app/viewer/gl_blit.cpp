@@ -61,6 +61,9 @@ GlBlit::GlBlit() {
   GLint ok = 0;
   glGetProgramiv(program_, GL_LINK_STATUS, &ok);
   if (!ok) throw std::runtime_error("image blit shader: link failed");
+  glUseProgram(program_);
+  glUniform1i(glGetUniformLocation(program_, "image"), 0);  // the sampler reads texture unit 0
+  glUseProgram(0);
   glGenVertexArrays(1, &vertexArray_);  // core profile draws need a bound vertex array, even an empty one
   glGenTextures(1, &texture_);
   glBindTexture(GL_TEXTURE_2D, texture_);
@@ -140,7 +143,6 @@ void GlBlit::draw(glm::ivec2 framebufferSize, int left, PixelRect rect) const {
     const GLint filter = textureSize_ == viewportSize ? GL_NEAREST : GL_LINEAR;
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
-    glUniform1i(glGetUniformLocation(program_, "image"), 0);
     glBindVertexArray(vertexArray_);
     glDrawArrays(GL_TRIANGLES, 0, kRectangleVertices);
     glBindVertexArray(0);

@@ -196,19 +196,15 @@ void PanelLayer::drawOverlays(const ImDrawData& data, PixelRect rect, glm::ivec2
   clipRects_.clear();
   for (int i = lists_; i < data.CmdListsCount; ++i)
     for (ImDrawCmd& command : data.CmdLists[i]->CmdBuffer) {
-      const ImVec4 own = command.ClipRect;
-      clipRects_.insert(clipRects_.end(), {own.x, own.y, own.z, own.w});
-      const PixelRect narrowed = pixelsOf(own).intersectedWith(rect);
+      clipRects_.push_back(command.ClipRect);
+      const PixelRect narrowed = pixelsOf(command.ClipRect).intersectedWith(rect);
       command.ClipRect = narrowed.empty() ? ImVec4(0.0f, 0.0f, 0.0f, 0.0f) : toDisplay(narrowed);
     }
   ImDrawData rest = subset(data, lists_, data.CmdListsCount - lists_);
   ImGui_ImplOpenGL3_RenderDrawData(&rest);
-  std::size_t k = 0;
+  auto own = clipRects_.begin();
   for (int i = lists_; i < data.CmdListsCount; ++i)
-    for (ImDrawCmd& command : data.CmdLists[i]->CmdBuffer) {
-      command.ClipRect = ImVec4(clipRects_[k], clipRects_[k + 1], clipRects_[k + 2], clipRects_[k + 3]);
-      k += 4;
-    }
+    for (ImDrawCmd& command : data.CmdLists[i]->CmdBuffer) command.ClipRect = *own++;
 }
 
 }  // namespace slime

@@ -18,6 +18,7 @@
 #include <vector>
 
 struct ImDrawData;
+struct ImVec4;
 
 namespace slime {
 
@@ -64,7 +65,7 @@ class PanelLayer {
   Kept kept_;
   int lists_ = 0;  // this frame's column lists (the first ones of its draw data)
   std::vector<std::uint8_t> current_;
-  std::vector<float> clipRects_;  // the overlays' own clip rectangles, kept while drawOverlays narrows them
+  std::vector<ImVec4> clipRects_;  // the overlays' own clip rectangles, kept while drawOverlays narrows them
   long long columnDraws_ = 0;
   long long columnKeeps_ = 0;
 };

@@ -152,10 +152,10 @@ void Window::present(const std::vector<PixelRect>& changed) {
     // A new size (and the first frame): swapped whole, which lets Mesa's window system code take the
     // window's new size before any rectangle is copied from the back buffer (a copy sized for the
     // new window from the old buffer is an X error that ends the program). A swap need not keep the
-    // back buffer: the next frame is drawn whole (keepsFramebuffer) and copied whole.
+    // back buffer: the next frame is drawn whole (keepsFramebuffer), so all of it is copied.
     glfwSwapBuffers(window_);
     presentedSize_ = size;
-    swapped_ = exposed_ = true;
+    swapped_ = true;
     return;
   }
   swapped_ = false;

@@ -46,7 +46,7 @@ class Window final : public ViewerBackend {
   void (*copySubBuffer_)() = nullptr;
   void* display_ = nullptr;
   unsigned long glxWindow_ = 0;
-  bool exposed_ = true;
+  bool exposed_ = false;            // X asked for the window's contents again (an expose)
   glm::ivec2 presentedSize_{0, 0};  // the framebuffer's size at the last present
   bool swapped_ = true;             // the last present swapped: the next frame is drawn whole
 };
