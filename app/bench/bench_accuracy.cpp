@@ -156,7 +156,7 @@ json runAccuracyBench(const Settings& baseSettings, const AccuracyBenchOptions& 
         (smallestInvisible.is_null() || run["level"].get<int>() < smallestInvisible["level"].get<int>()))
       smallestInvisible = run;
 
-  json report = {{"bench", "accuracy"}, {"width", options.width}, {"height", options.height},
+  json report = {{"bench", "accuracy"}, {"machine", machineJson()}, {"width", options.width}, {"height", options.height},
                  {"reference", {{"shape", "sphere"}, {"depth", largestDepth}}}, {"distance", distance},
                  {"threshold", {{"step", kVisibleStep}, {"fraction", kVisibleFraction},
                                 {"rule", "invisible when at most 1% of the pixels differ by more than 2 steps of 8-bit sRGB"}}},

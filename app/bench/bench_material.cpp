@@ -505,7 +505,8 @@ json runMaterialBench(const Settings& settings, const MaterialBenchOptions& opti
               energy["volume_ratio"]["max"].get<double>());
 
   const SlimeSettings& slime = settings.slime;
-  json report = {{"material",
+  json report = {{"machine", machineJson()},
+                 {"material",
                   {{"modulus_pa", slime.modulus},
                    {"long_term", slime.longTerm},
                    {"relaxation_s", slime.relaxation},

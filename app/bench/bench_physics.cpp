@@ -52,21 +52,6 @@ struct QuotedFigure {
 constexpr QuotedFigure kJolt[] = {{3, 642, 0.027, 0.027}, {4, 2562, 0.214, 0.214}, {5, 10242, 1.72, 1.72},
                                   {6, 40962, 12.2, 13.5}};
 
-std::string utcNow() {
-  const std::time_t now = std::time(nullptr);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
-  return text;
-}
-
-// The 1-, 5- and 15-minute load averages: how busy the shared machine was while it measured.
-json loadAverage() {
-  std::ifstream file("/proc/loadavg");
-  double one = 0, five = 0, fifteen = 0;
-  if (!(file >> one >> five >> fifteen)) return nullptr;
-  return json::array({one, five, fifteen});
-}
-
 // ---- Cost -------------------------------------------------------------------------------------------
 
 struct CostFigure {
@@ -355,7 +340,7 @@ json runPhysicsBench(const Settings& base, const PhysicsBenchOptions& options) {
       (stability ? 13.0 * (bulk.size() * options.moduli.size() + (options.membrane ? integrators.size() * options.stiffnesses.size() : 0)) : 0.0) +
       (accuracy ? 5.0 + bulk.size() * perIntegrator + (options.membrane ? 5.0 + integrators.size() * perIntegrator : 0.0) : 0.0) + 1.0;
   BenchProgress progress("bench physics", units);
-  json report = {{"bench", "physics"}, {"date", utcNow()}, {"cores", std::thread::hardware_concurrency()},
+  json report = {{"bench", "physics"}, {"date", utcNow()}, {"cores", std::thread::hardware_concurrency()}, {"machine", machineJson()},
                  {"load_average_at_start", loadAverage()}, {"dt", base.sim.dt}, {"mass", base.slime.mass},
                  {"radius", base.slime.radius}, {"default_model", base.slime.model},
                  {"default_integrator", base.sim.integrator}, {"default_level", base.slime.level},

@@ -314,6 +314,7 @@ json runRenderBench(const Settings& baseSettings, const RenderBenchOptions& opti
                  {"height", options.height},
                  {"depth", options.depth},
                  {"cores", cores},
+                 {"machine", machineJson()},
                  {"frames", options.frames},
                  {"warmup", options.warmup},
                  {"brute_force_min_samples", brutePlan.minFrames},

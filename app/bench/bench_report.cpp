@@ -3,8 +3,11 @@
 #include "core/file_output.h"
 
 #include <cstdio>
+#include <ctime>
+#include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 
 namespace slime {
 namespace {
@@ -24,6 +27,45 @@ std::string formatValue(const nlohmann::json& value) {
 void writeText(const std::string& text, const std::string& path) { writeFileAtomically(path, text); }
 
 }  // namespace
+
+std::string utcNow() {
+  const std::time_t now = std::time(nullptr);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  return text;
+}
+
+nlohmann::json loadAverage() {
+  std::ifstream file("/proc/loadavg");
+  double one = 0, five = 0, fifteen = 0;
+  if (!(file >> one >> five >> fifteen)) return nullptr;
+  return nlohmann::json::array({one, five, fifteen});
+}
+
+nlohmann::json machineJson() {
+  std::string model = "unknown";
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  for (std::string line; std::getline(cpuinfo, line);) {
+    if (line.rfind("model name", 0) != 0) continue;
+    const std::size_t colon = line.find(':');
+    if (colon != std::string::npos) model = line.substr(line.find_first_not_of(" \t", colon + 1));
+    break;
+  }
+#if defined(__AVX512F__)
+  const char* vectors = "AVX-512";
+#elif defined(__AVX2__)
+  const char* vectors = "AVX2";
+#elif defined(__AVX__)
+  const char* vectors = "AVX";
+#else
+  const char* vectors = "SSE2";
+#endif
+  return {{"date", utcNow()},
+          {"cpu", model},
+          {"cores", std::thread::hardware_concurrency()},
+          {"compiled_for", vectors},
+          {"load_average", loadAverage()}};
+}
 
 void CsvTable::add(const std::vector<nlohmann::json>& values) {
   std::vector<std::string> row;

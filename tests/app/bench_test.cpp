@@ -27,6 +27,26 @@ json readJson(const std::string& path) {
   return json::parse(file);
 }
 
+// Every bench report says which machine measured it: figures from two machines are not comparable.
+void expectMachine(const json& report) {
+  ASSERT_TRUE(report.contains("machine"));
+  const json& machine = report["machine"];
+  const std::string cpu = machine["cpu"].get<std::string>();
+  EXPECT_FALSE(cpu.empty());
+  EXPECT_NE(cpu.front(), ' ') << cpu;
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  for (std::string line; std::getline(cpuinfo, line);)
+    if (line.rfind("model name", 0) == 0) {
+      EXPECT_NE(line.find(": " + cpu), std::string::npos) << line;
+      break;
+    }
+  EXPECT_GE(machine["cores"].get<int>(), 1);
+  const std::string vectors = machine["compiled_for"].get<std::string>();
+  EXPECT_TRUE(vectors == "AVX-512" || vectors == "AVX2" || vectors == "AVX" || vectors == "SSE2") << vectors;
+  EXPECT_EQ(machine["date"].get<std::string>().size(), 20u);
+  EXPECT_EQ(machine["load_average"].size(), 3u);
+}
+
 TEST(BenchRender, OneTinyLevelHasEveryField) {
   RenderBenchOptions options;
   options.levels = {1};
@@ -42,6 +62,7 @@ TEST(BenchRender, OneTinyLevelHasEveryField) {
   runRenderBench(defaultSettings(), options);
 
   const json report = readJson(options.jsonFile);
+  expectMachine(report);
   ASSERT_EQ(report["configurations"].size(), 1u);
   const json& c = report["configurations"][0];
   EXPECT_EQ(c["level"], 1);
@@ -161,6 +182,7 @@ TEST(BenchPhysics, OneTinyLevelHasEveryField) {
   runPhysicsBench(settings, options);
 
   const json report = readJson(options.jsonFile);
+  expectMachine(report);
   EXPECT_FALSE(report["date"].get<std::string>().empty());
   int measured = 0, jolt = 0;
   for (const json& row : report["cost"]) {
@@ -232,6 +254,7 @@ TEST(BenchAccuracy, OneTinyLevelHasEveryField) {
   runAccuracyBench(defaultSettings(), options);
 
   const json report = readJson(options.jsonFile);
+  expectMachine(report);
   ASSERT_EQ(report["runs"].size(), 4u);  // 1 level × {flat, smooth} × 2 depths
   for (const json& run : report["runs"]) {
     EXPECT_GT(run["ms_per_frame"].get<double>(), 0.0);
@@ -268,6 +291,7 @@ TEST(BenchMaterial, QuickRunHasEveryFieldAndMeetsItsOracles) {
   runMaterialBench(defaultSettings(), options);
 
   const json report = readJson(options.jsonFile);
+  expectMachine(report);
   auto expectVolumeWithinOnePercent = [](const json& run, const char* what) {
     EXPECT_GT(run["volume_ratio"]["min"].get<double>(), 0.99) << what;
     EXPECT_LT(run["volume_ratio"]["max"].get<double>(), 1.01) << what;
