@@ -43,14 +43,21 @@ nlohmann::json loadAverage() {
 }
 
 nlohmann::json machineJson() {
-  std::string model = "unknown";
+  // The model name, and its family and model numbers (a hypervisor may show only "AMD EPYC", which
+  // spans processors of very different speed).
+  std::string model = "unknown", family, number;
   std::ifstream cpuinfo("/proc/cpuinfo");
-  for (std::string line; std::getline(cpuinfo, line);) {
-    if (line.rfind("model name", 0) != 0) continue;
+  const auto value = [](const std::string& line) {
     const std::size_t colon = line.find(':');
-    if (colon != std::string::npos) model = line.substr(line.find_first_not_of(" \t", colon + 1));
-    break;
+    const std::size_t start = colon == std::string::npos ? std::string::npos : line.find_first_not_of(" \t", colon + 1);
+    return start == std::string::npos ? std::string() : line.substr(start);
+  };
+  for (std::string line; std::getline(cpuinfo, line) && !line.empty();) {
+    if (line.rfind("model name", 0) == 0) model = value(line);
+    else if (line.rfind("cpu family", 0) == 0) family = value(line);
+    else if (line.rfind("model\t", 0) == 0 || line.rfind("model :", 0) == 0) number = value(line);
   }
+  if (!family.empty() && !number.empty()) model += " (family " + family + ", model " + number + ")";
 #if defined(__AVX512F__)
   const char* vectors = "AVX-512";
 #elif defined(__AVX2__)
