@@ -59,7 +59,7 @@ else
   viewer_drag() {  # viewer_drag NAME [extra options]
     local name=$1
     shift
-    local run=("$slime" view --size 1280x720 --scenario tests/scenarios/drag_top_in_circles_6s.json --frames 400
+    local run=("$slime" view --size 1280x720 --scenario tests/scenarios/drag_top_in_circles_6s.json --frames 700
                --report "$out/$name.json" --frame-log "$out/$name.csv" "$@")
     if [ -n "${DISPLAY:-}" ]; then "${run[@]}"
     else xvfb-run -a -s "-screen 0 1400x900x24" "${run[@]}"; fi
