@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace slime {
 namespace {
@@ -115,75 +116,112 @@ void SlimeGeometry::buildClusters() {
   clusterBegin.push_back(static_cast<std::uint32_t>(count));
 }
 
+void SlimeGeometry::NodeBounds::set(std::size_t k, const std::vector<std::uint32_t>& order, const std::vector<glm::vec3>& positions,
+                                    const std::vector<glm::vec3>& normals, std::size_t begin, std::size_t end) {
+  glm::vec3 centre(0.0f), normal(0.0f);
+  for (std::size_t i = begin; i < end; ++i) {
+    centre += positions[order[i]];
+    normal += normals[order[i]];
+  }
+  centre /= static_cast<float>(end - begin);
+  const float length = glm::length(normal);
+  normal = length > 1e-6f && std::isfinite(length) ? normal / length : glm::vec3(0.0f, 0.0f, 1.0f);
+  float radius2 = 0.0f, across2 = 0.0f, thickness = 0.0f;
+  for (std::size_t i = begin; i < end; ++i) {
+    const glm::vec3 d = positions[order[i]] - centre;
+    const float along = glm::dot(d, normal);
+    const glm::vec3 inPlane = d - along * normal;
+    radius2 = std::max(radius2, glm::dot(d, d));
+    across2 = std::max(across2, glm::dot(inPlane, inPlane));
+    thickness = std::max(thickness, std::abs(along));
+  }
+  // Rounding: each bound must hold its vertices.
+  const auto padded = [](float value) { return value * 1.0001f + 1e-7f; };
+  for (int c = 0; c < 3; ++c) {
+    values[kCentre + c][k] = centre[c];
+    values[kNormal + c][k] = normal[c];
+  }
+  values[kRadius][k] = padded(std::sqrt(radius2));
+  values[kAcross][k] = padded(std::sqrt(across2));
+  values[kThickness][k] = padded(thickness);
+}
+
+// The lower of the sphere's top and the disk's: the disk's top lies radius·sin + thickness·|cos|
+// above its centre, for the angle between n and the disk's normal.
+unsigned SlimeGeometry::NodeBounds::above(std::size_t k, const glm::vec3& n, float level) const {
+  const auto load = [&](int field) { return Lanes::load(&values[field][k]); };
+  const Lanes centre = load(kCentre) * n.x + load(kCentre + 1) * n.y + load(kCentre + 2) * n.z;
+  const Lanes cosine = load(kNormal) * n.x + load(kNormal + 1) * n.y + load(kNormal + 2) * n.z;
+  const Lanes sine = sqrt(max(Lanes(1.0f) - cosine * cosine, Lanes(0.0f)));
+  const Lanes disk = load(kAcross) * sine + load(kThickness) * max(cosine, -cosine);
+  return (centre + min(load(kRadius), disk) > level).mask();
+}
+
 void SlimeGeometry::findSupportingTriangles() {
   supporting.assign(triangles.size(), 0);
   if (vertexCount() == 0 || clusterBegin.size() < 2 || !(boundRadius > 0.0f)) {  // none is known to support it
     listNonSupporting();
     return;
   }
-  // Each cluster's bounding sphere (centroid, farthest member), and each group of 8 consecutive
-  // clusters' (neighbours in the median splits), padded with empty spheres far below every plane
-  // (radius −∞) to whole lanes.
-  const std::size_t clusters = clusterBegin.size() - 1, padded = (clusters + 63) / 64 * 64, groups = padded / 8;
-  for (auto& values : clusterSpheres) values.assign(padded, 0.0f);
-  for (auto& values : groupSpheres) values.assign((groups + 7) / 8 * 8, 0.0f);
-  std::fill(clusterSpheres[3].begin() + static_cast<std::ptrdiff_t>(clusters), clusterSpheres[3].end(), -kInfinity);
-  std::fill(groupSpheres[3].begin(), groupSpheres[3].end(), -kInfinity);
-  for (std::size_t k = 0; k < clusters; ++k) {
-    glm::vec3 centre(0.0f);
-    for (std::uint32_t i = clusterBegin[k]; i < clusterBegin[k + 1]; ++i) centre += positions[clusterOrder[i]];
-    centre /= static_cast<float>(clusterBegin[k + 1] - clusterBegin[k]);
-    float radius2 = 0.0f;
-    for (std::uint32_t i = clusterBegin[k]; i < clusterBegin[k + 1]; ++i) {
-      const glm::vec3 d = positions[clusterOrder[i]] - centre;
-      radius2 = std::max(radius2, glm::dot(d, d));
-    }
-    for (int c = 0; c < 3; ++c) clusterSpheres[c][k] = centre[c];
-    clusterSpheres[3][k] = std::sqrt(radius2);
+  // The tree's nodes: level 0 the clusters, each level above one node for each 8 consecutive nodes
+  // of the level below, up to a top of at most 8. A node holds a run of clusterOrder and is bounded
+  // from its own vertices; every level is padded with empty nodes (radius −∞, far below every plane)
+  // to whole lanes.
+  const std::size_t clusters = clusterBegin.size() - 1;
+  std::vector<std::size_t> counts{clusters};
+  while (counts.back() > 8) counts.push_back((counts.back() + 7) / 8);
+  nodeLevels.resize(counts.size());
+  for (std::size_t depth = 0; depth < counts.size(); ++depth) {
+    NodeBounds& level = nodeLevels[depth];
+    const std::size_t padded = (counts[depth] + 7) / 8 * 8;
+    for (auto& values : level.values) values.assign(padded, 0.0f);
+    std::fill(level.values[NodeBounds::kRadius].begin(), level.values[NodeBounds::kRadius].end(), -kInfinity);
   }
+  // Every level passes over all the vertices: the nodes of all levels are bounded side by side.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> nodes;  // (depth, index)
+  for (std::size_t depth = 0; depth < counts.size(); ++depth)
+    for (std::size_t k = 0; k < counts[depth]; ++k) nodes.emplace_back(static_cast<std::uint32_t>(depth), static_cast<std::uint32_t>(k));
+  handOff(this);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nodes.size(), 32), [&](const tbb::blocked_range<std::size_t>& range) {
+    takeOver(this);
+    for (std::size_t i = range.begin(); i < range.end(); ++i) {
+      const auto [depth, k] = nodes[i];
+      const std::size_t span = std::size_t{1} << (3 * depth);  // clusters a node
+      nodeLevels[depth].set(k, clusterOrder, positions, normals, clusterBegin[k * span],
+                            clusterBegin[std::min(clusters, (k + 1) * span)]);
+    }
+    handOff(this);
+  });
+  takeOver(this);
   // The vertices cluster by cluster in kClusterSize slots (two lanes' worth), the empty slots NaN
   // (never above a plane).
   for (auto& values : clusterVertices) values.assign(clusters * kClusterSize, std::nanf(""));
   for (std::size_t k = 0; k < clusters; ++k)
     for (std::uint32_t i = clusterBegin[k]; i < clusterBegin[k + 1]; ++i)
       for (int c = 0; c < 3; ++c) clusterVertices[c][k * kClusterSize + (i - clusterBegin[k])] = positions[clusterOrder[i]][c];
-  for (std::size_t g = 0; g * 8 < clusters; ++g) {
-    const std::size_t first = g * 8, last = std::min(clusters, first + 8);
-    glm::vec3 centre(0.0f);
-    for (std::size_t k = first; k < last; ++k) centre += glm::vec3(clusterSpheres[0][k], clusterSpheres[1][k], clusterSpheres[2][k]);
-    centre /= static_cast<float>(last - first);
-    float radius = 0.0f;
-    for (std::size_t k = first; k < last; ++k)
-      radius = std::max(radius, glm::length(glm::vec3(clusterSpheres[0][k], clusterSpheres[1][k], clusterSpheres[2][k]) - centre) +
-                                    clusterSpheres[3][k]);
-    for (int c = 0; c < 3; ++c) groupSpheres[c][g] = centre[c];
-    groupSpheres[3][g] = radius * 1.0001f + 1e-7f;  // rounding: the group's sphere must hold its clusters'
-  }
   // A triangle supports the slime when no vertex rises more than the tolerance above its plane:
-  // groups, then clusters, whose sphere lies wholly below are passed over, eight at a time.
+  // nodes wholly below it are passed over with all they hold, eight at a time, from the top down.
   const float tolerance = kConvexTolerance * boundRadius;
-  const auto above = [](const std::vector<float>* spheres, std::size_t k, const glm::vec3& n, float level) {
-    const Lanes height = Lanes::load(&spheres[0][k]) * n.x + Lanes::load(&spheres[1][k]) * n.y +
-                         Lanes::load(&spheres[2][k]) * n.z + Lanes::load(&spheres[3][k]);
-    return (height > level).mask();
+  // Whether a vertex under the 8 nodes of `depth` from `first` on rises above the plane n·x = level.
+  const auto rises = [&](const auto& self, std::size_t depth, std::size_t first, const glm::vec3& n, float level) -> bool {
+    for (unsigned bits = nodeLevels[depth].above(first, n, level); bits != 0; bits &= bits - 1) {
+      const std::size_t k = first + static_cast<std::size_t>(__builtin_ctz(bits));
+      if (depth > 0) {
+        if (self(self, depth - 1, 8 * k, n, level)) return true;
+        continue;
+      }
+      for (std::size_t i = k * kClusterSize; i < (k + 1) * kClusterSize; i += 8) {
+        const Lanes height = Lanes::load(&clusterVertices[0][i]) * n.x + Lanes::load(&clusterVertices[1][i]) * n.y +
+                             Lanes::load(&clusterVertices[2][i]) * n.z;
+        if ((height > level).mask() != 0) return true;
+      }
+    }
+    return false;
   };
   const auto supportsSlime = [&](std::size_t f) {
     const glm::vec3 n = faceNormals[f];
     const float level = glm::dot(n, positions[triangles[f].x]) + tolerance;  // the plane, lifted by the tolerance
-    for (std::size_t g = 0; g < groupSpheres[0].size(); g += 8) {
-      for (unsigned groupBits = above(groupSpheres, g, n, level); groupBits != 0; groupBits &= groupBits - 1) {
-        const std::size_t group = g + static_cast<std::size_t>(__builtin_ctz(groupBits));
-        for (unsigned bits = above(clusterSpheres, 8 * group, n, level); bits != 0; bits &= bits - 1) {
-          const std::size_t first = (8 * group + static_cast<std::size_t>(__builtin_ctz(bits))) * kClusterSize;
-          for (std::size_t i = first; i < first + kClusterSize; i += 8) {
-            const Lanes height = Lanes::load(&clusterVertices[0][i]) * n.x + Lanes::load(&clusterVertices[1][i]) * n.y +
-                                 Lanes::load(&clusterVertices[2][i]) * n.z;
-            if ((height > level).mask() != 0) return false;
-          }
-        }
-      }
-    }
-    return true;
+    return !rises(rises, nodeLevels.size() - 1, 0, n, level);
   };
   handOff(this);  // the frame's positions and spheres, to the workers (render/tsan_handoff.h)
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), 256), [&](const tbb::blocked_range<std::size_t>& range) {

@@ -10,6 +10,7 @@
 #include <glm/vec3.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -46,8 +47,24 @@ struct SlimeGeometry {
   // before its vertices.
   std::vector<std::uint32_t> clusterOrder;   // vertex indices, cluster after cluster
   std::vector<std::uint32_t> clusterBegin;   // cluster k holds clusterOrder[clusterBegin[k], clusterBegin[k + 1])
-  std::vector<float> clusterSpheres[4];      // centre x, y, z and radius per cluster, padded to a multiple of 64
-  std::vector<float> groupSpheres[4];        // the same for each 8 consecutive clusters, padded to a multiple of 8
+  // A tree eight wide over the clusters, bounded this frame: level 0 the clusters, each level above
+  // one node for each 8 consecutive nodes of the level below (neighbours in the median splits), up to
+  // a top of at most 8. Each node is bounded from its own vertices twice: a sphere (centroid,
+  // farthest vertex) and a disk (the vertex normals' mean direction, the radius within the disk's
+  // plane, the half thickness along its normal). A plane is tested against the top, then only below
+  // the nodes it cuts, so a triangle costs about the log of the vertex count; and a plane nearly
+  // parallel to the surface (a supporting triangle's) passes over the disks of the patches around
+  // it, which their spheres would reach through.
+  struct NodeBounds {
+    enum Field { kCentre = 0, kRadius = 3, kNormal = 4, kAcross = 7, kThickness = 8, kFields = 9 };
+    std::array<std::vector<float>, kFields> values;  // by field, node after node; padded to a multiple of 8
+    // Bounds node k by the vertices order[begin, end).
+    void set(std::size_t k, const std::vector<std::uint32_t>& order, const std::vector<glm::vec3>& positions,
+             const std::vector<glm::vec3>& normals, std::size_t begin, std::size_t end);
+    // Bit i: node k + i may reach above the plane n·x = level (n a unit vector).
+    unsigned above(std::size_t k, const glm::vec3& n, float level) const;
+  };
+  std::vector<NodeBounds> nodeLevels;
   std::vector<float> clusterVertices[3];     // x, y, z of the vertices, 16 slots a cluster (NaN where empty)
   glm::vec3 sphereCenter{0.0f};
   float sphereRadius = 0.0f;

@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <random>
+#include <string>
 
 namespace slime::testing {
 namespace {
@@ -75,6 +76,25 @@ TEST(SlimeGeometry, SupportingTrianglesAreThoseWithTheWholeSlimeBelowTheirPlane)
   const std::vector<bool> expected = supportingByBruteForce(geometry);
   for (std::size_t f = 0; f < expected.size(); ++f)
     ASSERT_EQ(geometry.supports(static_cast<std::uint32_t>(f)), expected[f]) << "dented after round, triangle " << f;
+}
+
+// The bounds tree from one level (a handful of vertices: a single cluster) to four (level 5:
+// ~10,000 vertices), each against the brute force.
+TEST(SlimeGeometry, EveryDepthOfTheBoundsTreeAgreesWithBruteForce) {
+  for (int level : {0, 1, 2, 5}) {
+    const TriangleMesh ball = makeIcosphere(level, 0.04, {0.0, 0.0, 0.04});
+    TriangleMesh rough = ball;  // facets and a dent, so that some planes cut the body and some do not
+    std::mt19937 random(11);
+    std::uniform_real_distribution<double> jitter(-2e-4, 2e-4);
+    for (auto& p : rough.positions) {
+      p += glm::dvec3(jitter(random), jitter(random), jitter(random));
+      const double fromAxis = std::hypot(p.x, p.y);
+      if (p.z > 0.06 && fromAxis < 0.02) p.z -= 0.01 * std::cos(fromAxis / 0.02 * 1.5707963);
+    }
+    const std::string what = "level " + std::to_string(level);
+    expectSupportingAsBruteForce(ball, (what + " ball").c_str(), 0);
+    expectSupportingAsBruteForce(rough, (what + " rough and dented").c_str(), -1);
+  }
 }
 
 TEST(SlimeGeometry, NoSlimeSupportsNothing) {
