@@ -45,14 +45,15 @@ int main(int argc, char** argv) {
   settings.camera.height = height;
   settings.render.depth = std::getenv("SLIME_PROFILE_DEPTH") ? std::atoi(std::getenv("SLIME_PROFILE_DEPTH")) : 3;
   settings.render.threads = argc > 4 ? std::atoi(argv[4]) : 2;
-  settings.slime.level = 4;
+  // SLIME_PROFILE_LEVEL=L: the slime drawn at level L (default 4).
+  settings.slime.level = std::getenv("SLIME_PROFILE_LEVEL") ? std::atoi(std::getenv("SLIME_PROFILE_LEVEL")) : 4;
   // SLIME_PROFILE_DEFORMING=1: the headline's deforming frames (the physics' slime pulled by its top,
   // two frames 1/60 s apart, alternating), else the icosphere on the floor.
   const bool deforming = std::getenv("SLIME_PROFILE_DEFORMING") != nullptr;
   // SLIME_PROFILE_STILL=1: the camera holds still (pixels the slime cannot reach are copied), as in
   // the viewer while a person drags the slime.
   const bool still = std::getenv("SLIME_PROFILE_STILL") != nullptr;
-  std::vector<TriangleMesh> shapes{makeIcosphere(4, settings.slime.radius,
+  std::vector<TriangleMesh> shapes{makeIcosphere(settings.slime.level, settings.slime.radius,
                                                  {settings.slime.position.x, settings.slime.position.y, settings.slime.radius})};
   if (deforming) {
     std::vector<std::vector<glm::dvec3>> trajectory;
