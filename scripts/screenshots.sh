@@ -14,7 +14,7 @@ cat > "$work/drive.sh" <<'DRIVE'
 set -euo pipefail
 source tests/scripts/viewer_lib.sh "$1" "$2"
 start_viewer   # 1280x720: the panel column takes the left 333 pixels, the slime is centred right of it
-sleep 5                                   # the slime falls and settles
+sleep 12                                  # the slime falls, settles and creeps; the image refines between its steps
 screenshot 1
 xdotool mousemove --window "$WINDOW" 845 250 mousedown 1   # on the settled slime's upper right
 sleep 0.5                                 # held until a frame has seen the press where it was made
