@@ -85,7 +85,7 @@ void registerViewCommand(CLI::App& root, int& exitCode) {
       ->check(CLI::NonNegativeNumber);
   command->add_option("--screenshot-on-exit", options->viewer.screenshotOnExit, "Write the last frame to this PNG");
   command->add_option("--report", options->viewer.reportPath,
-                      "Write a JSON summary (frames, fps, stages, resolution, grabs, metrics, settings) "
+                      "Write a JSON summary (machine, frames, fps, stages, resolution, grabs, metrics, settings) "
                       "at exit");
   command->add_option("--frame-log", options->viewer.frameLogPath,
                       "Write every frame (wall time, stages, traced size, grabbed) as CSV at exit");

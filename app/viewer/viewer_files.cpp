@@ -2,6 +2,7 @@
 // `--report` JSON at exit.
 #include "app/viewer/viewer.h"
 
+#include "app/bench/bench_report.h"
 #include "app/viewer/panel_fields.h"
 #include "core/file_output.h"
 #include "core/settings_io.h"
@@ -97,6 +98,7 @@ void Viewer::writeReport() const {
   if (options_.reportPath.empty()) return;
   const glm::ivec2 framebuffer = backend_.framebufferSize();
   const nlohmann::json report = {
+      {"machine", machineJson()},  // frame rates from two machines are not comparable
       {"frames", stats_.frames},
       {"fps", stats_.fps},
       {"mean_fps", stats_.meanFps()},

@@ -148,6 +148,9 @@ TEST(HeadlessViewer, AScenarioGrabTakesHoldAndTheReportCountsIt) {
   ASSERT_GT(viewer.simulation().time(), grab->time + 0.3) << "the physics fell behind the frames";
 
   const nlohmann::json result = readJson(report);
+  ASSERT_TRUE(result.contains("machine")) << "the report does not say which machine measured it";
+  EXPECT_FALSE(result["machine"]["cpu"].get<std::string>().empty());
+  EXPECT_GE(result["machine"]["cores"].get<int>(), 1);
   EXPECT_EQ(result["grabs"], 1);
   EXPECT_EQ(result["grabbing"], true);
   const double restingHeight = result["height_at_grab"];
