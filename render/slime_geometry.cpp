@@ -10,7 +10,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <utility>
 
 namespace slime {
 namespace {
@@ -114,6 +113,26 @@ void SlimeGeometry::buildClusters() {
   clusterBegin.clear();
   if (count > 0) splitClusters(positions, clusterOrder, 0, count, clusterBegin);
   clusterBegin.push_back(static_cast<std::uint32_t>(count));
+
+  // The tree's shape: level 0 the clusters, each level above one node for each 8 consecutive nodes
+  // of the level below, up to a top of at most 8. A node holds a run of clusterOrder (its vertices);
+  // every level is padded to whole lanes with empty nodes (radius −∞, far below every plane), and the
+  // clusters' vertex slots past their vertices are NaN (never above a plane): only the real nodes'
+  // bounds and vertices change from frame to frame.
+  const std::size_t clusters = clusterBegin.size() - 1;
+  nodeLevels.clear();
+  nodeRuns.clear();
+  for (std::size_t depth = 0, nodes = clusters, span = 1; nodes > 0; ++depth, span *= 8) {
+    NodeBounds& level = nodeLevels.emplace_back();
+    for (auto& values : level.values) values.assign((nodes + 7) / 8 * 8, 0.0f);
+    std::fill(level.values[NodeBounds::kRadius].begin(), level.values[NodeBounds::kRadius].end(), -kInfinity);
+    for (std::size_t k = 0; k < nodes; ++k)
+      nodeRuns.push_back({static_cast<std::uint32_t>(depth), static_cast<std::uint32_t>(k), clusterBegin[k * span],
+                          clusterBegin[std::min(clusters, (k + 1) * span)]});
+    if (nodes <= 8) break;
+    nodes = (nodes + 7) / 8;
+  }
+  for (auto& values : clusterVertices) values.assign(clusters * kClusterSize, std::nanf(""));
 }
 
 void SlimeGeometry::NodeBounds::set(std::size_t k, const std::vector<std::uint32_t>& order, const std::vector<glm::vec3>& positions,
@@ -163,40 +182,19 @@ void SlimeGeometry::findSupportingTriangles() {
     listNonSupporting();
     return;
   }
-  // The tree's nodes: level 0 the clusters, each level above one node for each 8 consecutive nodes
-  // of the level below, up to a top of at most 8. A node holds a run of clusterOrder and is bounded
-  // from its own vertices; every level is padded with empty nodes (radius −∞, far below every plane)
-  // to whole lanes.
-  const std::size_t clusters = clusterBegin.size() - 1;
-  std::vector<std::size_t> counts{clusters};
-  while (counts.back() > 8) counts.push_back((counts.back() + 7) / 8);
-  nodeLevels.resize(counts.size());
-  for (std::size_t depth = 0; depth < counts.size(); ++depth) {
-    NodeBounds& level = nodeLevels[depth];
-    const std::size_t padded = (counts[depth] + 7) / 8 * 8;
-    for (auto& values : level.values) values.assign(padded, 0.0f);
-    std::fill(level.values[NodeBounds::kRadius].begin(), level.values[NodeBounds::kRadius].end(), -kInfinity);
-  }
   // Every level passes over all the vertices: the nodes of all levels are bounded side by side.
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> nodes;  // (depth, index)
-  for (std::size_t depth = 0; depth < counts.size(); ++depth)
-    for (std::size_t k = 0; k < counts[depth]; ++k) nodes.emplace_back(static_cast<std::uint32_t>(depth), static_cast<std::uint32_t>(k));
   handOff(this);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nodes.size(), 32), [&](const tbb::blocked_range<std::size_t>& range) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nodeRuns.size(), 32), [&](const tbb::blocked_range<std::size_t>& range) {
     takeOver(this);
     for (std::size_t i = range.begin(); i < range.end(); ++i) {
-      const auto [depth, k] = nodes[i];
-      const std::size_t span = std::size_t{1} << (3 * depth);  // clusters a node
-      nodeLevels[depth].set(k, clusterOrder, positions, normals, clusterBegin[k * span],
-                            clusterBegin[std::min(clusters, (k + 1) * span)]);
+      const NodeRun& node = nodeRuns[i];
+      nodeLevels[node.depth].set(node.index, clusterOrder, positions, normals, node.begin, node.end);
     }
     handOff(this);
   });
   takeOver(this);
-  // The vertices cluster by cluster in kClusterSize slots (two lanes' worth), the empty slots NaN
-  // (never above a plane).
-  for (auto& values : clusterVertices) values.assign(clusters * kClusterSize, std::nanf(""));
-  for (std::size_t k = 0; k < clusters; ++k)
+  // The vertices cluster by cluster in kClusterSize slots (two lanes' worth).
+  for (std::size_t k = 0; k + 1 < clusterBegin.size(); ++k)
     for (std::uint32_t i = clusterBegin[k]; i < clusterBegin[k + 1]; ++i)
       for (int c = 0; c < 3; ++c) clusterVertices[c][k * kClusterSize + (i - clusterBegin[k])] = positions[clusterOrder[i]][c];
   // A triangle supports the slime when no vertex rises more than the tolerance above its plane:

@@ -65,6 +65,11 @@ struct SlimeGeometry {
     unsigned above(std::size_t k, const glm::vec3& n, float level) const;
   };
   std::vector<NodeBounds> nodeLevels;
+  struct NodeRun {
+    std::uint32_t depth, index;  // node `index` of nodeLevels[depth]
+    std::uint32_t begin, end;    // its vertices: clusterOrder[begin, end)
+  };
+  std::vector<NodeRun> nodeRuns;  // every node of every level, set with the clusters
   std::vector<float> clusterVertices[3];     // x, y, z of the vertices, 16 slots a cluster (NaN where empty)
   glm::vec3 sphereCenter{0.0f};
   float sphereRadius = 0.0f;
@@ -88,7 +93,8 @@ struct SlimeGeometry {
   // Copies the physics state; recomputes normals and bounds. Returns true when the topology changed.
   bool update(const std::vector<glm::dvec3>& newPositions, const std::vector<Triangle>& newTriangles);
 
-  // The clusters of a new topology (buildClusters), and this frame's supporting triangles and convexity.
+  // The clusters of a new topology and the tree over them (buildClusters), and this frame's
+  // supporting triangles and convexity.
   void buildClusters();
   void findSupportingTriangles();
   // nonSupportingTriangles, nonSupportingPrimitives, their sphere and `convex`, from `supporting`.
