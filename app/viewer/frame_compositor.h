@@ -35,8 +35,8 @@ class FrameCompositor {
   // Draws the frame into the bound framebuffer of `framebufferSize` pixels, the column `columnPixels`
   // wide: all of it when `whole` (or on the first frame, or when the sizes changed), else what
   // changed since the last draw. Returns the rectangles drawn (framebuffer pixels, top row 0): what a
-  // window must show again.
-  std::vector<PixelRect> draw(const ImDrawData& data, glm::ivec2 framebufferSize, int columnPixels, bool whole);
+  // window must show again (valid until the next draw).
+  const std::vector<PixelRect>& draw(const ImDrawData& data, glm::ivec2 framebufferSize, int columnPixels, bool whole);
 
   const PanelLayer& panels() const { return panels_; }
   long long pixelsDrawn() const { return pixelsDrawn_; }  // over every draw(), for the tests and reports
@@ -45,7 +45,9 @@ class FrameCompositor {
   GlBlit blit_;
   PanelLayer panels_;
   PixelRect imageChanged_;                // image pixels uploaded since the last draw
-  std::vector<PixelRect> lastOverlays_;   // where the lists over the image lay in the last frame
+  std::vector<PixelRect> overlays_;       // where the lists over the image lie in this frame
+  std::vector<PixelRect> lastOverlays_;   // ... and lay in the last
+  std::vector<PixelRect> rects_;          // what this frame drew (kept: a steady frame allocates nothing)
   glm::ivec2 lastFramebuffer_{0, 0};
   int lastColumn_ = -1;
   long long pixelsDrawn_ = 0;

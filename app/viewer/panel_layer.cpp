@@ -116,7 +116,7 @@ bool PanelLayer::prepare(const ImDrawData& data, glm::ivec2 framebufferSize, int
   return true;
 }
 
-std::vector<PixelRect> PanelLayer::overlayBounds(const ImDrawData& data, glm::ivec2 framebufferSize) const {
+void PanelLayer::overlayBounds(const ImDrawData& data, glm::ivec2 framebufferSize, std::vector<PixelRect>& bounds) const {
   // Each command's triangles' box within its clip rectangle, in whole pixels and a pixel wider each
   // way (a pixel is drawn when its centre is covered; anti-aliased edges are vertices too); a list's
   // rectangle holds its commands'.
@@ -126,7 +126,7 @@ std::vector<PixelRect> PanelLayer::overlayBounds(const ImDrawData& data, glm::iv
     return static_cast<int>(std::clamp(low ? std::floor(pixels) - 1.0f : std::ceil(pixels) + 1.0f, -1e9f, 1e9f));
   };
   const PixelRect framebuffer{0, 0, framebufferSize.x, framebufferSize.y};
-  std::vector<PixelRect> bounds;
+  bounds.clear();
   for (int i = lists_; i < data.CmdListsCount; ++i) {
     const ImDrawList& list = *data.CmdLists[i];
     PixelRect drawn;
@@ -150,7 +150,6 @@ std::vector<PixelRect> PanelLayer::overlayBounds(const ImDrawData& data, glm::iv
     const PixelRect inside = drawn.intersectedWith(framebuffer);
     if (!inside.empty()) bounds.push_back(inside);
   }
-  return bounds;
 }
 
 void PanelLayer::drawColumn(PixelRect rect, glm::ivec2 framebufferSize) const {

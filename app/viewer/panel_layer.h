@@ -34,9 +34,9 @@ class PanelLayer {
   // changed. True when it drew them (the column's pixels are new).
   bool prepare(const ImDrawData& data, glm::ivec2 framebufferSize, int columnPixels);
 
-  // The framebuffer pixels the lists over the image (those after the column's) may touch this frame,
-  // one rectangle a list, clipped to the framebuffer.
-  std::vector<PixelRect> overlayBounds(const ImDrawData& data, glm::ivec2 framebufferSize) const;
+  // Into `bounds` (emptied first): the framebuffer pixels the lists over the image (those after the
+  // column's) may touch this frame, one rectangle a list, clipped to the framebuffer.
+  void overlayBounds(const ImDrawData& data, glm::ivec2 framebufferSize, std::vector<PixelRect>& bounds) const;
 
   // Into the bound draw framebuffer, within `rect` only (framebuffer pixels, top row 0): the kept
   // column's pixels (nothing when it has no lists), then the lists over the image. `rect` must lie

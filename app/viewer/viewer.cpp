@@ -502,12 +502,13 @@ void Viewer::reloadSlime() {
 void Viewer::present() {
   const Stopwatch presentTime;
   const glm::ivec2 framebuffer = backend_.framebufferSize();
-  std::vector<PixelRect> presented;
+  static const std::vector<PixelRect> kNothingDrawn;
+  const std::vector<PixelRect>* presented = &kNothingDrawn;
   if (framebuffer.x > 0 && framebuffer.y > 0) {
     const glm::ivec2 window = backend_.windowSize();
     const int left = window.x > 0 ? static_cast<int>(std::lround(columnWidth_ * framebuffer.x / window.x)) : 0;
     // What changed since the last frame, or everything where the back-end does not keep the pixels.
-    presented = compositor_.draw(*ImGui::GetDrawData(), framebuffer, left, !backend_.keepsFramebuffer());
+    presented = &compositor_.draw(*ImGui::GetDrawData(), framebuffer, left, !backend_.keepsFramebuffer());
     for (const std::string& path : screenshotPaths_) {
       writeFramebufferPng(framebuffer, path);
       std::printf("slime: wrote %s\n", path.c_str());
@@ -515,7 +516,7 @@ void Viewer::present() {
     }
     screenshotPaths_.clear();
   }
-  backend_.present(presented);
+  backend_.present(*presented);
   stats_.stages.ui += presentTime.milliseconds();
 }
 
