@@ -15,8 +15,8 @@
 // level 3 has 1.9 % (PSNR 44 dB), where the refracted plank edges visibly kink.
 #pragma once
 
-#include "core/settings.h"
-#include "render/image.h"
+#include "core/settings/settings.h"
+#include "render/image/image.h"
 
 #include <nlohmann/json.hpp>
 

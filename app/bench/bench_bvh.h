@@ -7,8 +7,8 @@
 
 #include "app/bench/bench_progress.h"
 #include "app/bench/bench_report.h"
-#include "core/icosphere.h"
-#include "core/settings.h"
+#include "core/scene/icosphere.h"
+#include "core/settings/settings.h"
 
 #include <glm/vec3.hpp>
 

@@ -1,7 +1,7 @@
 #include "app/bench/bench_embree_replay.h"
 
 #include "app/bench/bench_timing.h"
-#include "render/embree_util.h"
+#include "render/trace/embree_util.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>

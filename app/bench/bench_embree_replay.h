@@ -5,9 +5,9 @@
 #pragma once
 
 #include "app/bench/bench_ray_log.h"
-#include "core/icosphere.h"
-#include "render/embree_scene.h"
-#include "render/slime_geometry.h"
+#include "core/scene/icosphere.h"
+#include "render/trace/embree_scene.h"
+#include "render/slime/slime_geometry.h"
 
 #include <embree3/rtcore.h>
 #include <glm/vec3.hpp>

@@ -2,9 +2,9 @@
 
 #include "app/bench/bench_report.h"
 #include "app/bench/bench_timing.h"
-#include "core/lamb_sphere.h"
-#include "core/simulation.h"
-#include "core/viscoelastic.h"
+#include "core/bulk/lamb_sphere.h"
+#include "core/scene/simulation.h"
+#include "core/bulk/viscoelastic.h"
 
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>

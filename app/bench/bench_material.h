@@ -10,7 +10,7 @@
 //  - The range of volume / rest volume over each run.
 #pragma once
 
-#include "core/settings.h"
+#include "core/settings/settings.h"
 
 #include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>

@@ -5,9 +5,9 @@
 #include "app/bench/bench_stability.h"
 #include "app/bench/bench_timing.h"
 #include "app/bench/bench_trajectory_error.h"
-#include "core/integrators.h"
-#include "core/simulation.h"
-#include "core/stability.h"
+#include "core/integrators/integrators.h"
+#include "core/scene/simulation.h"
+#include "core/integrators/stability.h"
 
 #include <glm/geometric.hpp>
 

@@ -14,7 +14,7 @@
 // written beside them.
 #pragma once
 
-#include "core/settings.h"
+#include "core/settings/settings.h"
 
 #include <nlohmann/json.hpp>
 

@@ -1,11 +1,11 @@
 #include "app/bench/bench_ray_log.h"
 
-#include "core/camera.h"
-#include "render/embree_scene.h"
-#include "render/floor_texture.h"
-#include "render/shading_parameters.h"
-#include "render/slime_geometry.h"
-#include "render/whitted_tracer.h"
+#include "core/scene/camera.h"
+#include "render/trace/embree_scene.h"
+#include "render/floor/floor_texture.h"
+#include "render/trace/shading_parameters.h"
+#include "render/slime/slime_geometry.h"
+#include "render/trace/whitted_tracer.h"
 
 #include <glm/geometric.hpp>
 

@@ -4,9 +4,9 @@
 // WhittedTracer once over every pixel (one sample per pixel) with an intersector that logs each query.
 #pragma once
 
-#include "core/icosphere.h"
-#include "core/settings.h"
-#include "render/ray.h"
+#include "core/scene/icosphere.h"
+#include "core/settings/settings.h"
+#include "render/trace/ray.h"
 
 #include <glm/vec3.hpp>
 

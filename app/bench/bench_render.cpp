@@ -6,7 +6,7 @@
 #include "app/bench/bench_ray_log.h"
 #include "app/bench/bench_report.h"
 #include "app/bench/bench_timing.h"
-#include "render/renderer.h"
+#include "render/trace/renderer.h"
 
 #include <algorithm>
 #include <cmath>

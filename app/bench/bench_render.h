@@ -8,8 +8,8 @@
 //  - BVH refit vs rebuild at LOW/MEDIUM/HIGH on a slime stretched by the physics (bench_bvh.h).
 #pragma once
 
-#include "core/icosphere.h"
-#include "core/settings.h"
+#include "core/scene/icosphere.h"
+#include "core/settings/settings.h"
 
 #include <nlohmann/json.hpp>
 

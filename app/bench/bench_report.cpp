@@ -1,6 +1,6 @@
 #include "app/bench/bench_report.h"
 
-#include "core/file_output.h"
+#include "core/settings/file_output.h"
 
 #include <cstdio>
 #include <ctime>

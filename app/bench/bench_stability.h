@@ -5,17 +5,17 @@
 // Blow-up criterion (defined once, used everywhere): the ball starts 1 mm into the floor, so the
 // first contact kicks every mode of the mesh, and runs kStabilitySteps steps of exactly dt
 // (automatic substeps off, one substep). It has blown up when the divergence guard fires (NaN/inf or
-// a speed over 50 m/s, core/divergence.h), the kinetic energy passes 1 J (ten times m g R of the whole
+// a speed over 50 m/s, core/integrators/divergence.h), the kinetic energy passes 1 J (ten times m g R of the whole
 // ball), or the volume leaves [0.5, 2] × V0.
 //
 // The prediction: ω_max of the linearised body by power iteration (Simulation::highestFrequency: the
 // membrane's M⁻¹K, the bulk body's elastic tetrahedra) and the stability radius of the integrator on
-// the test equation x'' + c x' + ω² x = 0 (core/stability.h): ω dt < 2 for the symplectic Euler
+// the test equation x'' + c x' + ω² x = 0 (core/integrators/stability.h): ω dt < 2 for the symplectic Euler
 // (dampers exact), h² ω² + 2 h c < 4 for the explicit Euler, (ω + c) dt < 2.78 for RK4.
 #pragma once
 
 #include "app/bench/bench_progress.h"
-#include "core/settings.h"
+#include "core/settings/settings.h"
 
 namespace slime {
 

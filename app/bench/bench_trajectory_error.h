@@ -14,7 +14,7 @@
 // setting (automatic substeps on): a run that blows up has no error, only the mark "unstable".
 #pragma once
 
-#include "core/settings.h"
+#include "core/settings/settings.h"
 
 #include <glm/vec3.hpp>
 

@@ -6,9 +6,9 @@
 #include "app/bench/bench_render.h"
 #include "app/bench/bench_report.h"
 #include "app/cli/commands.h"
-#include "core/integrators.h"
-#include "core/settings_io.h"
-#include "core/tet_mesh.h"
+#include "core/integrators/integrators.h"
+#include "core/settings/settings_io.h"
+#include "core/bulk/tet_mesh.h"
 
 #include <memory>
 #include <stdexcept>

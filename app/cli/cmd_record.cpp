@@ -15,11 +15,11 @@
 #include "app/cli/snapshot.h"
 #include "app/cli/video_encoder.h"
 #include "app/viewer/ui_snapshot.h"
-#include "core/scenario.h"
-#include "core/settings_io.h"
-#include "core/simulation.h"
-#include "render/image_io.h"
-#include "render/renderer.h"
+#include "core/scene/scenario.h"
+#include "core/settings/settings_io.h"
+#include "core/scene/simulation.h"
+#include "render/image/image_io.h"
+#include "render/trace/renderer.h"
 
 namespace slime {
 namespace {

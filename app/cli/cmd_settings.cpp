@@ -1,13 +1,13 @@
 // `slime settings`: every setting with its unit, allowed values, default and one-line meaning, read
-// from the one table of settings (core/settings_fields.h), as a table or as JSON (--json).
+// from the one table of settings (core/settings/settings_fields.h), as a table or as JSON (--json).
 #include <algorithm>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "app/cli/commands.h"
-#include "core/setting_info.h"
-#include "core/settings_io.h"
+#include "core/settings/setting_info.h"
+#include "core/settings/settings_io.h"
 
 namespace slime {
 namespace {

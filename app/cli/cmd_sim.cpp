@@ -2,11 +2,11 @@
 // and optionally write a JSON report. The same inputs give a bitwise identical report, apart from the
 // timing fields (ms_per_step, wall_seconds).
 #include "app/cli/commands.h"
-#include "core/file_output.h"
-#include "core/integrators.h"
-#include "core/scenario.h"
-#include "core/settings_io.h"
-#include "core/simulation.h"
+#include "core/settings/file_output.h"
+#include "core/integrators/integrators.h"
+#include "core/scene/scenario.h"
+#include "core/settings/settings_io.h"
+#include "core/scene/simulation.h"
 
 #include <nlohmann/json.hpp>
 

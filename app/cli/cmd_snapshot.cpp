@@ -2,9 +2,9 @@
 #include "app/cli/commands.h"
 #include "app/cli/snapshot.h"
 #include "app/viewer/ui_snapshot.h"
-#include "core/camera.h"
-#include "core/settings_io.h"
-#include "render/image_io.h"
+#include "core/scene/camera.h"
+#include "core/settings/settings_io.h"
+#include "render/image/image_io.h"
 
 #include <cstdio>
 #include <memory>

@@ -5,9 +5,9 @@
 #include "app/cli/snapshot.h"
 #include "app/viewer/viewer.h"
 #include "app/viewer/window.h"
-#include "core/camera.h"
-#include "core/scenario.h"
-#include "core/settings_io.h"
+#include "core/scene/camera.h"
+#include "core/scene/scenario.h"
+#include "core/settings/settings_io.h"
 
 #include <nlohmann/json.hpp>
 

@@ -2,7 +2,7 @@
 // main() runs the parser and turns SettingsError and CLI errors into a message and exit code 2.
 #pragma once
 
-#include "core/settings.h"
+#include "core/settings/settings.h"
 
 #include <CLI/CLI.hpp>
 

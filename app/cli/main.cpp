@@ -1,6 +1,6 @@
 // slime: the real-time ray-traced slime simulator. `slime` alone opens the viewer.
 #include "app/cli/commands.h"
-#include "core/settings_io.h"
+#include "core/settings/settings_io.h"
 
 #include <cstdio>
 #include <exception>

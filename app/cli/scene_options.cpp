@@ -1,5 +1,5 @@
 #include "app/cli/commands.h"
-#include "core/settings_io.h"
+#include "core/settings/settings_io.h"
 
 namespace slime {
 

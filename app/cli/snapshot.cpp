@@ -1,8 +1,8 @@
 #include "app/cli/snapshot.h"
 
-#include "core/scenario.h"
-#include "core/settings_io.h"
-#include "core/simulation.h"
+#include "core/scene/scenario.h"
+#include "core/settings/settings_io.h"
+#include "core/scene/simulation.h"
 
 #include <algorithm>
 #include <cctype>

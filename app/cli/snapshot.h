@@ -2,9 +2,9 @@
 // `slime snapshot` writes it to a PNG; the viewer's `--ui` mode can call the same function.
 #pragma once
 
-#include "core/settings.h"
-#include "core/simulation.h"
-#include "render/renderer.h"
+#include "core/settings/settings.h"
+#include "core/scene/simulation.h"
+#include "render/trace/renderer.h"
 
 #include <string>
 

@@ -18,7 +18,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "core/settings_io.h"
+#include "core/settings/settings_io.h"
 
 extern char** environ;
 

@@ -5,7 +5,7 @@
 #pragma once
 
 #include "app/viewer/frame_input.h"
-#include "core/settings.h"
+#include "core/settings/settings.h"
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>

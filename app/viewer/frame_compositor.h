@@ -11,7 +11,7 @@
 
 #include "app/viewer/gl_blit.h"
 #include "app/viewer/panel_layer.h"
-#include "render/image.h"
+#include "render/image/image.h"
 
 #include <glm/vec2.hpp>
 

@@ -1,11 +1,11 @@
-// Shows the ray tracer's image: uploads it, already sRGB-encoded to 8 bits (render/image_io.h, the
+// Shows the ray tracer's image: uploads it, already sRGB-encoded to 8 bits (render/image/image_io.h, the
 // bytes the PNG writer writes), to a GL texture and draws it over the whole viewport. Encoding on the
 // CPU, not per fragment: under software GL (llvmpipe) the float texture with a pow per fragment
 // cost 5.4 ms a frame at 734×564. The texture is reallocated only when the image size changes, so a
 // steady frame allocates nothing.
 #pragma once
 
-#include "render/image.h"  // PixelRect
+#include "render/image/image.h"  // PixelRect
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>

@@ -4,7 +4,7 @@
 // pressing — Shift+vertical drag or the wheel — pushes the target along the view ray into the body.
 #pragma once
 
-#include "core/camera.h"
+#include "core/scene/camera.h"
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <type_traits>
 
-#include "core/settings_fields.h"
-#include "core/settings_io.h"
+#include "core/settings/settings_fields.h"
+#include "core/settings/settings_io.h"
 
 namespace slime {
 namespace {

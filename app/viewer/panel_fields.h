@@ -1,5 +1,5 @@
 // What the viewer's panels show, as plain data: one PanelField per setting, generated from the table
-// of settings (core/settings_fields.h via describeSettings), so every key appears with the table's
+// of settings (core/settings/settings_fields.h via describeSettings), so every key appears with the table's
 // unit and range and none can drift. No ImGui here: tests check the list without a GL context.
 #pragma once
 
@@ -7,7 +7,7 @@
 #include <string_view>
 #include <vector>
 
-#include "core/setting_info.h"
+#include "core/settings/setting_info.h"
 
 namespace slime {
 

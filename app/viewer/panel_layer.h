@@ -10,7 +10,7 @@
 // the image blit clears it to, with the same viewport, projection and scissor rectangles.
 #pragma once
 
-#include "render/image.h"  // PixelRect
+#include "render/image/image.h"  // PixelRect
 
 #include <glm/vec2.hpp>
 

@@ -14,7 +14,7 @@
 
 #include "app/viewer/adaptive_resolution.h"
 #include "app/viewer/panel_fields.h"
-#include "core/settings_fields.h"
+#include "core/settings/settings_fields.h"
 
 namespace slime {
 namespace {

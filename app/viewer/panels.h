@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "app/viewer/frame_stats.h"
-#include "core/settings.h"
-#include "core/simulation.h"
+#include "core/settings/settings.h"
+#include "core/scene/simulation.h"
 
 namespace slime {
 

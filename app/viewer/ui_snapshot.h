@@ -2,8 +2,8 @@
 // by the same frame code as the window, and written to a PNG.
 #pragma once
 
-#include "core/settings.h"
-#include "core/simulation.h"
+#include "core/settings/settings.h"
+#include "core/scene/simulation.h"
 
 #include <cstdint>
 #include <functional>

@@ -3,9 +3,9 @@
 #include "app/viewer/gl.h"
 #include "app/viewer/panel_fields.h"
 #include "app/viewer/screenshot.h"
-#include "core/camera.h"
-#include "core/level_of_detail.h"
-#include "core/settings_io.h"
+#include "core/scene/camera.h"
+#include "core/scene/level_of_detail.h"
+#include "core/settings/settings_io.h"
 
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
@@ -29,7 +29,7 @@ class Stopwatch {
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
-// ScenarioPlayer fires the events due within this of the simulated time (core/scenario.cpp).
+// ScenarioPlayer fires the events due within this of the simulated time (core/scene/scenario.cpp).
 constexpr double kScenarioTimeTolerance = 1e-9;
 
 }  // namespace

@@ -17,11 +17,11 @@
 #include "app/viewer/panels.h"
 #include "app/viewer/physics_clock.h"
 #include "app/viewer/viewer_backend.h"
-#include "core/scenario.h"
-#include "core/settings.h"
-#include "core/simulation.h"
-#include "render/accumulation_buffer.h"
-#include "render/renderer.h"
+#include "core/scene/scenario.h"
+#include "core/settings/settings.h"
+#include "core/scene/simulation.h"
+#include "render/trace/accumulation_buffer.h"
+#include "render/trace/renderer.h"
 
 #include <glm/vec3.hpp>
 

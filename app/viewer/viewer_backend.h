@@ -4,7 +4,7 @@
 #pragma once
 
 #include "app/viewer/frame_input.h"
-#include "render/image.h"  // PixelRect
+#include "render/image/image.h"  // PixelRect
 
 #include <glm/vec2.hpp>
 

@@ -4,9 +4,9 @@
 
 #include "app/bench/bench_report.h"
 #include "app/viewer/panel_fields.h"
-#include "core/file_output.h"
-#include "core/settings_io.h"
-#include "render/image_io.h"
+#include "core/settings/file_output.h"
+#include "core/settings/settings_io.h"
+#include "render/image/image_io.h"
 
 #include <nlohmann/json.hpp>
 

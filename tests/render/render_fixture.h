@@ -1,11 +1,11 @@
 // Helpers shared by the render tests: a small default scene, one-call rendering and image comparison.
 #pragma once
 
-#include "core/icosphere.h"
-#include "core/settings.h"
-#include "core/settings_io.h"
-#include "render/image_io.h"
-#include "render/renderer.h"
+#include "core/scene/icosphere.h"
+#include "core/settings/settings.h"
+#include "core/settings/settings_io.h"
+#include "render/image/image_io.h"
+#include "render/trace/renderer.h"
 
 #include <glm/geometric.hpp>
 

@@ -1,12 +1,12 @@
 // Micro-benchmarks of the physics kernels on the default slime at levels 4 and 6: the spring forces
 // alone, the whole force evaluation (springs, damper, fill pressure, gravity), and one full step of
 // each integrator (Simulation::step with sim.dt = 1 ms and the substeps it needs).
-#include "core/force_model.h"
-#include "core/integrators.h"
-#include "core/settings_io.h"
-#include "core/simulation.h"
-#include "core/slime_body.h"
-#include "core/springs.h"
+#include "core/membrane/force_model.h"
+#include "core/integrators/integrators.h"
+#include "core/settings/settings_io.h"
+#include "core/scene/simulation.h"
+#include "core/membrane/slime_body.h"
+#include "core/membrane/springs.h"
 
 #include <benchmark/benchmark.h>
 

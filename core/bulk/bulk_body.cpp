@@ -1,0 +1,344 @@
+#include "core/bulk/bulk_body.h"
+
+#include "core/scene/floor_contact.h"
+#include "core/membrane/volume.h"
+
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace slime {
+namespace {
+
+std::size_t edgeIndex(const std::vector<glm::u32vec2>& edges, std::uint32_t a, std::uint32_t b) {
+  const glm::u32vec2 key{std::min(a, b), std::max(a, b)};
+  const auto it = std::lower_bound(edges.begin(), edges.end(), key, [](const auto& l, const auto& r) {
+    return l.x != r.x ? l.x < r.x : l.y < r.y;
+  });
+  return static_cast<std::size_t>(it - edges.begin());
+}
+
+// One lane's 3×3 matrix from entries stored [3·column + row][lane], and back.
+inline glm::dmat3 laneMatrix(const double (&entries)[9][kTetLanes], std::size_t lane) {
+  return glm::dmat3(entries[0][lane], entries[1][lane], entries[2][lane], entries[3][lane], entries[4][lane],
+                    entries[5][lane], entries[6][lane], entries[7][lane], entries[8][lane]);
+}
+inline void setLaneMatrix(double (&entries)[9][kTetLanes], std::size_t lane, const glm::dmat3& m) {
+  for (int entry = 0; entry < 9; ++entry) entries[entry][lane] = m[entry / 3][entry % 3];
+}
+
+// Nodal forces H = P·forceMap (P the first Piola stress at F = Ds·Dm⁻¹) of a block of tetrahedra,
+// one per lane; the loop over lanes is the one the compiler vectorises.
+void blockStressForces(const ViscoelasticMaterial& material, const TetBlock& rest, const double (&shape)[9][kTetLanes],
+                       const double (&maxwell)[9][kTetLanes], double (&forces)[9][kTetLanes]) {
+  for (std::size_t lane = 0; lane < kTetLanes; ++lane) {
+    const glm::dmat3 f = laneMatrix(shape, lane) * laneMatrix(rest.restInverse, lane);
+    const glm::dmat3 p = firstPiolaStress(material, f, laneMatrix(maxwell, lane));
+    setLaneMatrix(forces, lane, p * laneMatrix(rest.forceMap, lane));
+  }
+}
+
+// Ds = [x1 − x0, x2 − x0, x3 − x0] of a block's tetrahedra into lanes (zero past the last one).
+void gatherShapes(const std::vector<Tetrahedron>& tetrahedra, const std::vector<glm::dvec3>& x, std::size_t block,
+                  double (&shape)[9][kTetLanes]) {
+  const std::size_t first = block * kTetLanes;
+  const std::size_t count = std::min(kTetLanes, tetrahedra.size() - first);
+  for (std::size_t lane = 0; lane < count; ++lane) {
+    const Tetrahedron& t = tetrahedra[first + lane];
+    const glm::dvec3 edges[3] = {x[t.y] - x[t.x], x[t.z] - x[t.x], x[t.w] - x[t.x]};
+    for (int entry = 0; entry < 9; ++entry) shape[entry][lane] = edges[entry / 3][entry % 3];
+  }
+  for (std::size_t lane = count; lane < kTetLanes; ++lane)
+    for (int entry = 0; entry < 9; ++entry) shape[entry][lane] = 0.0;
+}
+
+// The Maxwell branches' flow (relaxMaxwellBranch) of a block of tetrahedra, one per lane (lanes past
+// the last tetrahedron flow too, with F = 0, and are never read).
+void blockRelax(const TetBlock& rest, const double (&shape)[9][kTetLanes], double decay, MaxwellBlock& maxwell) {
+  for (std::size_t lane = 0; lane < kTetLanes; ++lane) {
+    const glm::dmat3 f = laneMatrix(shape, lane) * laneMatrix(rest.restInverse, lane);
+    const MaxwellRest flowed =
+        relaxMaxwellBranch(f, {laneMatrix(maxwell.metric, lane), laneMatrix(maxwell.inverse, lane)}, decay);
+    setLaneMatrix(maxwell.metric, lane, flowed.metric);
+    setLaneMatrix(maxwell.inverse, lane, flowed.inverse);
+  }
+}
+
+}  // namespace
+
+BulkBody buildBulkBody(const SlimeSettings& slime) {
+  BulkBody body;
+  body.mesh = makeBallTetMesh(slime.resolution, slime.radius, slime.position);
+  const TetMesh& mesh = body.mesh;
+  body.state.positions = mesh.positions;
+  body.state.velocities.assign(mesh.positions.size(), glm::dvec3(0.0));
+  body.rest.reserve(mesh.tetrahedra.size());
+  for (const Tetrahedron& t : mesh.tetrahedra) {
+    body.rest.push_back(makeTetRest(mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z], mesh.positions[t.w]));
+    body.restVolume += body.rest.back().volume;
+  }
+  body.restBlocks.resize((mesh.tetrahedra.size() + kTetLanes - 1) / kTetLanes);
+  for (std::size_t e = 0; e < mesh.tetrahedra.size(); ++e) {
+    TetBlock& block = body.restBlocks[e / kTetLanes];
+    for (int entry = 0; entry < 9; ++entry) {
+      block.restInverse[entry][e % kTetLanes] = body.rest[e].restInverse[entry / 3][entry % 3];
+      block.forceMap[entry][e % kTetLanes] = body.rest[e].forceMap[entry / 3][entry % 3];
+    }
+  }
+  body.maxwell.resize(body.restBlocks.size());
+  for (MaxwellBlock& block : body.maxwell)
+    for (std::size_t lane = 0; lane < kTetLanes; ++lane) {
+      setLaneMatrix(block.inverse, lane, glm::dmat3(1.0));
+      setLaneMatrix(block.metric, lane, glm::dmat3(1.0));
+    }
+  body.edges = tetrahedronEdges(mesh.tetrahedra);
+  body.drawn = makeIcosphere(slime.level, slime.radius, slime.position);
+  if (slime.level >= mesh.shellLevel) {
+    body.embedding = embedSurface(mesh, body.drawn, slime.level);
+  } else {  // a coarser drawn sphere: its vertices are the first body nodes themselves
+    const std::size_t count = body.drawn.positions.size();
+    body.embedding.nodes.resize(count);
+    body.embedding.weights.assign(count, glm::dvec4(1.0, 0.0, 0.0, 0.0));
+    for (std::size_t i = 0; i < count; ++i) body.embedding.nodes[i] = Tetrahedron(static_cast<std::uint32_t>(i));
+    // Each drawn vertex in one body surface triangle that has it as a corner (for the floor contact).
+    body.embedding.verticesOfSurfaceTriangle.assign(mesh.surface.size(), {});
+    std::vector<bool> placed(count, false);
+    for (std::size_t s = 0; s < mesh.surface.size(); ++s)
+      for (int corner = 0; corner < 3; ++corner) {
+        const std::uint32_t vertex = mesh.surface[s][corner];
+        if (vertex >= count || placed[vertex]) continue;
+        placed[vertex] = true;
+        body.embedding.verticesOfSurfaceTriangle[s].push_back(vertex);
+      }
+  }
+  applyBulkMaterial(body, slime);
+  return body;
+}
+
+glm::dmat3 maxwellInverse(const BulkBody& body, std::size_t tetrahedron) {
+  return laneMatrix(body.maxwell[tetrahedron / kTetLanes].inverse, tetrahedron % kTetLanes);
+}
+
+void applyBulkMaterial(BulkBody& body, const SlimeSettings& slime) {
+  const TetMesh& mesh = body.mesh;
+  body.totalMass = slime.mass;
+  const double density = slime.mass / body.restVolume;
+  std::vector<double> masses(mesh.positions.size(), 0.0);
+  std::vector<double> edgeVolume(body.edges.size(), 0.0);
+  for (std::size_t e = 0; e < mesh.tetrahedra.size(); ++e) {
+    const Tetrahedron& t = mesh.tetrahedra[e];
+    for (int i = 0; i < 4; ++i) {
+      masses[t[i]] += density * body.rest[e].volume / 4.0;
+      for (int j = i + 1; j < 4; ++j) edgeVolume[edgeIndex(body.edges, t[i], t[j])] += body.rest[e].volume / 6.0;
+    }
+  }
+  body.freeInverseMasses.resize(masses.size());
+  for (std::size_t i = 0; i < masses.size(); ++i) body.freeInverseMasses[i] = 1.0 / masses[i];
+  // Pinned nodes (w = 0) stay pinned; the others take the new masses.
+  if (body.state.inverseMasses.size() != masses.size()) body.state.inverseMasses = body.freeInverseMasses;
+  for (std::size_t i = 0; i < masses.size(); ++i)
+    if (body.state.inverseMasses[i] != 0.0) body.state.inverseMasses[i] = body.freeInverseMasses[i];
+
+  body.material.longTermShear = slime.longTerm * slime.modulus;
+  body.material.maxwellShear = (1.0 - slime.longTerm) * slime.modulus;
+  body.material.lameLambda = lameLambdaFor(slime.modulus, slime.poisson);
+  body.material.relaxationTime = slime.relaxation;
+  body.edgeDamping.resize(body.edges.size());
+  for (std::size_t s = 0; s < body.edges.size(); ++s) {
+    const glm::dvec3 d = mesh.positions[body.edges[s].y] - mesh.positions[body.edges[s].x];
+    body.edgeDamping[s] = slime.viscosity * edgeVolume[s] / glm::dot(d, d);
+  }
+}
+
+void bulkInternalForces(const BulkBody& body, const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v,
+                        std::vector<glm::dvec3>& forces, bool dampers) {
+  forces.assign(x.size(), glm::dvec3(0.0));
+  const std::vector<Tetrahedron>& tetrahedra = body.mesh.tetrahedra;
+  // Elastic and Maxwell branches: f = −V0 P Dm⁻ᵀ on nodes 1..3, the opposite of their sum on node 0,
+  // a block of tetrahedra at a time: gather Ds into lanes, the stress, scatter in order.
+  for (std::size_t block = 0; block < body.restBlocks.size(); ++block) {
+    const std::size_t first = block * kTetLanes;
+    const std::size_t count = std::min(kTetLanes, tetrahedra.size() - first);
+    alignas(64) double shape[9][kTetLanes];
+    alignas(64) double h[9][kTetLanes];
+    gatherShapes(tetrahedra, x, block, shape);
+    blockStressForces(body.material, body.restBlocks[block], shape, body.maxwell[block].inverse, h);
+    for (std::size_t lane = 0; lane < count; ++lane) {
+      const Tetrahedron& t = tetrahedra[first + lane];
+      const glm::dvec3 h0(h[0][lane], h[1][lane], h[2][lane]), h1(h[3][lane], h[4][lane], h[5][lane]),
+          h2(h[6][lane], h[7][lane], h[8][lane]);
+      forces[t.y] += h0;
+      forces[t.z] += h1;
+      forces[t.w] += h2;
+      forces[t.x] -= h0 + h1 + h2;
+    }
+  }
+  // The seed's damper along each edge: −k_d ((v_j − v_i)·u) u on i's side, u the unit edge.
+  if (dampers) {
+    for (std::size_t s = 0; s < body.edges.size(); ++s) {
+      const std::uint32_t i = body.edges[s].x, j = body.edges[s].y;
+      const glm::dvec3 d = x[j] - x[i];
+      const double lengthSquared = glm::dot(d, d);
+      if (lengthSquared <= 0.0) continue;
+      const glm::dvec3 force = (body.edgeDamping[s] * glm::dot(v[j] - v[i], d) / lengthSquared) * d;
+      forces[i] += force;
+      forces[j] -= force;
+    }
+  }
+}
+
+void dampEdges(const BulkBody& body, double h, BulkScratch& scratch, ParticleState& state) {
+  const std::vector<double>& w = state.inverseMasses;
+  if (scratch.decayStep != h || scratch.edgeDecay.size() != body.edges.size()) {
+    scratch.edgeDecay.resize(body.edges.size());
+    for (std::size_t s = 0; s < body.edges.size(); ++s)
+      scratch.edgeDecay[s] = 1.0 - std::exp(-body.edgeDamping[s] * (w[body.edges[s].x] + w[body.edges[s].y]) * h);
+    scratch.decayStep = h;
+  }
+  // Pair after pair in the edges' order, each seeing the velocities the earlier ones left. The edges
+  // are sorted by i, so v_i stays in a register while its edges pass (j > i: never the same node).
+  // The change is (w_i, w_j)·a·((v_j − v_i)·d) d with a = decay/(|d|² (w_i + w_j)), found apart from
+  // the velocities, so that only a dot product and two multiply-adds wait on the previous pair.
+  const std::vector<glm::u32vec2>& edges = body.edges;
+  const std::vector<glm::dvec3>& x = state.positions;
+  std::vector<glm::dvec3>& v = state.velocities;
+  for (std::size_t s = 0; s < edges.size();) {
+    const std::uint32_t i = edges[s].x;
+    glm::dvec3 velocity = v[i];
+    for (; s < edges.size() && edges[s].x == i; ++s) {
+      const std::uint32_t j = edges[s].y;
+      const double inverseMassSum = w[i] + w[j];
+      if (inverseMassSum <= 0.0) continue;
+      const glm::dvec3 d = x[j] - x[i];
+      const double lengthSquared = glm::dot(d, d);
+      if (lengthSquared <= 0.0) continue;
+      const double share = scratch.edgeDecay[s] / (lengthSquared * inverseMassSum);
+      const double relativeSpeed = glm::dot(v[j] - velocity, d);
+      velocity += (w[i] * share * relativeSpeed) * d;
+      v[j] -= (w[j] * share * relativeSpeed) * d;
+    }
+    v[i] = velocity;
+  }
+}
+
+void projectBulkVolume(const BulkBody& body, double h, BulkScratch& scratch, ParticleState& state) {
+  const double volume = volumeGradient(state.positions, body.mesh.surface, scratch.volumeGradient);
+  const std::vector<glm::dvec3>& gradient = scratch.volumeGradient;
+  // A node lying on the floor is held by it (as a pinned node is by the hand): it does not move.
+  const auto mobility = [&](std::size_t i) { return state.positions[i].z > 0.0 ? state.inverseMasses[i] : 0.0; };
+  double resistance = 0.0;  // Σ w_i |∇_i V|²
+  for (std::size_t i = 0; i < body.mesh.surfaceNodes; ++i) resistance += mobility(i) * glm::dot(gradient[i], gradient[i]);
+  if (resistance <= 0.0) return;
+  const double multiplier = (body.restVolume - volume) / resistance;
+  for (std::size_t i = 0; i < body.mesh.surfaceNodes; ++i) {
+    const glm::dvec3 move = (multiplier * mobility(i)) * gradient[i];
+    state.positions[i] += move;
+    state.velocities[i] += move / h;
+  }
+}
+
+double bulkElasticEnergy(const BulkBody& body, const std::vector<glm::dvec3>& x) {
+  double energy = 0.0;
+  for (std::size_t e = 0; e < body.mesh.tetrahedra.size(); ++e) {
+    const Tetrahedron& t = body.mesh.tetrahedra[e];
+    const glm::dmat3 f = deformationGradient(body.rest[e], x[t.x], x[t.y], x[t.z], x[t.w]);
+    energy += body.rest[e].volume * energyDensity(body.material, f, maxwellInverse(body, e));
+  }
+  return energy;
+}
+
+void relaxBulk(BulkBody& body, double dt) {
+  if (body.material.maxwellShear <= 0.0) return;
+  const double decay = std::exp(-dt / body.material.relaxationTime);
+  for (std::size_t block = 0; block < body.restBlocks.size(); ++block) {
+    alignas(64) double shape[9][kTetLanes];
+    gatherShapes(body.mesh.tetrahedra, body.state.positions, block, shape);
+    blockRelax(body.restBlocks[block], shape, decay, body.maxwell[block]);
+  }
+}
+
+std::size_t resolveDrawnFloorContact(BulkBody& body, double friction) {
+  ParticleState& state = body.state;
+  const SurfaceEmbedding& embedding = body.embedding;
+  const std::vector<glm::dvec3>& x = state.positions;
+  // Only the surface triangles near the floor can carry a drawn vertex below it: the drawn surface
+  // bulges past the flat body triangle by a small fraction of the triangle's size.
+  std::size_t touched = 0;
+  for (std::size_t s = 0; s < body.mesh.surface.size(); ++s) {
+    const Triangle& triangle = body.mesh.surface[s];
+    // lowest > span/2, in squares (no square roots): a triangle well above the floor.
+    const double lowest = std::min({x[triangle.x].z, x[triangle.y].z, x[triangle.z].z});
+    const glm::dvec3 a = x[triangle.y] - x[triangle.x], b = x[triangle.z] - x[triangle.y], c = x[triangle.x] - x[triangle.z];
+    const double spanSquared = std::max({glm::dot(a, a), glm::dot(b, b), glm::dot(c, c)});
+    if (lowest > 0.0 && lowest * lowest > 0.25 * spanSquared) continue;
+    for (std::uint32_t vertex : embedding.verticesOfSurfaceTriangle[s]) {
+      const Tetrahedron& t = embedding.nodes[vertex];
+      const glm::dvec4& w = embedding.weights[vertex];
+      const double z = w.x * x[t.x].z + w.y * x[t.y].z + w.z * x[t.z].z + w.w * x[t.w].z;
+      if (z >= 0.0) continue;
+      // Only the nodes with positive weights lift the vertex (a node the affine map extrapolates
+      // with a negative weight would be pushed down); lifted nodes lose their downward speed.
+      double stiffness = 0.0;  // Σ w_j² / m_j over those nodes
+      for (int j = 0; j < 4; ++j)
+        if (w[j] > 0.0) stiffness += w[j] * w[j] * state.inverseMasses[t[j]];
+      if (stiffness <= 0.0) continue;
+      ++touched;
+      const double lift = -z / stiffness;
+      for (int j = 0; j < 4; ++j) {
+        if (w[j] <= 0.0 || state.inverseMasses[t[j]] == 0.0) continue;
+        state.positions[t[j]].z += lift * w[j] * state.inverseMasses[t[j]];
+        stopFallWithFriction(state.velocities[t[j]], friction);
+      }
+    }
+  }
+  return touched;
+}
+
+double bulkHighestFrequency(const BulkBody& body, BulkScratch& scratch, int iterations) {
+  // Power iteration on M⁻¹K, K applied as −(f(x0 + εu) − f(x0))/ε at the rest shape.
+  const std::vector<glm::dvec3>& rest = body.mesh.positions;
+  const std::size_t n = rest.size();
+  const std::vector<glm::dvec3> still(n, glm::dvec3(0.0));
+  std::vector<glm::dvec3> base, probe, direction(n);
+  bulkInternalForces(body, rest, still, base, false);
+  for (std::size_t i = 0; i < n; ++i)  // a deterministic start that excites every node
+    direction[i] = glm::dvec3(std::sin(1.0 + 3.0 * i), std::cos(2.0 + 5.0 * i), std::sin(3.0 + 7.0 * i));
+  const double epsilon = 1e-8;  // m, along a unit vector over all nodes
+  double eigenvalue = 0.0;
+  std::vector<glm::dvec3>& displaced = scratch.positions;
+  for (int k = 0; k < iterations; ++k) {
+    double norm = 0.0;
+    for (const glm::dvec3& d : direction) norm += glm::dot(d, d);
+    norm = std::sqrt(norm);
+    if (norm == 0.0) return 0.0;
+    displaced.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      direction[i] /= norm;
+      displaced[i] = rest[i] + epsilon * direction[i];
+    }
+    bulkInternalForces(body, displaced, still, probe, false);
+    double rayleigh = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const glm::dvec3 next = -(probe[i] - base[i]) / epsilon * body.freeInverseMasses[i];
+      rayleigh += glm::dot(next, direction[i]);
+      direction[i] = next;
+    }
+    eigenvalue = rayleigh;
+  }
+  return std::sqrt(std::max(eigenvalue, 0.0));
+}
+
+double bulkHighestDampingRate(const BulkBody& body) {
+  std::vector<double> rate(body.mesh.positions.size(), 0.0);
+  for (std::size_t s = 0; s < body.edges.size(); ++s) {
+    rate[body.edges[s].x] += 2.0 * body.edgeDamping[s];
+    rate[body.edges[s].y] += 2.0 * body.edgeDamping[s];
+  }
+  double highest = 0.0;
+  for (std::size_t i = 0; i < rate.size(); ++i) highest = std::max(highest, rate[i] * body.freeInverseMasses[i]);
+  return highest;
+}
+
+}  // namespace slime

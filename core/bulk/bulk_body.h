@@ -1,0 +1,122 @@
+// The slime as a bulk viscoelastic body (slime.model=bulk, the default): mass points through the
+// volume of a tetrahedral ball (tet_mesh.h), each tetrahedron a standard linear solid
+// (viscoelastic.h), the seed's dampers along every edge, a whole-body volume term, gravity, floor
+// contact and the mouse spring. The drawn icosphere rides on it (surface_embedding.h), so the drawn
+// level no longer sets the physics cost.
+//
+// Settings in SI units and how the seed's sliders map onto them:
+//  - mass (kg) gives the density ρ = mass / V0, spread to the nodes by a quarter of each tetrahedron;
+//  - modulus G (Pa) is the instantaneous shear modulus μ∞ + μ1 (the seed's "stiffness" slider);
+//    longTerm = μ∞ / G; relaxation = τ (s); poisson = ν of each element (Lamé λ = 2Gν/(1 − 2ν));
+//  - viscosity η (Pa·s) sets the seed's damper along every edge, k_d = η V_e / l_e², V_e the edge's
+//    share of its tetrahedra's volume (the seed's "damping" slider), so the body's viscosity does not
+//    depend on the resolution.
+// Linear tetrahedra lock when each element is made nearly incompressible, so elements have ν = 0.4
+// by default, and the whole body's volume is held exactly instead by one constraint, V = V0, projected
+// after every substep (XPBD with zero compliance, Macklin et al. 2016: Δx_i = −C w_i ∇_i V / Σ w|∇V|²,
+// with the velocity following the correction). A stiff pressure force would need several substeps
+// per step; the projection costs one pass over the surface. The n = 2 modes that Lamb's oracle checks
+// keep the volume, so it leaves them alone.
+#pragma once
+
+#include "core/scene/icosphere.h"
+#include "core/integrators/particle_state.h"
+#include "core/settings/settings.h"
+#include "core/bulk/surface_embedding.h"
+#include "core/bulk/tet_mesh.h"
+#include "core/bulk/viscoelastic.h"
+
+#include <glm/mat3x3.hpp>
+
+#include <vector>
+
+namespace slime {
+
+// The force loop takes the tetrahedra kTetLanes at a time, one per vector lane: a few vector
+// registers' worth, so that the stores that gather a block have left before its arithmetic reads them.
+constexpr std::size_t kTetLanes = 64;
+
+// The rest data of kTetLanes tetrahedra with each matrix entry's lanes side by side (structure of
+// arrays within the block), entry [3·column + row]. Lanes past the last tetrahedron hold zeros.
+struct TetBlock {
+  alignas(64) double restInverse[9][kTetLanes] = {};  // Dm⁻¹
+  alignas(64) double forceMap[9][kTetLanes] = {};     // −V0 Dm⁻ᵀ
+};
+
+// The Maxwell branches' rest states (viscoelastic.h's MaxwellRest) of a block's tetrahedra, laid
+// out as TetBlock; identity at rest.
+struct MaxwellBlock {
+  alignas(64) double inverse[9][kTetLanes] = {};  // B_v
+  alignas(64) double metric[9][kTetLanes] = {};   // G_v = B_v⁻¹, which the flow blends
+};
+
+struct BulkBody {
+  TetMesh mesh;                           // at rest at slime.position
+  ParticleState state;
+  std::vector<double> freeInverseMasses;  // inverse masses when nothing pins a node
+  std::vector<TetRest> rest;              // per tetrahedron
+  std::vector<TetBlock> restBlocks;       // the same by kTetLanes, for the force loop
+  std::vector<MaxwellBlock> maxwell;      // per block of kTetLanes tetrahedra, B_v and G_v
+  std::vector<glm::u32vec2> edges;        // every tetrahedron edge once
+  std::vector<double> edgeDamping;        // k_d per edge, N·s/m
+  ViscoelasticMaterial material;
+  double restVolume = 0.0;                // V0 of the tetrahedral ball, m³
+  double totalMass = 0.0;                 // kg
+  TriangleMesh drawn;                     // the drawn icosphere at rest
+  SurfaceEmbedding embedding;             // how it rides on the body
+};
+
+BulkBody buildBulkBody(const SlimeSettings& slime);
+
+// B_v of one tetrahedron.
+glm::dmat3 maxwellInverse(const BulkBody& body, std::size_t tetrahedron);
+
+// Live material changes that keep the geometry: mass, modulus, longTerm, relaxation, poisson, viscosity.
+void applyBulkMaterial(BulkBody& body, const SlimeSettings& slime);
+
+// Scratch for the forces (sized on first use, no allocation per step after that).
+struct BulkScratch {
+  std::vector<glm::dvec3> forces;
+  std::vector<double> edgeDecay;   // per edge, 1 − exp(−k_d (w_i + w_j) h) for the step decayStep
+  double decayStep = -1.0;
+  std::vector<glm::dvec3> volumeGradient;
+  std::vector<glm::dvec3> positions;  // the frequency estimate's displaced shape
+};
+
+// Internal forces at (x, v): elastic and Maxwell stresses and the edge dampers. No gravity, no
+// contact, no volume (projectBulkVolume). `forces` is resized and overwritten.
+void bulkInternalForces(const BulkBody& body, const std::vector<glm::dvec3>& positions,
+                        const std::vector<glm::dvec3>& velocities, std::vector<glm::dvec3>& forces,
+                        bool dampers = true);
+
+// The seed's dampers integrated exactly pair by pair, as symplectic_euler does for the membrane: the
+// relative velocity of each edge's ends along the edge decays by exp(−k_d (w_i + w_j) h), the two
+// ends sharing the change by their inverse masses (momentum kept). A contraction for any h, so the
+// dampers never limit the step. Call after the kick.
+void dampEdges(const BulkBody& body, double h, BulkScratch& scratch, ParticleState& state);
+
+// Moves the surface nodes so the body's volume is its rest volume again (one projection along ∇V)
+// and the velocity of that move over h. Nodes lying on the floor are held by it and stay.
+void projectBulkVolume(const BulkBody& body, double h, BulkScratch& scratch, ParticleState& state);
+
+// Elastic energy of both branches, J.
+double bulkElasticEnergy(const BulkBody& body, const std::vector<glm::dvec3>& positions);
+
+// The Maxwell branches' flow over dt (once per step).
+void relaxBulk(BulkBody& body, double dt);
+
+// Lifts every drawn vertex that went below the floor back onto it by moving the nodes that carry it
+// with positive weight in proportion to w_j / m_j, and takes away those nodes' downward speed with
+// Coulomb friction on their sliding (a position-level contact on the drawn surface, where a person
+// sees it; the nodes it holds sit just above the floor, where the nodes' own contact never acts). Returns how many drawn
+// vertices touched. (Its lifts squeeze the body by up to 1 % while it lands; the next substep's volume
+// projection gives that back. Projecting again right here, as shape or as speed, kept the resting
+// body from settling.)
+std::size_t resolveDrawnFloorContact(BulkBody& body, double friction);
+
+// ω_max of the undamped linearised body (power iteration on finite differences of the forces) and
+// the dampers' highest rate (Gershgorin bound), for the explicit step limit.
+double bulkHighestFrequency(const BulkBody& body, BulkScratch& scratch, int iterations = 40);
+double bulkHighestDampingRate(const BulkBody& body);
+
+}  // namespace slime

@@ -1,0 +1,120 @@
+// The slime's material: a standard linear solid (Zener) in finite strain, per tetrahedron.
+// An elastic branch (shear modulus μ∞) remembers the round rest shape, so the ball always comes back;
+// a Maxwell branch (modulus μ1, viscosity η1 = μ1·τ) has a rest state that flows towards the current
+// shape with relaxation time τ; a volumetric term keeps each element's volume (Lamé λ).
+//
+// Energy density, with F = Ds·Dm⁻¹, C = FᵀF, J = det F and B_v the inverse of the Maxwell branch's
+// rest metric G_v (symmetric, det G_v = 1):
+//   Ψ = μ∞/2 (tr C − 3) + λ'/2 (J − α)²  +  μ1/2 (tr(C·B_v) − 3) − μ1 (J − 1),   α = 1 + μ∞/λ'
+// (stable neo-Hookean, Smith, de Goes & Kim 2018; Macklin & Müller 2021). Each branch is free of
+// stress at its own rest state: the elastic one at F = I, the Maxwell one at F = U_v (U_v² = G_v),
+// however far it has flowed. Its first Piola stress is
+//   P = μ∞ F + λ'(J − α) cof F + μ1 (F B_v − cof F),
+// and at small strain it is linear elasticity with shear modulus μ = μ∞ + μ1 and Lamé λ = λ' − μ.
+// The Maxwell branch's flow (once per step Δt, exact for a strain held over the step):
+//   G_v ← C + (G_v − C)·exp(−Δt/τ), then G_v ← G_v / det(G_v)^(1/3)  (the flow keeps the volume)
+// which at small strain is ε_v' = (ε − ε_v)/τ, the standard linear solid; under a constant shear
+// stress its creep has the time constant τ_c = τ (μ∞ + μ1)/μ∞.
+#pragma once
+
+#include "core/bulk/cube_root.h"
+
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/vec3.hpp>
+
+#include <vector>
+
+namespace slime {
+
+struct ViscoelasticMaterial {
+  double longTermShear = 0.0;  // μ∞, Pa
+  double maxwellShear = 0.0;   // μ1, Pa (0: purely elastic)
+  double lameLambda = 0.0;     // λ of the linearised material, Pa
+  double relaxationTime = 1.0; // τ, s
+};
+
+// Lamé λ for a shear modulus and a Poisson ratio: 2 μ ν / (1 − 2ν).
+double lameLambdaFor(double shearModulus, double poisson);
+
+// The creep time constant τ (μ∞ + μ1)/μ∞ of the material under a constant shear stress.
+double creepTimeConstant(const ViscoelasticMaterial& material);
+
+// One tetrahedron's rest data.
+struct TetRest {
+  glm::dmat3 restInverse{1.0};  // Dm⁻¹, Dm = [x1−x0, x2−x0, x3−x0] at rest
+  double volume = 0.0;          // V0, m³
+  glm::dmat3 forceMap{0.0};     // −V0 Dm⁻ᵀ: the nodal forces on nodes 1..3 are the columns of P·forceMap
+};
+
+TetRest makeTetRest(const glm::dvec3& x0, const glm::dvec3& x1, const glm::dvec3& x2, const glm::dvec3& x3);
+
+// Deformation gradient F = Ds Dm⁻¹ of a tetrahedron at positions x0..x3.
+inline glm::dmat3 deformationGradient(const TetRest& rest, const glm::dvec3& x0, const glm::dvec3& x1,
+                                      const glm::dvec3& x2, const glm::dvec3& x3) {
+  return glm::dmat3(x1 - x0, x2 - x0, x3 - x0) * rest.restInverse;
+}
+
+// cof F = ∂J/∂F: columns f1×f2, f2×f0, f0×f1 for F's columns f0, f1, f2.
+inline glm::dmat3 cofactor(const glm::dmat3& f) {
+  return glm::dmat3(glm::cross(f[1], f[2]), glm::cross(f[2], f[0]), glm::cross(f[0], f[1]));
+}
+
+// λ' = λ + μ∞ + μ1 and α = 1 + μ∞/λ' of the energy above.
+inline double volumetricModulus(const ViscoelasticMaterial& m) { return m.lameLambda + m.longTermShear + m.maxwellShear; }
+inline double restVolumeRatio(const ViscoelasticMaterial& m) { return 1.0 + m.longTermShear / volumetricModulus(m); }
+
+// First Piola–Kirchhoff stress P of the material at F with the Maxwell inverse rest metric B_v.
+inline glm::dmat3 firstPiolaStress(const ViscoelasticMaterial& material, const glm::dmat3& f,
+                                   const glm::dmat3& maxwellInverse) {
+  const double lambdaPrime = volumetricModulus(material);
+  const glm::dmat3 cof = cofactor(f);
+  const double j = glm::dot(f[0], cof[0]);
+  glm::dmat3 p = material.longTermShear * f + (lambdaPrime * (j - restVolumeRatio(material))) * cof;
+  if (material.maxwellShear > 0.0) p += material.maxwellShear * (f * maxwellInverse - cof);
+  return p;
+}
+
+// Energy density Ψ at F with B_v, J/m³.
+double energyDensity(const ViscoelasticMaterial& material, const glm::dmat3& f, const glm::dmat3& maxwellInverse);
+
+// The Maxwell branch's rest state: its metric G_v and the inverse B_v that the stress uses, kept
+// together so that the flow inverts once (B_v = (G/s)⁻¹ = s·G⁻¹ after the blend G, s = det G^(1/3)).
+struct MaxwellRest {
+  glm::dmat3 metric{1.0};   // G_v, symmetric, det 1
+  glm::dmat3 inverse{1.0};  // B_v = G_v⁻¹
+};
+
+// The Maxwell branch's flow over Δt (decay = exp(−Δt/τ)): the new rest state for the current F.
+// An inverted element (det ≤ 0 after the blend) keeps its rest state this step. Inline and without
+// branches or calls, so that bulk_body.cpp's loop over a block of elements vectorises.
+inline MaxwellRest relaxMaxwellBranch(const glm::dmat3& f, const MaxwellRest& rest, double decay) {
+  // G = C + (G_v − C)·decay with C = FᵀF (C_ij = f_i·f_j for F's columns), all symmetric: six entries.
+  const glm::dmat3& g = rest.metric;
+  const double c00 = glm::dot(f[0], f[0]), c11 = glm::dot(f[1], f[1]), c22 = glm::dot(f[2], f[2]);
+  const double c01 = glm::dot(f[0], f[1]), c02 = glm::dot(f[0], f[2]), c12 = glm::dot(f[1], f[2]);
+  const double m00 = c00 + (g[0][0] - c00) * decay, m11 = c11 + (g[1][1] - c11) * decay;
+  const double m22 = c22 + (g[2][2] - c22) * decay, m01 = c01 + (g[0][1] - c01) * decay;
+  const double m02 = c02 + (g[0][2] - c02) * decay, m12 = c12 + (g[1][2] - c12) * decay;
+  // Its adjugate (cofactors) and determinant.
+  const double a00 = m11 * m22 - m12 * m12, a11 = m00 * m22 - m02 * m02, a22 = m00 * m11 - m01 * m01;
+  const double a01 = m02 * m12 - m01 * m22, a02 = m01 * m12 - m02 * m11, a12 = m01 * m02 - m00 * m12;
+  const double det = m00 * a00 + m01 * a01 + m02 * a02;
+  // G_v = G·det^(−1/3) and B_v = G_v⁻¹ = adj G · det^(1/3)/det = adj G · det^(−2/3). (An infinite det,
+  // from an element already blown up, gives NaN, which the divergence guard catches.)
+  const double scale = inverseCubeRootOfPositive(det);
+  const double inverseScale = scale * scale;
+  const glm::dmat3 metric = glm::dmat3(m00, m01, m02, m01, m11, m12, m02, m12, m22) * scale;
+  const glm::dmat3 inverse = glm::dmat3(a00, a01, a02, a01, a11, a12, a02, a12, a22) * inverseScale;
+  // An inverted element keeps its rest state this step (chosen entry by entry, which vectorises).
+  const bool flows = det > 0.0;
+  MaxwellRest flowed;
+  for (int column = 0; column < 3; ++column)
+    for (int row = 0; row < 3; ++row) {
+      flowed.metric[column][row] = flows ? metric[column][row] : rest.metric[column][row];
+      flowed.inverse[column][row] = flows ? inverse[column][row] : rest.inverse[column][row];
+    }
+  return flowed;
+}
+
+}  // namespace slime

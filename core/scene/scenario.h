@@ -1,0 +1,71 @@
+// Scripted interaction: a scenario file (JSON) of timed events that `slime sim`, `snapshot` and the
+// viewer replay with --scenario FILE:
+//   {"events":[{"t":0.5,"grab":{"point":[x,y,z],"radius":0.015}},
+//              {"t":0.5,"drag":{"to":[x,y,z],"duration":0.3}},
+//              {"t":1.2,"release":{}},
+//              {"t":1.5,"press":{"point":[x,y,z],"direction":[0,0,-1],"depth":0.02,"duration":0.3}},
+//              {"t":2.0,"set":{"slime.stiffness":60}}]}
+// `point` means the surface point nearest to it. A press grabs the region within `radius` (default
+// 0.015 m) of that point, pushes it `depth` along `direction` over `duration`, then lets go.
+// A bad file is a SettingsError that names the file, the event and what is wrong.
+#pragma once
+
+#include "core/settings/settings.h"
+
+#include <glm/vec3.hpp>
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace slime {
+
+class Simulation;
+
+constexpr double kDefaultGrabRadius = 0.015;  // m
+
+struct ScenarioEvent {
+  enum class Kind { Grab, Drag, Release, Press, Set };
+  double time = 0.0;        // s
+  Kind kind = Kind::Release;
+  glm::dvec3 point{0.0};    // grab, press: near the surface point to take
+  double radius = kDefaultGrabRadius;
+  glm::dvec3 to{0.0};       // drag: where the grab target goes
+  glm::dvec3 direction{0.0, 0.0, -1.0};  // press: unit direction
+  double depth = 0.0;       // press: m
+  double duration = 0.0;    // drag, press: s (0 = at once)
+  nlohmann::json values;    // set: {"dotted.key": value, ...}
+};
+
+struct Scenario {
+  std::vector<ScenarioEvent> events;  // sorted by time; events at the same time keep file order
+};
+
+// `origin` names the source in messages (the file path).
+Scenario parseScenario(const nlohmann::json& document, const std::string& origin);
+Scenario loadScenario(const std::string& path);
+
+// Replays a scenario: call advanceTo(sim.time(), ...) before every step.
+class ScenarioPlayer {
+ public:
+  explicit ScenarioPlayer(Scenario scenario);
+
+  // Fires the events due by time t and moves the current drag/press along.
+  void advanceTo(double t, Simulation& simulation, Settings& settings);
+  bool finished() const;
+
+ private:
+  struct Motion {  // a drag or press in progress: the grab target moves from `from` to `to`
+    bool active = false;
+    bool releaseAtEnd = false;
+    double start = 0.0, duration = 0.0;
+    glm::dvec3 from{0.0}, to{0.0};
+  };
+  void fire(const ScenarioEvent& event, Simulation& simulation, Settings& settings);
+
+  Scenario scenario_;
+  std::size_t next_ = 0;
+  Motion motion_;
+};
+
+}  // namespace slime

@@ -1,0 +1,477 @@
+#include "core/scene/simulation.h"
+
+#include "core/integrators/divergence.h"
+#include "core/scene/floor_contact.h"
+#include "core/scene/grab.h"
+#include "core/scene/level_of_detail.h"
+#include "core/membrane/volume.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <utility>
+
+namespace slime {
+namespace {
+
+constexpr int kGoodStateInterval = 8;   // steps between saved good states
+constexpr int kMaxRefinement = 64;      // the guard doubles substeps after a rollback, up to this
+constexpr double kExactDamperStepFactor = 8.0;  // see largestStableStep
+constexpr int kCleanStepsToCoarsen = 500;  // after this many steps with no rollback it halves them again
+constexpr int kRollingInterval = 4;     // steps between applications of the rolling resistance
+// Steps between the Maxwell branches' flow updates (exact over the interval for the strain at its end;
+// 4 ms against relaxation times of 10 ms and more). Every step it cost a quarter of the step.
+constexpr int kRelaxInterval = 4;
+
+}  // namespace
+
+Simulation::Simulation(const Settings& settings) { reload(settings); }
+
+Simulation::Simulation(const Settings& settings, SlimeBody body) {
+  settings_ = settings;
+  settings_.slime.level = effectiveLevel(settings);
+  settings_.slime.model = "membrane";  // a body of springs made elsewhere
+  bulk_ = false;
+  body_ = std::move(body);
+  start();
+}
+
+void Simulation::reload(const Settings& settings) {
+  settings_ = settings;
+  settings_.slime.level = effectiveLevel(settings);  // slime.level=auto resolved once, here
+  bulk_ = settings_.slime.model == "bulk";
+  if (bulk_) {
+    body_ = SlimeBody{};
+    bulkBody_ = buildBulkBody(settings_.slime);
+  } else {
+    bulkBody_ = BulkBody{};
+    body_ = buildSlimeBody(settings_.slime);
+  }
+  start();
+}
+
+void Simulation::start() {
+  mouse_ = MouseSpring{};
+  handForce_ = glm::dvec3(0.0);
+  drawnStale_ = true;
+  cleanSteps_ = 0;
+  time_ = 0.0;
+  stepCount_ = 0;
+  refinement_ = 1;
+  divergences_.clear();
+  grabbing_ = false;
+  grabbed_.clear();
+  grabOffsets_.clear();
+  rebuildModels();
+  saveGoodState();
+}
+
+void Simulation::applySettings(const Settings& settings) {
+  const bool rebuild = effectiveLevel(settings) != settings_.slime.level ||
+                       settings.slime.radius != settings_.slime.radius ||
+                       settings.slime.shape != settings_.slime.shape ||
+                       settings.slime.model != settings_.slime.model ||
+                       settings.slime.resolution != settings_.slime.resolution;
+  if (rebuild) {
+    reload(settings);
+    return;
+  }
+  const bool material = settings.slime.mass != settings_.slime.mass ||
+                        settings.slime.stiffness != settings_.slime.stiffness ||
+                        settings.slime.pressure != settings_.slime.pressure ||
+                        settings.slime.modulus != settings_.slime.modulus ||
+                        settings.slime.longTerm != settings_.slime.longTerm ||
+                        settings.slime.relaxation != settings_.slime.relaxation ||
+                        settings.slime.poisson != settings_.slime.poisson ||
+                        settings.slime.viscosity != settings_.slime.viscosity;
+  const int level = settings_.slime.level;
+  settings_ = settings;
+  settings_.slime.level = level;
+  if (material && bulk_) applyBulkMaterial(bulkBody_, settings.slime);
+  if (material && !bulk_) applySlimeMaterial(body_, settings.slime);
+  refinement_ = 1;
+  rebuildModels();
+}
+
+void Simulation::rebuildModels() {
+  integrator_ = parseIntegrator(settings_.sim.integrator);
+  const glm::dvec3 gravity{0.0, 0.0, -settings_.sim.gravity};
+  if (bulk_) {
+    accelerationField_ = [this](const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v,
+                                std::vector<glm::dvec3>& a) { bulkAccelerations(x, v, a); };
+    highestFrequency_ = bulkHighestFrequency(bulkBody_, bulkScratch_);
+    // symplectic_euler integrates the dampers exactly; the explicit methods feel their rate.
+    bulkDampingRate_ = bulkHighestDampingRate(bulkBody_);
+    highestDampingRate_ = integrator_ == Integrator::SymplecticEuler ? 0.0 : bulkDampingRate_;
+    bulkScratch_.decayStep = -1.0;
+    return;
+  }
+  const bool hasVolume = settings_.slime.pressure > 0.0;
+  forceModel_ = ForceModel{};
+  forceModel_.springs = &body_.springs;
+  forceModel_.damping = settings_.slime.damping;
+  forceModel_.triangles = hasVolume ? &body_.triangles : nullptr;
+  forceModel_.restVolume = body_.restVolume;
+  forceModel_.restPressure = body_.restPressure;
+  forceModel_.bulkModulus = body_.bulkModulus;
+  forceModel_.gravity = gravity;
+  xpbdModel_ = XpbdModel{};
+  xpbdModel_.springs = &body_.springs;
+  xpbdModel_.damping = settings_.slime.damping;
+  xpbdModel_.triangles = hasVolume ? &body_.triangles : nullptr;
+  xpbdModel_.restVolume = body_.restVolume;
+  xpbdModel_.gravity = gravity;
+  xpbdModel_.friction = settings_.slime.friction;
+  symplecticModel_ = DampedSymplecticEulerModel{};
+  symplecticModel_.springs = &body_.springs;
+  symplecticModel_.dampingShares = &dampingShares_;
+  symplecticModel_.springOpposites = hasVolume ? &body_.springOpposites : nullptr;
+  symplecticModel_.restVolume = body_.restVolume;
+  symplecticModel_.restPressure = body_.restPressure;
+  symplecticModel_.bulkModulus = body_.bulkModulus;
+  symplecticModel_.gravity = gravity;
+  symplecticModel_.friction = settings_.slime.friction;
+  independentSpringRuns_ = independentSpringRuns(body_.springs.ends, body_.state.size());
+  symplecticModel_.independentRuns = &independentSpringRuns_;
+  // What explicit_euler and rk4 integrate (symplectic_euler has its own fused substep).
+  accelerationField_ = [this](const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v,
+                               std::vector<glm::dvec3>& a) {
+    computeAccelerations(forceModel_, body_.state.inverseMasses, x, v, forceScratch_, a);
+  };
+  dampingDecayStep_ = -1.0;
+  // ω_max² of the springs plus that of the fill's breathing mode, (K/V0) Σ w_i |∇_i V|².
+  const double springFrequency = slime::highestFrequency(body_.springs, body_.restPositions, body_.freeInverseMasses);
+  double breathing = 0.0;
+  if (hasVolume) {
+    std::vector<glm::dvec3> gradient;
+    volumeGradient(body_.restPositions, body_.triangles, gradient);
+    for (std::size_t i = 0; i < gradient.size(); ++i)
+      breathing += body_.freeInverseMasses[i] * glm::dot(gradient[i], gradient[i]);
+    breathing *= body_.bulkModulus / body_.restVolume;
+  }
+  highestFrequency_ = std::sqrt(springFrequency * springFrequency + breathing);
+  highestDampingRate_ =
+      highestDampingRate(body_.springs, body_.restPositions, body_.freeInverseMasses, settings_.slime.damping);
+}
+
+void Simulation::setAutomaticSubsteps(bool automatic) { automaticSubsteps_ = automatic; }
+
+double Simulation::largestStableStep() const {
+  const double step = slime::largestStableStep(integrator_, highestFrequency_, highestDampingRate_);
+  // The bulk's exact dampers are a contraction pair by pair, but applied one pair after another
+  // between the kicks they are not unconditionally stable: measured on the lightest slime
+  // (slime.mass=0.01, Gershgorin rate 7.3e4/s), h = 0.125 ms was stable and 0.25 ms was not, so the
+  // step is capped at kExactDamperStepFactor / rate (no cap at the defaults: 2.9 ms).
+  if (bulk_ && integrator_ == Integrator::SymplecticEuler && bulkDampingRate_ > 0.0)
+    return std::min(step, kExactDamperStepFactor / bulkDampingRate_);
+  return step;
+}
+
+int Simulation::substepsPerStep() const {
+  int substeps = std::max(1, settings_.sim.substeps);
+  if (automaticSubsteps_) {
+    const double needed = std::ceil(settings_.sim.dt / (kStabilitySafety * largestStableStep()));
+    if (needed > substeps) substeps = static_cast<int>(std::min(needed, 1.0e4));
+  }
+  return substeps * refinement_;
+}
+
+void Simulation::step() {
+  const int substeps = substepsPerStep();
+  const double h = settings_.sim.dt / substeps;
+  if (bulk_) {  // the mouse target moves to where dragTo put it over this step
+    mouse_.targetVelocity = (pendingTarget_ - mouse_.target) / settings_.sim.dt;
+    mouse_.target = pendingTarget_;
+  }
+  for (int s = 0; s < substeps; ++s) substep(h);
+  time_ += settings_.sim.dt;
+  ++stepCount_;
+  if (bulk_) {
+    if (stepCount_ % kRelaxInterval == 0) relaxBulk(bulkBody_, kRelaxInterval * settings_.sim.dt);
+    const bool touching = resolveDrawnFloorContact(bulkBody_, settings_.slime.friction) > 0;
+    // The floor's rolling resistance acts on the bulk slime too: Coulomb friction lets a ball roll,
+    // and the bulk's own viscosity barely slows a bun rolling on its patch (a yanked slime rolled 3 m).
+    if (stepCount_ % kRollingInterval == 0)
+      dampTurningOnFloor(bulkBody_.state, settings_.slime.rolling, kRollingInterval * settings_.sim.dt, touching);
+    drawnStale_ = true;
+  } else if (stepCount_ % kRollingInterval == 0) {
+    // Rolling resistance damps a slow motion (the rocking it is for has a period near 1.4 s), so it
+    // acts every few steps, decaying over all of them at once; every step it cost 13 % of a step.
+    dampTurningOnFloor(body_.state, settings_.slime.rolling, kRollingInterval * settings_.sim.dt);
+  }
+  const std::string what = findDivergence(activeState());
+  if (!what.empty()) {
+    rollBack(what);
+    return;
+  }
+  if (refinement_ > 1 && ++cleanSteps_ >= kCleanStepsToCoarsen) {
+    refinement_ /= 2;
+    cleanSteps_ = 0;
+  }
+  if (stepCount_ % kGoodStateInterval == 0) saveGoodState();
+}
+
+void Simulation::substep(double h) {
+  if (bulk_) {
+    bulkSubstep(h);
+    return;
+  }
+  if (grabbing_) driveGrabbedPoints(h);
+  ParticleState& state = body_.state;
+  if (integrator_ == Integrator::SymplecticEuler) {
+    // The default, fused (damped_symplectic_euler.h): kick, implicit damper, drift and floor contact
+    // in one call. The floor leaves kinematic points alone, so placing the grabbed ones after it
+    // gives what the other integrators' order gives.
+    if (dampingDecayStep_ != h) {
+      springDampingShares(body_.springs, state.inverseMasses, settings_.slime.damping, h, dampingShares_);
+      dampingDecayStep_ = h;
+    }
+    dampedSymplecticEulerSubstep(state, h, symplecticModel_, symplecticScratch_);
+    placeGrabbedPoints();
+    return;
+  }
+  switch (integrator_) {
+    case Integrator::ExplicitEuler: explicitEulerStep(state, h, accelerationField_, integratorScratch_); break;
+    case Integrator::SymplecticEuler: break;  // above
+    case Integrator::Rk4: rk4Step(state, h, accelerationField_, integratorScratch_); break;
+    case Integrator::ImplicitEuler:
+      lastSolverIterations_ = implicitEulerStep(state, h, forceModel_, ImplicitEulerOptions{}, implicitScratch_);
+      break;
+    case Integrator::Xpbd: xpbdSubstep(state, h, xpbdModel_, xpbdScratch_); break;
+  }
+  placeGrabbedPoints();
+  resolveFloorContact(state, settings_.slime.friction);
+}
+
+// a = (internal forces + mouse spring) / m + g for the bulk body; pinned nodes (w = 0) do not move.
+void Simulation::bulkAccelerations(const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v,
+                                   std::vector<glm::dvec3>& a) {
+  bulkInternalForces(bulkBody_, x, v, a);
+  if (grabbing_) handForce_ = addMouseSpringForces(mouse_, x, v, a);
+  const glm::dvec3 gravity{0.0, 0.0, -settings_.sim.gravity};
+  const std::vector<double>& w = bulkBody_.state.inverseMasses;
+  for (std::size_t i = 0; i < a.size(); ++i) a[i] = w[i] > 0.0 ? a[i] * w[i] + gravity : glm::dvec3(0.0);
+}
+
+// The bulk body's substep. symplectic_euler: v += h a(x), the dampers exactly, x += h v; explicit_euler
+// and rk4 integrate the same accelerations, dampers included, through integrators.h. Then the floor on
+// every node and the volume projection, which leaves the nodes on the floor where they are (the drawn
+// surface's own contact follows once per step).
+void Simulation::bulkSubstep(double h) {
+  ParticleState& state = bulkBody_.state;
+  switch (integrator_) {
+    case Integrator::ExplicitEuler: explicitEulerStep(state, h, accelerationField_, integratorScratch_); break;
+    case Integrator::Rk4: rk4Step(state, h, accelerationField_, integratorScratch_); break;
+    default: {
+      // Kick with every force but the dampers, the dampers exactly (dampEdges), then drift.
+      std::vector<glm::dvec3>& a = bulkScratch_.forces;
+      bulkInternalForces(bulkBody_, state.positions, state.velocities, a, false);
+      if (grabbing_) handForce_ = addMouseSpringForces(mouse_, state.positions, state.velocities, a);
+      const glm::dvec3 gravity{0.0, 0.0, -settings_.sim.gravity};
+      for (std::size_t i = 0; i < state.size(); ++i) {
+        const double w = state.inverseMasses[i];
+        if (w != 0.0) state.velocities[i] += h * (a[i] * w + gravity);
+      }
+      dampEdges(bulkBody_, h, bulkScratch_, state);
+      for (std::size_t i = 0; i < state.size(); ++i)
+        if (state.inverseMasses[i] != 0.0) state.positions[i] += h * state.velocities[i];
+      break;
+    }
+  }
+  const double friction = settings_.slime.friction;
+  for (std::size_t i = 0; i < state.size(); ++i)
+    if (state.inverseMasses[i] > 0.0) resolveFloorContactAt(state.positions[i], state.velocities[i], friction);
+  projectBulkVolume(bulkBody_, h, bulkScratch_, state);
+}
+
+// Grabbed points land exactly where they are driven (the integrators moved them by v h).
+void Simulation::placeGrabbedPoints() {
+  ParticleState& state = body_.state;
+  for (std::size_t k = 0; k < grabbed_.size(); ++k) {
+    glm::dvec3 target = grabAnchor_ + grabOffsets_[k];
+    target.z = std::max(target.z, 0.0);
+    state.positions[grabbed_[k]] = target;
+  }
+}
+
+void Simulation::driveGrabbedPoints(double h) {
+  const glm::dvec3 next = stepTowards(grabAnchor_, grabTarget_, kGrabSpeed * h);
+  ParticleState& state = body_.state;
+  for (std::size_t k = 0; k < grabbed_.size(); ++k) {
+    glm::dvec3 target = next + grabOffsets_[k];
+    target.z = std::max(target.z, 0.0);
+    state.velocities[grabbed_[k]] = (target - state.positions[grabbed_[k]]) / h;
+  }
+  grabAnchor_ = next;
+}
+
+void Simulation::saveGoodState() {
+  goodState_ = activeState();
+  goodMaxwell_ = bulkBody_.maxwell;
+  goodTime_ = time_;
+  goodStep_ = stepCount_;
+}
+
+void Simulation::rollBack(const std::string& what) {
+  DivergenceEvent event;
+  event.step = stepCount_;
+  event.time = time_;
+  event.integrator = integratorName(integrator_);
+  refinement_ = std::min(refinement_ * 2, kMaxRefinement);
+  cleanSteps_ = 0;
+  event.what = what + "; rolled back to step " + std::to_string(goodStep_) + ", now " +
+               std::to_string(substepsPerStep()) + " substeps per step";
+  divergences_.push_back(event);
+  activeState() = goodState_;
+  bulkBody_.maxwell = goodMaxwell_;
+  drawnStale_ = true;
+  time_ = goodTime_;
+  stepCount_ = goodStep_;
+}
+
+double Simulation::time() const { return time_; }
+std::int64_t Simulation::stepCount() const { return stepCount_; }
+const std::vector<glm::dvec3>& Simulation::positions() const {
+  if (!bulk_) return body_.state.positions;
+  if (drawnStale_) {
+    placeEmbedded(bulkBody_.embedding, bulkBody_.state.positions, drawnPositions_);
+    drawnStale_ = false;
+  }
+  return drawnPositions_;
+}
+const std::vector<Triangle>& Simulation::triangles() const {
+  return bulk_ ? bulkBody_.drawn.triangles : body_.triangles;
+}
+const std::vector<DivergenceEvent>& Simulation::divergences() const { return divergences_; }
+double Simulation::volume() const {
+  return bulk_ ? enclosedVolume(bulkBody_.state.positions, bulkBody_.mesh.surface)
+               : enclosedVolume(body_.state.positions, body_.triangles);
+}
+void Simulation::setVelocities(const std::vector<glm::dvec3>& velocities) {
+  if (velocities.size() != state().size())
+    throw std::invalid_argument("setVelocities: " + std::to_string(velocities.size()) + " velocities for " +
+                                std::to_string(state().size()) + " points");
+  activeState().velocities = velocities;
+  saveGoodState();
+}
+
+std::size_t Simulation::elementCount() const {
+  return bulk_ ? bulkBody_.mesh.tetrahedra.size() : body_.springs.size();
+}
+double Simulation::elasticEnergy() const {
+  return bulk_ ? bulkElasticEnergy(bulkBody_, bulkBody_.state.positions) : 0.0;
+}
+
+// Shape from the surface points (the membrane's vertices, the body's outer nodes); energy and speed
+// from every simulated point.
+SlimeMetrics Simulation::metrics() const {
+  SlimeMetrics metrics;
+  const ParticleState& state = this->state();
+  const std::vector<double>& freeInverseMasses = bulk_ ? bulkBody_.freeInverseMasses : body_.freeInverseMasses;
+  const std::size_t surfacePoints = bulk_ ? bulkBody_.mesh.surfaceNodes : state.size();
+  glm::dvec3 low(std::numeric_limits<double>::infinity()), high(-std::numeric_limits<double>::infinity());
+  for (std::size_t i = 0; i < state.size(); ++i) {
+    if (i < surfacePoints) {
+      low = glm::min(low, state.positions[i]);
+      high = glm::max(high, state.positions[i]);
+    }
+    const double speedSquared = glm::dot(state.velocities[i], state.velocities[i]);
+    metrics.kineticEnergy += 0.5 * speedSquared / freeInverseMasses[i];
+    metrics.maxSpeed = std::max(metrics.maxSpeed, std::sqrt(speedSquared));
+  }
+  metrics.volumeRatio = volume() / restVolume();
+  metrics.height = high.z - low.z;
+  metrics.width = std::max(high.x - low.x, high.y - low.y);
+  metrics.aspect = metrics.width > 0.0 ? metrics.height / metrics.width : 1.0;
+  metrics.minZ = low.z;
+  return metrics;
+}
+
+bool Simulation::grab(const glm::dvec3& point, double radius) {
+  release();
+  if (bulk_) {
+    // The drawn surface point nearest to `point`, and the body's nodes within `radius` of it (or,
+    // when none is that close, the nodes that carry the nearest drawn vertex).
+    const std::vector<glm::dvec3>& drawn = positions();
+    const glm::dvec3 surface = nearestSurfacePoint(drawn, bulkBody_.drawn.triangles, point);
+    const ParticleState& state = bulkBody_.state;
+    std::vector<std::uint32_t> nodes = pointsWithinRadius(state.positions, surface, radius);
+    if (nodes.empty()) {
+      std::uint32_t nearest = 0;
+      for (std::uint32_t i = 1; i < drawn.size(); ++i)
+        if (glm::length(drawn[i] - surface) < glm::length(drawn[nearest] - surface)) nearest = i;
+      const Tetrahedron& t = bulkBody_.embedding.nodes[nearest];
+      nodes = {t.x, t.y, t.z, t.w};
+      std::sort(nodes.begin(), nodes.end());
+      nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    }
+    mouse_ = MouseSpring{};
+    double mass = 0.0;
+    for (std::uint32_t i : nodes) {
+      mouse_.offsets.push_back(state.positions[i] - surface);
+      mouse_.shares.push_back(1.0 / static_cast<double>(nodes.size()));
+      mass += 1.0 / bulkBody_.freeInverseMasses[i];
+    }
+    mouse_.nodes = nodes;
+    mouse_.target = surface;
+    mouse_.damping = kMouseDampingRatio * 2.0 * std::sqrt(mouse_.stiffness * mass);
+    pendingTarget_ = surface;
+    grabbing_ = true;
+    grabbed_ = std::move(nodes);
+    grabTarget_ = surface;
+    return true;
+  }
+  const glm::dvec3 surface = nearestSurfacePoint(body_.state.positions, body_.triangles, point);
+  std::vector<std::uint32_t> indices = pointsWithinRadius(body_.state.positions, surface, radius);
+  if (indices.empty()) return false;
+  grabbing_ = true;
+  grabbed_ = std::move(indices);
+  grabTarget_ = surface;
+  grabAnchor_ = surface;
+  grabOffsets_.clear();
+  dampingDecayStep_ = -1.0;
+  for (std::uint32_t i : grabbed_) {
+    grabOffsets_.push_back(body_.state.positions[i] - surface);
+    body_.state.inverseMasses[i] = 0.0;
+  }
+  return true;
+}
+
+void Simulation::dragTo(const glm::dvec3& target) {
+  if (!grabbing_) return;
+  grabTarget_ = target;
+  pendingTarget_ = target;
+}
+
+glm::dvec3 Simulation::grabbedPoint() const {
+  if (!grabbing_) return grabTarget_;
+  glm::dvec3 sum(0.0);
+  const std::vector<glm::dvec3>& x = state().positions;
+  for (std::size_t k = 0; k < grabbed_.size(); ++k)
+    sum += x[grabbed_[k]] - (bulk_ ? mouse_.offsets[k] : grabOffsets_[k]);
+  return sum / static_cast<double>(grabbed_.size());
+}
+
+void Simulation::release() {
+  if (bulk_) {
+    mouse_ = MouseSpring{};
+    handForce_ = glm::dvec3(0.0);
+    grabbing_ = false;
+    grabbed_.clear();
+    return;
+  }
+  for (std::uint32_t i : grabbed_) body_.state.inverseMasses[i] = body_.freeInverseMasses[i];
+  if (!grabbed_.empty()) dampingDecayStep_ = -1.0;
+  grabbing_ = false;
+  grabbed_.clear();
+  grabOffsets_.clear();
+}
+
+bool Simulation::grabbing() const { return grabbing_; }
+glm::dvec3 Simulation::grabTarget() const { return grabTarget_; }
+const std::vector<std::uint32_t>& Simulation::grabbedIndices() const { return grabbed_; }
+
+}  // namespace slime

@@ -1,0 +1,161 @@
+// The slime's physics as one object, advanced with a fixed time step by the integrator that
+// sim.integrator names: slime.model=bulk (the default) is a viscoelastic tetrahedral body carrying the
+// drawn icosphere (bulk_body.h); slime.model=membrane is the seed's skin, the mass points of the drawn
+// icosphere joined by springs around a pressurised fill (slime_body.h). Both have floor contact and
+// grab/press. A headless run, a test and a viewer reset each make a new Simulation.
+//
+// CONTRACT used by render/ and app/ (keep these signatures; add whatever else physics needs):
+//   Simulation(const Settings&), reload, applySettings, step, time, stepCount, positions, triangles,
+//   metrics, divergences, grab, dragTo, release, grabbing, grabTarget, grabbedIndices.
+#pragma once
+
+#include "core/bulk/bulk_body.h"
+#include "core/integrators/damped_symplectic_euler.h"
+#include "core/membrane/force_model.h"
+#include "core/scene/grab.h"
+#include "core/scene/icosphere.h"
+#include "core/integrators/implicit_euler.h"
+#include "core/integrators/integrators.h"
+#include "core/settings/settings.h"
+#include "core/membrane/slime_body.h"
+#include "core/integrators/stability.h"
+#include "core/integrators/xpbd.h"
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace slime {
+
+// Shape and energy figures of the current state (what `slime sim` reports).
+struct SlimeMetrics {
+  double volumeRatio = 1.0;    // enclosed volume / rest volume
+  double height = 0.0;         // max z - min z, m
+  double width = 0.0;          // largest horizontal extent (max of x and y extents), m
+  double aspect = 1.0;         // height / width
+  double minZ = 0.0;           // lowest vertex z, m
+  double kineticEnergy = 0.0;  // J
+  double maxSpeed = 0.0;       // fastest vertex, m/s
+};
+
+// A step that produced NaN/inf or an absurd speed; the state was rolled back to the last good one.
+struct DivergenceEvent {
+  std::int64_t step = 0;
+  double time = 0.0;
+  std::string integrator;
+  std::string what;  // e.g. "NaN position at vertex 17", "speed 3.2e4 m/s at vertex 5"
+};
+
+class Simulation {
+ public:
+  explicit Simulation(const Settings& settings);  // builds the slime at slime.position, at rest
+  // Runs the physics on a body built elsewhere (tests: one spring against its analytic solution, run
+  // by exactly the code that runs the slime). The settings give the integrator, dt, substeps, damping,
+  // gravity and friction; reload() and a structural applySettings() build the icosphere instead.
+  Simulation(const Settings& settings, SlimeBody body);
+
+  void reload(const Settings& settings);          // rebuild from the settings (level, radius, ...)
+  void applySettings(const Settings& settings);   // live changes: mass, stiffness, damping, dt, integrator, ...
+  void step();                                    // advance one fixed step sim.dt
+
+  double time() const;                            // simulated seconds since (re)load
+  std::int64_t stepCount() const;
+  const std::vector<glm::dvec3>& positions() const;  // the drawn surface's vertices
+  const std::vector<Triangle>& triangles() const;    // the drawn surface's triangles
+  SlimeMetrics metrics() const;
+  const std::vector<DivergenceEvent>& divergences() const;
+
+  // Grab the mass points within `radius` of the surface point nearest to `point`; false if none.
+  bool grab(const glm::dvec3& point, double radius);
+  void dragTo(const glm::dvec3& target);          // move the grab target (the grabbed points follow)
+  void release();
+  bool grabbing() const;
+  glm::dvec3 grabTarget() const;
+  glm::dvec3 grabbedPoint() const;                // where the grabbed part of the surface is now
+  glm::dvec3 handForce() const { return handForce_; }  // bulk: the mouse spring's force, N
+  // The simulated points that are grabbed (indices into state().positions).
+  const std::vector<std::uint32_t>& grabbedIndices() const;
+
+  // More for tests, reports and tools.
+  bool bulk() const { return bulk_; }
+  const ParticleState& state() const { return bulk_ ? bulkBody_.state : body_.state; }  // simulated points
+  const SlimeBody& body() const { return body_; }           // membrane only
+  const BulkBody& bulkBody() const { return bulkBody_; }    // bulk only
+  // Starts the simulated points moving (an initial condition for oracles); sizes must match state().
+  void setVelocities(const std::vector<glm::dvec3>& velocities);
+  std::size_t elementCount() const;                         // tetrahedra (bulk) or springs (membrane)
+  double elasticEnergy() const;                             // bulk: elastic and volume energy, J
+  const Settings& settings() const { return settings_; }
+  double restVolume() const { return bulk_ ? bulkBody_.restVolume : body_.restVolume; }
+  double volume() const;
+  int substepsPerStep() const;  // sim.substeps times the guard's refinement after rollbacks
+  int lastSolverIterations() const { return lastSolverIterations_; }  // CG iterations (implicit_euler)
+  // Substeps are at least what the integrator needs to stay stable at this level and material
+  // (stability.h); off: exactly sim.substeps, so tests and benchmarks can watch a method blow up.
+  void setAutomaticSubsteps(bool automatic);
+  double highestFrequency() const { return highestFrequency_; }  // ω_max, rad/s
+  double largestStableStep() const;                              // for the current integrator, s
+
+ private:
+  void start();  // time zero, nothing grabbed, models built for body_
+  void rebuildModels();
+  void substep(double h);
+  void bulkSubstep(double h);
+  void bulkAccelerations(const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v,
+                         std::vector<glm::dvec3>& a);
+  ParticleState& activeState() { return bulk_ ? bulkBody_.state : body_.state; }
+  void driveGrabbedPoints(double h);
+  void placeGrabbedPoints();
+  void saveGoodState();
+  void rollBack(const std::string& what);
+
+  Settings settings_;
+  bool bulk_ = false;
+  SlimeBody body_;
+  BulkBody bulkBody_;
+  BulkScratch bulkScratch_;
+  MouseSpring mouse_;
+  glm::dvec3 pendingTarget_{0.0};  // where dragTo put the target; the mouse spring reaches it over a step
+  glm::dvec3 handForce_{0.0};
+  mutable std::vector<glm::dvec3> drawnPositions_;  // bulk: placed from the body when first asked for
+  mutable bool drawnStale_ = true;
+  Integrator integrator_ = Integrator::SymplecticEuler;
+  ForceModel forceModel_;    // every force, the damper explicit
+  bool automaticSubsteps_ = true;
+  double highestFrequency_ = 0.0;
+  double highestDampingRate_ = 0.0;
+  double bulkDampingRate_ = 0.0;  // bulk: the dampers' Gershgorin rate, for symplectic_euler's cap
+  std::vector<glm::dvec2> dampingShares_;  // per spring, for the substep length dampingDecayStep_
+  double dampingDecayStep_ = -1.0;      // -1: recompute (after a grab, release or material change)
+  DampedSymplecticEulerModel symplecticModel_;  // what symplectic_euler's fused substep reads
+  DampedSymplecticEulerScratch symplecticScratch_;
+  std::vector<std::size_t> independentSpringRuns_;  // for the fused substep's threads
+  XpbdModel xpbdModel_;
+  AccelerationField accelerationField_;
+  ForceScratch forceScratch_;
+  IntegratorScratch integratorScratch_;
+  ImplicitEulerScratch implicitScratch_;
+  XpbdScratch xpbdScratch_;
+  double time_ = 0.0;
+  std::int64_t stepCount_ = 0;
+  int refinement_ = 1;  // extra substeps the divergence guard asked for
+  int cleanSteps_ = 0;  // steps since the last rollback or coarsening
+  int lastSolverIterations_ = 0;
+  std::vector<DivergenceEvent> divergences_;
+
+  // The last good state the guard rolls back to.
+  ParticleState goodState_;
+  std::vector<MaxwellBlock> goodMaxwell_;  // the bulk's B_v and G_v then
+  double goodTime_ = 0.0;
+  std::int64_t goodStep_ = 0;
+
+  bool grabbing_ = false;
+  glm::dvec3 grabTarget_{0.0};
+  glm::dvec3 grabAnchor_{0.0};  // where the grabbed points are now (rate-limited towards the target)
+  std::vector<std::uint32_t> grabbed_;
+  std::vector<glm::dvec3> grabOffsets_;
+};
+
+}  // namespace slime

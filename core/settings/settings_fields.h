@@ -1,0 +1,145 @@
+// The table of every setting: its dotted key, where it lives in Settings, and what values are allowed.
+// One table serves the scene-file reader, `--set` overrides, scenario "set" events, validation and
+// the JSON writer, so a new setting is added in exactly one place (forEachField below).
+#pragma once
+
+#include "core/settings/settings.h"
+
+#include <glm/vec3.hpp>
+
+#include <initializer_list>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <vector>
+
+namespace slime {
+
+// The allowed closed interval of a number (each component of a vector) and its unit for messages.
+struct Limits {
+  double min;
+  double max;
+  std::string_view unit;
+};
+
+// The allowed words of a string setting; empty means any text (e.g. a file path).
+using Choices = std::vector<std::string_view>;
+
+// Calls visit(key, field, limits-or-choices, help) for every setting of `settings`, in a fixed order.
+// field is a double&, int&, bool&, std::string& or glm::dvec3&; ints and numbers get Limits,
+// strings get Choices, bools get nothing (std::monostate-like `Choices{}`). help is the setting's
+// one-line meaning (`slime settings`, the viewer's tooltips); visitors that take three arguments get
+// no help, and a line of the table without one passes an empty help (settings_test flags it).
+template <class Visitor, class S>
+void forEachField(S& s, Visitor&& visitor) {
+  const auto visit = [&visitor](std::string_view key, auto& field, const auto& allowed, std::string_view help = {}) {
+    if constexpr (std::is_invocable_v<Visitor&, std::string_view, decltype(field), decltype(allowed), std::string_view>)
+      visitor(key, field, allowed, help);
+    else
+      visitor(key, field, allowed);
+  };
+  // Camera
+  visit("camera.position", s.camera.position, Limits{-100.0, 100.0, "m"}, "eye position");
+  visit("camera.yaw", s.camera.yaw, Limits{-360.0, 360.0, "degrees"},
+        "heading: 0 looks along +x, 90 along +y");
+  visit("camera.pitch", s.camera.pitch, Limits{-89.0, 89.0, "degrees"}, "elevation: positive looks up");
+  visit("camera.fov", s.camera.fov, Limits{1.0, 170.0, "degrees"}, "vertical field of view");
+  visit("camera.width", s.camera.width, Limits{1, 8192, "pixels"}, "image width (the viewer: its window's)");
+  visit("camera.height", s.camera.height, Limits{1, 8192, "pixels"},
+        "image height (the viewer: its window's)");
+  // Light
+  visit("light.position", s.light.position, Limits{-100.0, 100.0, "m"}, "position of the point light");
+  visit("light.color", s.light.color, Limits{0.0, 100.0, "linear RGB intensity"},
+        "intensity I_l of the point light per channel");
+  visit("light.ambient", s.light.ambient, Limits{0.0, 10.0, "linear RGB intensity"},
+        "ambient intensity I_a per channel");
+  // Floor
+  visit("floor.pattern", s.floor.pattern, Choices{"planks", "tiles", "checker", "image"},
+        "the floor's texture");
+  visit("floor.scale", s.floor.scale, Limits{0.001, 100.0, "m"},
+        "size of one tile, plank width or checker cell");
+  visit("floor.colorA", s.floor.colorA, Limits{0.0, 1.0, "linear RGB"}, "first colour of the pattern");
+  visit("floor.colorB", s.floor.colorB, Limits{0.0, 1.0, "linear RGB"}, "second colour of the pattern");
+  visit("floor.image", s.floor.image, Choices{}, "PNG file used when floor.pattern is image");
+  visit("floor.diffuse", s.floor.diffuse, Limits{0.0, 1.0, ""}, "k_d of the floor");
+  visit("floor.specular", s.floor.specular, Limits{0.0, 1.0, ""},
+        "k_s of the floor: highlight and mirror image (0 = matte)");
+  // Slime: shape and physics
+  visit("slime.shape", s.slime.shape, Choices{"mesh", "sphere"},
+        "mesh (the simulated icosphere) or sphere (analytic reference)");
+  visit("slime.model", s.slime.model, Choices{"bulk", "membrane"},
+        "bulk (viscoelastic tetrahedral body) or membrane (the seed's skin of springs around a fill)");
+  visit("slime.radius", s.slime.radius, Limits{0.005, 1.0, "m"}, "rest radius of the ball");
+  visit("slime.level", s.slime.level, Limits{0, 7, "subdivision level"},
+        "drawn icosphere subdivision level: 20*4^level faces (or auto)");
+  visit("slime.resolution", s.slime.resolution, Limits{1, 4, "body shell level"},
+        "bulk: the simulated body's shell level (85, 487, 3,211 or 23,059 mass points)");
+  visit("slime.autoLevel", s.slime.autoLevel, Choices{},
+        "pick the smallest level whose image error is invisible");
+  // Mass and stiffness are bounded so that the stiffest, lightest slime still keeps its volume within
+  // 1 % and costs at most ~100 substeps per 10 ms step (the step count grows as sqrt(k/m)).
+  visit("slime.mass", s.slime.mass, Limits{0.01, 100.0, "kg"}, "total mass");
+  visit("slime.stiffness", s.slime.stiffness, Limits{1.0, 1000.0, "N/m"},
+        "membrane: elementary spring stiffness k_e (longer springs are softer)");
+  visit("slime.damping", s.slime.damping, Limits{0.0, 100.0, "N·s/m"},
+        "membrane: damper coefficient k_d along each spring");
+  visit("slime.pressure", s.slime.pressure, Limits{0.0, 100.0, "relative"},
+        "membrane: volume preservation strength (0 = none)");
+  visit("slime.friction", s.slime.friction, Limits{0.0, 10.0, "Coulomb coefficient"},
+        "Coulomb friction coefficient against the floor");
+  visit("slime.rolling", s.slime.rolling, Limits{0.0, 1000.0, "1/s"},
+        "membrane: rate at which the slime's rolling decays on the floor");
+  // The bulk material: moduli from a soft jelly to a stiff rubber; τ from a fast to a near-solid gel.
+  visit("slime.modulus", s.slime.modulus, Limits{50.0, 1.0e5, "Pa"},
+        "bulk: instantaneous shear modulus G (the seed's stiffness slider)");
+  visit("slime.longTerm", s.slime.longTerm, Limits{0.01, 1.0, "of the modulus"},
+        "bulk: the part of G that never relaxes and brings the ball back (1 = purely elastic)");
+  visit("slime.relaxation", s.slime.relaxation, Limits{0.01, 1000.0, "s"},
+        "bulk: relaxation time of the flowing (Maxwell) part");
+  visit("slime.poisson", s.slime.poisson, Limits{0.0, 0.49, ""},
+        "bulk: Poisson ratio of each element (the whole body keeps its volume anyway)");
+  visit("slime.viscosity", s.slime.viscosity, Limits{0.0, 100.0, "Pa·s"},
+        "bulk: viscosity of the dampers along the body's edges (the seed's damping slider)");
+  visit("slime.position", s.slime.position, Limits{-100.0, 100.0, "m"}, "start position of the centre");
+  // Slime: optics
+  visit("slime.color", s.slime.color, Limits{0.0, 1.0, "linear RGB"},
+        "surface tint and per-channel transmittance");
+  visit("slime.transmission", s.slime.transmission, Limits{0.0, 1.0, ""}, "k_t: weight of the refracted ray");
+  visit("slime.absorption", s.slime.absorption, Limits{0.0, 10000.0, "1/m"},
+        "Beer-Lambert k: a path of 1/k transmits exactly slime.color");
+  visit("slime.ior", s.slime.ior, Limits{1.0, 3.0, ""}, "index of refraction");
+  visit("slime.specular", s.slime.specular, Limits{0.0, 1.0, ""},
+        "k_s: Phong highlight and reflected-ray weight");
+  visit("slime.diffuse", s.slime.diffuse, Limits{0.0, 1.0, ""}, "k_d: diffuse reflection");
+  visit("slime.ambient", s.slime.ambient, Limits{0.0, 1.0, ""}, "k_a: ambient reflection");
+  visit("slime.shininess", s.slime.shininess, Limits{1.0, 10000.0, "Phong exponent"}, "Phong exponent n");
+  // Render
+  visit("render.depth", s.render.depth, Limits{1, 16, "bounces"},
+        "Whitted recursion depth (1 = primary rays only)");
+  visit("render.spp", s.render.spp, Limits{1, 64, "samples per pixel"},
+        "samples per pixel: a stratified n x n grid (1, 4, 9, ..., 64)");
+  visit("render.threads", s.render.threads, Limits{0, 256, "threads (0 = all cores)"},
+        "worker threads for TBB and Embree");
+  visit("render.normals", s.render.normals, Choices{"smooth", "flat"}, "shading normals");
+  visit("render.optics", s.render.optics, Choices{"fresnel", "seed"},
+        "fresnel (dielectric) or seed (constant k_s, k_t weights)");
+  visit("render.backend", s.render.backend, Choices{"embree", "brute"},
+        "embree, or brute (the seed's algorithm, the oracle)");
+  visit("render.scale", s.render.scale, Limits{0.1, 1.0, "of the window size"},
+        "resolution of the viewer's traced image");
+  visit("render.shadows", s.render.shadows, Choices{}, "trace shadow rays to the point light");
+  visit("render.targetFps", s.render.targetFps, Limits{0.0, 240.0, "frames per second"},
+        "viewer: trace the image smaller while moving frames miss this rate (0: always full resolution)");
+  // Simulation
+  visit("sim.dt", s.sim.dt, Limits{1e-6, 0.01, "s"}, "fixed time step");
+  visit("sim.integrator", s.sim.integrator,
+        Choices{"explicit_euler", "symplectic_euler", "rk4", "implicit_euler", "xpbd"},
+        "time integrator");
+  visit("sim.substeps", s.sim.substeps, Limits{1, 1000, "substeps"}, "substeps per step (xpbd)");
+  visit("sim.gravity", s.sim.gravity, Limits{0.0, 100.0, "m/s^2"}, "|g|, pointing along -z");
+  visit("sim.timeScale", s.sim.timeScale, Limits{0.01, 10.0, "simulated s per wall s"},
+        "viewer: simulated seconds per wall-clock second");
+  visit("sim.paused", s.sim.paused, Choices{}, "viewer: physics paused");
+}
+
+}  // namespace slime

@@ -1,0 +1,394 @@
+#include "render/trace/renderer.h"
+
+#include "core/scene/camera.h"
+#include "render/trace/brute_tracer.h"
+#include "render/trace/embree_scene.h"
+#include "render/trace/embree_util.h"
+#include "render/floor/floor_texture.h"
+#include "render/image/image_io.h"
+#include "render/trace/primary_view.h"
+#include "render/trace/primary_visibility.h"
+#include "render/slime/screen_footprint.h"
+#include "render/slime/slime_geometry.h"
+#include "render/trace/tsan_handoff.h"
+#include "render/trace/whitted_tracer.h"
+
+#include <tbb/blocked_range2d.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+#include <tbb/task_arena.h>
+
+#include <glm/geometric.hpp>
+
+#if defined(__AVX2__)
+#include <immintrin.h>
+#endif
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+
+namespace slime {
+namespace {
+
+constexpr int kTileRows = 8;
+constexpr int kTileColumns = 32;  // a multiple of the 8-ray packet width
+constexpr int kPacket = 8;
+// Pixels seen to lie outside the slime's footprint are shaded this many at a time (8 with AVX2, 16 with AVX-512).
+constexpr int kFloorLanes = WhittedTracer::kFloorOrSkyRays;
+constexpr int kWavefrontPixels = WhittedTracer::kMaxPrimaries;  // pixels whose Whitted trees are traced together
+constexpr int kRunPixels = std::max(kFloorLanes, kWavefrontPixels);
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+bool sameFloor(const FloorSettings& a, const FloorSettings& b) {
+  return a.pattern == b.pattern && a.scale == b.scale && a.colorA == b.colorA && a.colorB == b.colorB && a.image == b.image;
+}
+
+// Everything a primary ray's FloorShading, and the colour of a pixel outside the slime's footprint,
+// depend on: the view, the image size, the floor's lighting, the sky, and whether the floor sends
+// shadow and mirror rays (the floor texture itself is checked by Impl::sync).
+using FloorCacheKey = std::array<double, 40>;
+
+FloorCacheKey floorCacheKey(const Camera& camera, const ShadingParameters& p, int width, int height, glm::vec2 pixelOffset) {
+  const glm::vec3 light = p.lightPosition, color = p.lightColor, ambient = p.ambientLight, horizon = p.skyHorizon,
+                  zenith = p.skyZenith;
+  return {camera.position.x, camera.position.y, camera.position.z, camera.forward.x, camera.forward.y,
+          camera.forward.z,  camera.right.x,    camera.right.y,    camera.right.z,    camera.up.x,
+          camera.up.y,       camera.up.z,       camera.tanHalfFov, camera.aspect,     static_cast<double>(width),
+          static_cast<double>(height), p.floorDiffuse, p.floorSpecular, p.floorShininess, p.hazeDistance,
+          p.pixelSpread,     light.x,           light.y,           light.z,           color.x,
+          color.y,           color.z,           ambient.x,         ambient.y,         ambient.z,
+          horizon.x,         horizon.y,         horizon.z,         zenith.x,          zenith.y,
+          zenith.z,          static_cast<double>(p.depth), p.shadows ? 1.0 : 0.0, pixelOffset.x, pixelOffset.y};
+}
+
+}  // namespace
+
+struct Renderer::Impl {
+  SlimeGeometry geometry;
+  EmbreeScene embree;
+  BruteTracer brute{geometry};
+  // The primary rays' first hits, found in object order for the frame (one sample per pixel).
+  PrimaryVisibility visibility;
+  FloorSettings floorSettings;
+  FloorTexture floor;
+  int threads = 0;
+  std::unique_ptr<tbb::task_arena> arena;
+  tbb::enumerable_thread_specific<TraceCounters> counters;
+  double refitMs = 0.0;
+  // Per pixel, the FloorShading its primary ray saw (one sample per pixel only). The floor does not
+  // move: while the camera, the image size and the floor's lighting stay, only the shadow ray and the
+  // slime are traced again there; the entries are recomputed whenever floorCacheKey changes.
+  std::vector<FloorShading> floorCache;
+  FloorCacheKey floorCacheView{};
+  bool floorCacheValid = false;
+  // Under the same key, the final colour of each pixel outside the slime's footprint, once traced:
+  // such a pixel sees the floor or the sky and no shadow of the slime, so it is copied, not traced.
+  std::vector<glm::vec3> reusableColors;
+  std::vector<std::uint8_t> reusable;  // 1: reusableColors holds the pixel
+  // The key changed this frame: every entry is stale. The tiles clear their own entries as they go,
+  // in parallel, rather than the frame clearing 19 MB up front (a moving camera does so every frame).
+  bool cachesStale = false;
+  // The key of the last frame and whether it had changed from the frame before: while the view keeps
+  // changing (the camera moves, or the image refines), filling the caches would only cost the frame
+  // their writes, so they are filled on the first frame after a single change or a stop.
+  FloorCacheKey lastView{};
+  bool lastViewValid = false, lastViewChanged = false;
+  // The buffers the last frame wrote, its footprint, and whether it kept the caches (one sample per
+  // pixel, finished): a pixel outside that footprint and this one already holds its copied colour
+  // and bytes when the caller kept the same buffers (imageInPlace, bytesInPlace).
+  const glm::vec3* lastPixels = nullptr;
+  const std::uint8_t* lastBytes = nullptr;
+  ScreenFootprint footprint, lastFootprint;  // this frame's and the last (swapped: no allocation per frame)
+  bool lastKeptCaches = false;
+  bool imageInPlace = false, bytesInPlace = false;
+
+  explicit Impl(const Settings& settings)
+      : embree(settings.render.threads), floorSettings(settings.floor), floor(settings.floor) {
+    makeArena(settings.render.threads);
+  }
+
+  void makeArena(int count) {
+    threads = count;
+    arena = count > 0 ? std::make_unique<tbb::task_arena>(count) : std::make_unique<tbb::task_arena>();
+  }
+
+  // Keeps the floor texture, thread count and slime shape in step with the settings of this frame.
+  void sync(const Settings& settings) {
+    if (!sameFloor(settings.floor, floorSettings)) {
+      floor = FloorTexture(settings.floor);
+      floorSettings = settings.floor;
+      floorCacheValid = false;
+    }
+    if (settings.render.threads != threads) makeArena(settings.render.threads);
+    const bool sphere = settings.slime.shape == "sphere";
+    const float radius = static_cast<float>(settings.slime.radius);
+    if (sphere != geometry.sphereRequested || (sphere && radius != geometry.sphereRadius)) {
+      geometry.setAnalyticSphere(sphere, radius);
+      embree.update(geometry, false);
+    }
+  }
+
+  // Traces the pixels [rows) × [columns): primary rays 8 at a time as one coherent packet (only
+  // those that can reach the slime's bounding sphere), then their Whitted trees as packets. With a
+  // floor cache, packets outside `footprint` are copied from the last frame once they have been traced.
+  void traceTile(const WhittedTracer& tracer, const SlimeIntersector& intersector, const Camera& camera,
+                 int samplesPerAxis, glm::vec2 pixelOffset, int rowBegin, int rowEnd, int columnBegin, int columnEnd, Image& image,
+                 std::uint8_t* srgba, FloorShading* floorShadings, const ScreenFootprint* footprint, TraceCounters& counts) {
+    FlushDenormals flush;
+    const auto start = std::chrono::steady_clock::now();
+    const float inverseSamples = 1.0f / static_cast<float>(samplesPerAxis * samplesPerAxis);
+    const glm::vec3 eye(camera.position);
+    const PrimaryView view(camera, image.width, image.height);
+    const auto resetCaches = [&](std::size_t first, int count) {  // the view changed: nothing kept holds
+      for (int i = 0; i < count; ++i) {
+        floorShadings[first + i].filled = false;
+        reusable[first + i] = 0;
+      }
+    };
+    const auto copied = [&](std::size_t first, int count) {  // pixels whose colours the last frame kept
+      return floorShadings && std::all_of(&reusable[first], &reusable[first] + count, [](std::uint8_t r) { return r != 0; });
+    };
+    for (int y = rowBegin; y < rowEnd; ++y) {
+      int count = 0;
+      for (int x0 = columnBegin; x0 < columnEnd; x0 += count) {
+        count = std::min(kPacket, columnEnd - x0);
+        const std::size_t first = static_cast<std::size_t>(y) * image.width + x0;
+        if (floorShadings && cachesStale) resetCaches(first, count);
+        const bool outside = footprint && footprint->outside(x0, count, y);
+        if (outside && copied(first, count)) {
+          // Outside the last frame's footprint too, the last frame copied or stored exactly these colours.
+          const bool inPlace = imageInPlace && lastFootprint.outside(x0, count, y);
+          if (!inPlace)
+            for (int i = 0; i < count; ++i) image.at(x0 + i, y) = reusableColors[first + i];
+          if (srgba && !(inPlace && bytesInPlace)) {
+            encodeSrgb8(&image.pixels[first], static_cast<std::size_t>(count), 4, srgba + 4 * first);
+            counts.bytesWritten = counts.bytesWritten.unitedWith({x0, y, x0 + count, y + 1});
+          }
+          counts.reusedPixels += static_cast<std::uint64_t>(count);
+          continue;
+        }
+        if (outside && count == kPacket && kFloorLanes > kPacket && x0 + kPacket < columnEnd) {
+          // Where the processor has wider lanes, the next packet joins this one if it too lies
+          // outside the footprint and is to be traced: floor or sky, kFloorLanes pixels at a time.
+          const int next = std::min(kFloorLanes - kPacket, columnEnd - x0 - kPacket);
+          if (floorShadings && cachesStale) resetCaches(first + kPacket, next);
+          if (footprint->outside(x0 + kPacket, next, y) && !copied(first + kPacket, next)) count += next;
+        }
+        if (!outside && count == kPacket && x0 + kPacket < columnEnd) {
+          // Two packets of the slime's reach traced together: their Whitted trees as one wavefront.
+          const int next = std::min(kPacket, columnEnd - x0 - kPacket);
+          if (floorShadings && cachesStale) resetCaches(first + kPacket, next);
+          if (!footprint || !footprint->outside(x0 + kPacket, next, y)) count += next;
+        }
+        glm::vec3 sums[kRunPixels] = {};
+        for (int sampleY = 0; sampleY < samplesPerAxis; ++sampleY) {
+          for (int sampleX = 0; sampleX < samplesPerAxis; ++sampleX) {
+            // One sample: the caller's point of the pixel; more: the centre of each cell of an n × n
+            // grid in the pixel (stratified supersampling).
+            const float offsetX = samplesPerAxis == 1 ? pixelOffset.x : (sampleX + 0.5f) / samplesPerAxis;
+            const float offsetY = samplesPerAxis == 1 ? pixelOffset.y : (sampleY + 0.5f) / samplesPerAxis;
+            float directionX[kRunPixels], directionY[kRunPixels], directionZ[kRunPixels];
+            for (int from = 0; from < count; from += kPacket)
+              primaryDirections8(view, x0 + from, offsetX, y + offsetY, directionX + from, directionY + from, directionZ + from);
+            glm::vec3 colors[kRunPixels];
+            if (outside) {
+              // Nothing here can meet the slime or its shadow: the floor or the sky, in lanes.
+              tracer.traceFloorOrSky(eye, directionX, directionY, directionZ, count, counts, colors);
+            } else {
+              Ray rays[kWavefrontPixels];
+              bool active[kWavefrontPixels] = {};
+              SlimeHit hits[kWavefrontPixels];
+              for (int from = 0; from < count; from += kPacket) {  // the primaries' hits, 8 at a time
+                const int size = std::min(kPacket, count - from);
+                int activeCount = 0;
+                for (int i = from; i < from + size; ++i) {
+                  rays[i] = Ray{eye, {directionX[i], directionY[i], directionZ[i]}, 0.0f, kInfinity};
+                  active[i] = geometry.mayHit(rays[i]);
+                  activeCount += active[i];
+                }
+                if (activeCount == 0) continue;
+                counts.slimeQueries += static_cast<std::uint64_t>(activeCount);
+                if (visibility.ready()) visibility.hits8(x0 + from, y, size, active + from, hits + from);
+                else if (!intersector.primaryHits8(rays + from, active + from, hits + from))
+                  intersector.intersect8(rays + from, active + from, hits + from);
+              }
+              tracer.tracePrimaries(rays, hits, count, counts, floorShadings ? floorShadings + first : nullptr, colors);
+            }
+            for (int i = 0; i < count; ++i) sums[i] += colors[i];
+          }
+        }
+        glm::vec3* pixels = &image.pixels[first];
+        int nonFinite = 0;
+        for (int i = 0; i < count; ++i) {
+          const glm::vec3 color = samplesPerAxis == 1 ? sums[i] : sums[i] * inverseSamples;
+          // A non-finite colour would be a bug upstream: count it (tests demand 0), never show it.
+          const bool finite = std::isfinite(color.x + color.y + color.z);
+          nonFinite += !finite;
+          pixels[i] = finite ? color : glm::vec3(0.0f);
+        }
+        counts.nonFinitePixels += static_cast<std::uint64_t>(nonFinite);
+        if (outside && floorShadings) {
+          std::copy(pixels, pixels + count, &reusableColors[first]);
+          std::fill(&reusable[first], &reusable[first] + count, std::uint8_t{1});
+        }
+        if (srgba) {
+          encodeSrgb8(&image.pixels[first], static_cast<std::size_t>(count), 4, srgba + 4 * first);
+          counts.bytesWritten = counts.bytesWritten.unitedWith({x0, y, x0 + count, y + 1});
+        }
+      }
+    }
+    counts.busyMs += millisecondsSince(start);
+  }
+};
+
+Renderer::Renderer(const Settings& settings) : impl_(std::make_unique<Impl>(settings)) {}
+
+Renderer::~Renderer() = default;
+
+void Renderer::updateSlime(const std::vector<glm::dvec3>& positions, const std::vector<Triangle>& triangles) {
+  const auto start = std::chrono::steady_clock::now();
+  const bool topologyChanged = impl_->geometry.update(positions, triangles);
+  impl_->embree.update(impl_->geometry, topologyChanged);
+  impl_->refitMs = millisecondsSince(start);
+}
+
+RenderStats Renderer::render(const Settings& settings, Image& image, std::vector<std::uint8_t>* srgba,
+                             bool buffersKept, glm::vec2 pixelOffset) {
+  Impl& impl = *impl_;
+  const auto start = std::chrono::steady_clock::now();
+  impl.sync(settings);
+  RenderStats stats;
+  stats.refitMs = impl.refitMs;
+  if (image.width <= 0 || image.height <= 0) return stats;
+  std::uint8_t* bytes = nullptr;
+  if (srgba) {
+    srgba->resize(4 * image.pixels.size());
+    bytes = srgba->data();
+  }
+
+  const ShadingParameters parameters = makeShadingParameters(settings, image.height);
+  const Camera camera = makeCamera(settings.camera, image.width, image.height);
+  const int samplesPerAxis = std::max(1, static_cast<int>(std::lround(std::sqrt(std::max(1, settings.render.spp)))));
+  const bool brute = settings.render.backend == "brute";
+  const SlimeIntersector& intersector = brute ? static_cast<const SlimeIntersector&>(impl.brute) : impl.embree;
+  const WhittedTracer tracer(impl.geometry, intersector, impl.floor, parameters);
+
+  FloorShading* floorShadings = nullptr;  // the caches, with one sample per pixel while the view holds
+  const bool lastKeptCaches = impl.lastKeptCaches;
+  impl.lastKeptCaches = false;  // until this frame is finished
+  impl.imageInPlace = impl.bytesInPlace = false;
+  // Outside the footprint a pixel sees only the floor or the sky, whatever its samples. Beside it,
+  // the grids of the triangles as the light and the eye see them, which answer the shadow rays' and
+  // the primary rays' queries (the brute force, the oracle, asks its own).
+  const auto footprintOfTheSlime = [&] {
+    slimeFootprint(camera, impl.geometry, parameters, image.width, image.height, impl.footprint);
+  };
+  // The primary rays' first hits in object order where one sample a pixel is traced; else the eye's grid.
+  const auto primaryHits = [&] {
+    const bool found = samplesPerAxis == 1 && impl.visibility.build(impl.geometry, camera, image.width, image.height, pixelOffset);
+    if (!found) impl.visibility.clear();
+    impl.embree.prepareEye(impl.geometry, glm::vec3(camera.position), !found);
+  };
+  if (brute) {
+    footprintOfTheSlime();
+    impl.visibility.clear();
+    impl.embree.prepareLight(impl.geometry, parameters.lightPosition, false);
+    impl.embree.prepareEye(impl.geometry, glm::vec3(camera.position), false);
+  } else {
+    const auto task = [&impl](auto&& work) {
+      return [&impl, work] {
+        takeOver(&impl);
+        work();
+        handOff(&impl);
+      };
+    };
+    handOff(&impl);
+    impl.arena->execute([&] {
+      tbb::parallel_invoke(task(footprintOfTheSlime),
+                           task([&] { impl.embree.prepareLight(impl.geometry, parameters.lightPosition, parameters.shadows); }),
+                           task(primaryHits));
+    });
+    takeOver(&impl);
+  }
+  const ScreenFootprint* footprint = &impl.footprint;
+  if (samplesPerAxis == 1) {
+    const FloorCacheKey view = floorCacheKey(camera, parameters, image.width, image.height, pixelOffset);
+    const bool viewChanged = !impl.lastViewValid || view != impl.lastView;
+    const bool keepsMoving = viewChanged && impl.lastViewChanged;
+    impl.lastView = view;
+    impl.lastViewValid = true;
+    impl.lastViewChanged = viewChanged;
+    impl.cachesStale = !impl.floorCacheValid || view != impl.floorCacheView;
+    if (impl.cachesStale && keepsMoving) {
+      impl.floorCacheValid = false;  // no caches this frame
+    } else {
+      if (impl.cachesStale) {
+        impl.floorCache.resize(image.pixels.size());
+        impl.reusableColors.resize(image.pixels.size());
+        impl.reusable.resize(image.pixels.size());
+        impl.floorCacheView = view;
+        impl.floorCacheValid = true;
+      }
+      floorShadings = impl.floorCache.data();
+      impl.imageInPlace = buffersKept && lastKeptCaches && !impl.cachesStale && impl.lastPixels == image.pixels.data();
+      impl.bytesInPlace = impl.imageInPlace && bytes && impl.lastBytes == bytes;
+    }
+  }
+
+  for (TraceCounters& counts : impl.counters) counts = TraceCounters{};
+  stats.setupMs = millisecondsSince(start);
+  stats.threads = brute ? 1 : impl.arena->max_concurrency();
+  if (brute) {
+    // The seed's algorithm is the oracle: one thread, no packets that matter, every triangle.
+    impl.traceTile(tracer, intersector, camera, samplesPerAxis, pixelOffset, 0, image.height, 0, image.width, image, bytes,
+                   floorShadings, footprint, impl.counters.local());
+  } else {
+    handOff(&impl);  // the frame's inputs, to the workers
+    impl.arena->execute([&] {
+      tbb::parallel_for(tbb::blocked_range2d<int>(0, image.height, kTileRows, 0, image.width, kTileColumns),
+                        [&](const tbb::blocked_range2d<int>& tile) {
+                          takeOver(&impl);
+                          impl.traceTile(tracer, intersector, camera, samplesPerAxis, pixelOffset, tile.rows().begin(),
+                                         tile.rows().end(), tile.cols().begin(), tile.cols().end(), image, bytes,
+                                         floorShadings, footprint, impl.counters.local());
+                          handOff(&impl);  // the tile's pixels and counters, back to the caller
+                        });
+    });
+    takeOver(&impl);
+  }
+  for (const TraceCounters& counts : impl.counters) {
+    stats.rays.primary += counts.rays.primary;
+    stats.rays.shadow += counts.rays.shadow;
+    stats.rays.reflection += counts.rays.reflection;
+    stats.rays.refraction += counts.rays.refraction;
+    stats.slimeQueries += counts.slimeQueries;
+    stats.nonFinitePixels += counts.nonFinitePixels;
+    stats.cachedFloorPixels += counts.cachedFloorPixels;
+    stats.reusedPixels += counts.reusedPixels;
+    stats.busyMs += counts.busyMs;
+    stats.bytesWritten = stats.bytesWritten.unitedWith(counts.bytesWritten);
+  }
+  impl.lastPixels = image.pixels.data();
+  impl.lastBytes = bytes;
+  std::swap(impl.footprint, impl.lastFootprint);
+  impl.lastKeptCaches = floorShadings != nullptr;
+  stats.traceMs = millisecondsSince(start);
+  return stats;
+}
+
+std::optional<glm::dvec3> Renderer::pick(const Settings& settings, double u, double v) const {
+  const Camera camera = makeCamera(settings.camera, std::max(1, settings.camera.width), std::max(1, settings.camera.height));
+  const Ray ray{glm::vec3(camera.position), glm::vec3(camera.rayDirection(u, v)), 0.0f, kInfinity};
+  if (!impl_->geometry.mayHit(ray)) return std::nullopt;
+  const SlimeHit hit = impl_->embree.intersect(ray);
+  if (!hit.valid()) return std::nullopt;
+  return glm::dvec3(ray.origin + hit.t * ray.direction);
+}
+
+}  // namespace slime

@@ -1,0 +1,241 @@
+// The viewer's frame code, run headless (EGL surfaceless, no display): the same code as the window.
+#include "app/viewer/headless_gl.h"
+#include "app/viewer/panels.h"
+#include "app/viewer/ui_snapshot.h"
+#include "app/viewer/viewer.h"
+#include "core/scene/scenario.h"
+#include "core/settings/settings_io.h"
+#include "render/image/image_io.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+namespace slime {
+namespace {
+
+Settings smallScene() {
+  Settings settings = defaultSettings();
+  settings.camera.width = 320;
+  settings.camera.height = 240;
+  settings.slime.level = 2;
+  return settings;
+}
+
+// The headless back-end with a clock that runs: every frame `secondsPerFrame` of wall time passes, so
+// the physics steps and a scenario plays, the same in every run whatever the machine's speed.
+class SteppingHeadlessGl final : public ViewerBackend {
+ public:
+  SteppingHeadlessGl(int width, int height, double secondsPerFrame)
+      : gl_(width, height), secondsPerFrame_(secondsPerFrame) {}
+  FrameInput pollInput() override {
+    FrameInput input = gl_.pollInput();
+    input.elapsedSeconds = secondsPerFrame_;
+    return input;
+  }
+  glm::ivec2 framebufferSize() const override { return gl_.framebufferSize(); }
+  glm::ivec2 windowSize() const override { return gl_.windowSize(); }
+  void initImGuiPlatform() override { gl_.initImGuiPlatform(); }
+  void newImGuiPlatformFrame() override { gl_.newImGuiPlatformFrame(); }
+  void shutdownImGuiPlatform() override { gl_.shutdownImGuiPlatform(); }
+  bool keepsFramebuffer() const override { return gl_.keepsFramebuffer(); }
+  void present(const std::vector<PixelRect>& changed) override { gl_.present(changed); }
+  void waitForInput(double seconds) override { waits.push_back(seconds); }
+
+  std::vector<double> waits;  // every waitForInput the viewer asked for, in order
+
+ private:
+  HeadlessGl gl_;
+  double secondsPerFrame_;
+};
+
+nlohmann::json readJson(const std::filesystem::path& path) {
+  std::ifstream file(path);
+  return nlohmann::json::parse(file);
+}
+
+TEST(HeadlessViewer, RunsFramesWithoutAdvancingThePhysicsClock) {
+  HeadlessGl backend(320, 240);
+  Viewer viewer(backend, smallScene(), ViewerOptions{});
+  for (int frame = 0; frame < 3; ++frame) EXPECT_TRUE(viewer.frame());
+  EXPECT_EQ(viewer.stats().frames, 3);
+  EXPECT_EQ(viewer.simulation().stepCount(), 0);  // headless time stands still: a snapshot is reproducible
+  // Nobody is interacting: the full-resolution image, filling the window right of the panel column.
+  EXPECT_EQ(viewer.stats().imageWidth, 320 - static_cast<int>(std::lround(panelColumnWidth(320.0f))));
+  EXPECT_EQ(viewer.stats().imageHeight, 240);
+  EXPECT_GT(viewer.stats().rays, 0u);
+}
+
+TEST(HeadlessViewer, StopsAfterTheRequestedNumberOfFrames) {
+  HeadlessGl backend(64, 48);
+  ViewerOptions options;
+  options.maxFrames = 2;
+  Viewer viewer(backend, smallScene(), options);
+  EXPECT_TRUE(viewer.frame());
+  EXPECT_FALSE(viewer.frame());
+}
+
+// Progressive anti-aliasing (issue 15): a still view refines frame after frame up to 16 samples per
+// pixel at full resolution, and a change (here the slime moved) starts it again from one sample.
+TEST(HeadlessViewer, AStillImageRefinesToSixteenSamplesAndAChangeResetsIt) {
+  HeadlessGl backend(320, 240);  // room for the image beside the panel column
+  Settings settings = smallScene();
+  Viewer viewer(backend, settings, ViewerOptions{});
+  ASSERT_TRUE(viewer.frame());
+  EXPECT_EQ(viewer.stats().samplesPerPixel, 1);
+  for (int frame = 0; frame < ViewerOptions{}.refineSamples + 2; ++frame) ASSERT_TRUE(viewer.frame());
+  EXPECT_EQ(viewer.stats().samplesPerPixel, ViewerOptions{}.refineSamples);
+  EXPECT_EQ(viewer.stats().imageWidth, 320 - static_cast<int>(std::lround(panelColumnWidth(320.0f))));
+  for (int step = 0; step < 50; ++step) viewer.simulation().step();  // the slime falls a visible distance
+  viewer.simulationAdvanced();
+  ASSERT_TRUE(viewer.frame());
+  EXPECT_EQ(viewer.stats().samplesPerPixel, 1);
+}
+
+// A still scene: the frames that trace (the first image, then its 16 refining samples) never wait;
+// every other frame (waiting for stillness before refining, and after the image has its samples) has
+// nothing new to trace and waits for input up to the idle frame time (the rest of 1/60 s after its
+// own work), so a still window does not spin a core.
+TEST(HeadlessViewer, FramesWithNothingNewToTraceWaitForInput) {
+  Settings settings = smallScene();
+  settings.sim.gravity = 0.0;  // the slime floats where it starts: nothing moves
+  SteppingHeadlessGl backend(320, 240, 1.0 / 30.0);
+  ViewerOptions options;
+  Viewer viewer(backend, settings, options);
+  int frames = 0;
+  while (viewer.stats().samplesPerPixel < options.refineSamples && frames < 100) {
+    ASSERT_TRUE(viewer.frame());
+    ++frames;
+  }
+  ASSERT_EQ(viewer.stats().samplesPerPixel, options.refineSamples);
+  const int tracing = 1 + options.refineSamples;  // the first image and its samples
+  EXPECT_EQ(static_cast<int>(backend.waits.size()), frames - tracing) << "over " << frames << " frames";
+  const std::size_t before = backend.waits.size();
+  for (int frame = 0; frame < 5; ++frame) ASSERT_TRUE(viewer.frame());
+  ASSERT_EQ(backend.waits.size(), before + 5) << "a frame of a still, refined image did not wait for input";
+  for (std::size_t i = before; i < backend.waits.size(); ++i) EXPECT_LE(backend.waits[i], Viewer::kIdleFrameSeconds);
+}
+
+// `slime view --scenario` (issue 15's scripted drag): the scenario's grab takes hold of the resting
+// slime and its drags pull it up, and the exit report says so, as it does for a grab with the mouse.
+// The bench's own scenario, run until half a second after its grab, at 60 frames a second (few steps
+// a frame, so that a sanitizer build's slow physics stays within the viewer's physics budget).
+TEST(HeadlessViewer, AScenarioGrabTakesHoldAndTheReportCountsIt) {
+  const Scenario scenario = loadScenario(SLIME_SOURCE_DIR "/tests/scenarios/drag_top_in_circles_6s.json");
+  const auto grab = std::find_if(scenario.events.begin(), scenario.events.end(), [](const ScenarioEvent& event) {
+    return event.kind == ScenarioEvent::Kind::Grab;
+  });
+  ASSERT_NE(grab, scenario.events.end());
+  const std::filesystem::path report =
+      std::filesystem::path(SLIME_TEST_OUTPUT_DIR) / "viewer_scenario_report.json";
+  const std::filesystem::path frameLog =
+      std::filesystem::path(SLIME_TEST_OUTPUT_DIR) / "viewer_scenario_frames.csv";
+  std::filesystem::remove(report);
+  std::filesystem::remove(frameLog);
+  constexpr double kSecondsPerFrame = 1.0 / 60.0;
+  ViewerOptions options;
+  options.scenario = scenario;
+  options.reportPath = report.string();
+  options.frameLogPath = frameLog.string();
+  options.maxFrames = static_cast<int>(std::ceil((grab->time + 0.5) / kSecondsPerFrame));
+  SteppingHeadlessGl backend(320, 240, kSecondsPerFrame);
+  Viewer viewer(backend, smallScene(), options);
+  ASSERT_EQ(viewer.run(), 0);
+  ASSERT_GT(viewer.simulation().time(), grab->time + 0.3) << "the physics fell behind the frames";
+
+  const nlohmann::json result = readJson(report);
+  ASSERT_TRUE(result.contains("machine")) << "the report does not say which machine measured it";
+  EXPECT_FALSE(result["machine"]["cpu"].get<std::string>().empty());
+  EXPECT_GE(result["machine"]["cores"].get<int>(), 1);
+  EXPECT_EQ(result["grabs"], 1);
+  EXPECT_EQ(result["grabbing"], true);
+  const double restingHeight = result["height_at_grab"];
+  EXPECT_GT(restingHeight, 0.05);  // the settled bun (5.9 cm at the default radius), not 0
+  EXPECT_LT(restingHeight, 0.065);
+  EXPECT_GT(result["peak_height_while_grabbing"].get<double>(), 1.15 * restingHeight);
+
+  // No target frame rate (the default): every traced frame at full resolution, the drag included.
+  EXPECT_EQ(result["traced_reduced_resolution_frames"], 0);
+  EXPECT_EQ(result["traced_full_resolution_frames"], result["traced_frames"]);
+  const nlohmann::json& grabbed = result["while_grabbed"];
+  EXPECT_GE(grabbed["frames"].get<int>(), 25);  // the last half second, at 60 frames a second
+  EXPECT_GT(grabbed["mean_fps"].get<double>(), 0.0);
+  EXPECT_GT(grabbed["mean_stage_ms"]["trace"].get<double>(), 0.0);
+
+  // The frame log: a header, then one line per frame; the slime is held in the last ones.
+  std::ifstream log(frameLog);
+  std::string line, last;
+  int lines = 0;
+  while (std::getline(log, line)) ++lines, last = line;
+  EXPECT_EQ(lines, 1 + options.maxFrames);
+  EXPECT_EQ(last.substr(last.rfind(',') - 2, 3), ",1,") << "the last frame is not marked grabbed: " << last;
+}
+
+// With a target frame rate the frames cannot meet (240 fps), the falling slime's frames go over budget
+// while it moves: the image is traced smaller, and the report counts those frames. Once a frame needs
+// no new image (the slime rests, or creeps too little to show) it is traced at full resolution again.
+TEST(HeadlessViewer, FramesOverTheTargetWhileTheSlimeMovesAreTracedSmaller) {
+  ViewerOptions options;
+  const std::filesystem::path report =
+      std::filesystem::path(SLIME_TEST_OUTPUT_DIR) / "viewer_adaptive_report.json";
+  options.reportPath = report.string();
+  SteppingHeadlessGl backend(320, 240, 1.0 / 30.0);
+  Settings settings = smallScene();
+  settings.render.targetFps = 240.0;  // a scene file's or --set's, as --target-fps sets it
+  Viewer viewer(backend, settings, options);
+  const int fullWidth = 320 - static_cast<int>(std::lround(panelColumnWidth(320.0f)));
+  int smallest = fullWidth;
+  for (int frame = 0; frame < 30; ++frame) {  // the first second: it falls, lands and jiggles
+    ASSERT_TRUE(viewer.frame());
+    smallest = std::min(smallest, viewer.stats().imageWidth);
+  }
+  EXPECT_LT(smallest, fullWidth);
+  EXPECT_GE(smallest, static_cast<int>(AdaptiveResolution::kMinimumScale * fullWidth) - 1);
+  EXPECT_GT(viewer.stats().reducedResolutionFrames, 0);
+  for (int frame = 0; frame < 150 && viewer.stats().renderScale < 1.0; ++frame) ASSERT_TRUE(viewer.frame());
+  EXPECT_EQ(viewer.stats().renderScale, 1.0) << "still reduced after 5 s: the slime rests by then";
+  EXPECT_EQ(viewer.stats().imageWidth, fullWidth);
+}
+
+// A scenario's "set" event edits the settings the trace reads: it is applied, and the frame it fires
+// in traces the scene anew. Without gravity the slime hangs still, so until then the image refines.
+TEST(HeadlessViewer, AScenarioSetEventIsAppliedAndDrawnAtOnce) {
+  ViewerOptions options;
+  const char* kSetColour = R"({"events": [{"t": 1.0, "set": {"slime.color": [0.9, 0.2, 0.2]}}]})";
+  options.scenario = parseScenario(nlohmann::json::parse(kSetColour), "inline");
+  Settings settings = smallScene();
+  settings.sim.gravity = 0.0;
+  SteppingHeadlessGl backend(320, 240, 1.0 / 60.0);
+  Viewer viewer(backend, settings, options);
+  int frames = 0;
+  while (viewer.settings().slime.color == settings.slime.color && frames++ < 120) {
+    EXPECT_GT(viewer.stats().samplesPerPixel, frames > 20 ? 8 : 0) << "a still image stopped refining";
+    ASSERT_TRUE(viewer.frame());
+  }
+  EXPECT_EQ(viewer.settings().slime.color, glm::dvec3(0.9, 0.2, 0.2));
+  EXPECT_EQ(viewer.stats().samplesPerPixel, 1) << "the new colour was not traced in the frame it was set";
+}
+
+TEST(UiSnapshot, WritesTheWindowWithItsPanelsAtTheCameraSize) {
+  const std::filesystem::path path = std::filesystem::path(SLIME_TEST_OUTPUT_DIR) / "ui_snapshot_test.png";
+  std::filesystem::remove(path);
+  int settleCalls = 0;
+  writeUiSnapshot(smallScene(), path.string(), [&](Simulation& simulation) {
+    ++settleCalls;
+    for (int step = 0; step < 100; ++step) simulation.step();
+  });
+  EXPECT_EQ(settleCalls, 1);
+  const Image image = readPng(path.string());
+  EXPECT_EQ(image.width, 320);
+  EXPECT_EQ(image.height, 240);
+  // The Controls window's title bar is at the top left: ImGui's dark title colour, not the scene.
+  const glm::vec3 title = image.at(20, 10);
+  EXPECT_LT(title.r + title.g + title.b, 0.3f) << "no panel title bar at (20, 10)";
+}
+
+}  // namespace
+}  // namespace slime
