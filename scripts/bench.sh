@@ -3,8 +3,9 @@
 # benchmark section.
 #   scripts/bench.sh           full run (about 10 minutes on a quiet 2-core machine) → docs/bench/
 #   scripts/bench.sh --quick   one level, few frames, every code path once (CI) → build/bench-quick/
-# Builds a Release tree of its own first (build/bench-release, or $SLIME_BENCH_BUILD), so that it never
-# races another build. Progress bars appear when stderr is a terminal.
+# Builds a Release tree of its own first (build/bench-release, or $SLIME_BENCH_BUILD: an existing tree
+# there is built as configured), so that it never races another build. Progress bars appear when
+# stderr is a terminal.
 # Nothing about timing is asserted: the figures are only as good as the machine is quiet.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -17,7 +18,11 @@ case "${1:-}" in
 esac
 
 bin=${SLIME_BENCH_BUILD:-build/bench-release}
-cmake -S . -B "$bin" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+# A tree given in SLIME_BENCH_BUILD that is already configured (CI passes the release preset's) is used
+# as it is: configuring it again as plain Release would change its flags and rebuild every target.
+if [ -z "${SLIME_BENCH_BUILD:-}" ] || [ ! -f "$bin/CMakeCache.txt" ]; then
+  cmake -S . -B "$bin" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+fi
 cmake --build "$bin" -j2 --target slime micro_bench
 # The Bullet side-by-side exists only where Debian's libbullet-dev is installed.
 cmake --build "$bin" -j2 --target bullet_ball >/dev/null 2>&1 || echo "bench: no Bullet, skipping bullet_ball"
