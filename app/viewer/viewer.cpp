@@ -44,7 +44,8 @@ Viewer::Viewer(ViewerBackend& backend, const Settings& settings, ViewerOptions o
       scenePath_(options_.scenePath),
       simulation_(settings),
       renderer_(settings),
-      refinement_(options_.refineSamples) {
+      refinement_(options_.refineSamples),
+      check_(options_.checkEvery) {
   if (options_.scenario) scenario_.emplace(*options_.scenario);
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
@@ -81,15 +82,18 @@ bool Viewer::frame() {
   refitSlime();
   const glm::dvec3 target = grabTargetFor();
   PanelRequests requests;
+  double checkMs = 0.0;
   if (scenarioSetPending()) {
     applyPhysicsOutcome(stepPhysics(input.elapsedSeconds, target));
     refitSlime();
     traceImage();
+    checkMs = checkImage();
     uploadImage();
     requests = drawPanelsAndOverlay(grabMarks());
     present();
   } else {
     traceImage();
+    checkMs = checkImage();
     const GrabMarks marks = grabMarks();
     PhysicsOutcome outcome;
     std::thread physics([this, &input, &target, &outcome] { outcome = stepPhysics(input.elapsedSeconds, target); });
@@ -101,7 +105,7 @@ bool Viewer::frame() {
   }
   applyPanelRequests(requests);
   if (!rendered_ && !quit_) backend_.waitForInput(kIdleFrameSeconds - frameTime.milliseconds() / 1000.0);
-  finishFrame(frameTime.milliseconds());
+  finishFrame(frameTime.milliseconds() - checkMs);
   return !quit_;
 }
 
@@ -128,6 +132,9 @@ int Viewer::run() {
 
 FrameInput Viewer::readInput() {
   FrameInput input = backend_.pollInput();
+  // The last frame's check is not the user's time: the physics and the clocks do not see it.
+  input.elapsedSeconds = std::max(0.0, input.elapsedSeconds - checkSecondsToSkip_);
+  checkSecondsToSkip_ = 0.0;
   toViewCoordinates(input);
   backend_.newImGuiPlatformFrame();
   ImGui_ImplOpenGL3_NewFrame();
@@ -372,6 +379,30 @@ bool Viewer::refineImage(glm::ivec2 size) {
   return refinement_.add(sampleImage_, image_, &imageBytes_);
 }
 
+// The image this frame shows (traced now or kept from an earlier frame) against the full trace of the
+// physics state the frame stands for, with the camera in force (image_check.h).
+double Viewer::checkImage() {
+  framePsnrDb_ = -1.0;
+  if (!check_.due(stats_.frames)) return 0.0;
+  const glm::ivec2 full = fullImageSize();
+  if (full.x <= 0 || image_.width <= 0 || imageBytes_.size() != 4 * image_.pixels.size()) return 0.0;
+  // A still image part-way through its refinement averages several points of each pixel: neither the
+  // one-sample nor the refined reference. Once refined fully it is the render.spp = target image.
+  Settings reference = frameSettings(full);
+  const int samples = refinement_.samples();
+  if (samples > 1 && !refinement_.converged()) {
+    check_.skipRefined();
+    return 0.0;
+  }
+  if (samples > 1) reference.render.spp = refinement_.target();
+  const double before = check_.milliseconds();
+  framePsnrDb_ = check_.check(reference, simulation_.positions(), simulation_.triangles(), imageBytes_, image_.width,
+                              image_.height, simulation_.grabbing());
+  const double spent = check_.milliseconds() - before;
+  checkSecondsToSkip_ = spent / 1000.0;
+  return spent;
+}
+
 void Viewer::uploadImage() {
   const Stopwatch uploadTime;
   if (imageTraced_) compositor_.upload(imageBytes_, image_.width, image_.height, imageChanged_);
@@ -462,6 +493,7 @@ void Viewer::finishFrame(double frameMs) {
   record.scale = stats_.renderScale;
   record.grabbed = simulation_.grabbing();
   record.simulatedSeconds = simulation_.time();
+  record.checkPsnrDb = framePsnrDb_;
   frameRecords_.push_back(record);
 }
 
