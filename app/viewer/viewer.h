@@ -113,6 +113,10 @@ class Viewer {
   // --check-every: the image this frame shows against the full trace of the same state (image_check.h);
   // returns the milliseconds it took, which the frame's time and the physics clock leave out.
   double checkImage();
+  // The physics state a checked frame stands for, kept before the steps start beside the trace.
+  void keepCheckState();
+  // Whether this frame's steps start with the trace (they outlasted the panels last frame) or after it.
+  bool physicsBesideTrace() const;
   // Where the grab ring and its line go: the target and the grabbed surface, whoever holds the slime.
   struct GrabMarks {
     std::optional<glm::dvec3> target;  // empty when nothing is held
@@ -171,6 +175,10 @@ class Viewer {
   ImageCheck check_;
   double checkSecondsToSkip_ = 0.0;  // the last check's time, taken off the next frame's elapsed time
   double framePsnrDb_ = -1.0;        // this frame's checked PSNR; < 0: not checked
+  bool checkStateKept_ = false;      // this frame is checked: the state below is the traced one
+  std::vector<glm::dvec3> checkPositions_;
+  std::vector<Triangle> checkTriangles_;
+  bool checkHandled_ = false;
   std::vector<FrameRecord> frameRecords_;  // every frame, when a frame log or report is wanted
   SlimeMetrics metrics_;
   std::optional<ScenarioPlayer> scenario_;
