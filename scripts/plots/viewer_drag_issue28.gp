@@ -9,9 +9,9 @@ main = dir."/drag_main.csv"
 this = dir."/drag_this.csv"
 check = dir."/drag_check.csv"
 set output dir."/viewer_drag_issue28.png"
-stats this using ($14 == 1 ? $15 : NaN) name "grabbed" nooutput
+stats main using ($14 == 1 ? $15 : NaN) name "grabbed" nooutput
 set object 1 rectangle from grabbed_min, graph 0 to grabbed_max, graph 1 behind fc rgb "#fff1c2" fs solid noborder
-set xrange [0:*]
+set xrange [0:12]  # the drag (held 2.5–9.5 s) and the first seconds after the release
 set lmargin 10
 set rmargin 4
 set multiplot title "Viewer over the scripted drag, 1280×720 window, AMD EPYC family 25 (2 cores, AVX2), machine shared with other builds\n{/*0.85 one run of each build, in turn; the shaded stretch: the slime held}"
