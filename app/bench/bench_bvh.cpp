@@ -20,7 +20,7 @@ using nlohmann::json;
 
 constexpr double kFrameSeconds = kStretchFrameSeconds;  // one displayed frame
 constexpr double kSettleSeconds = kStretchSettleSeconds;  // the ball lands and settles before the grab
-constexpr double kStretchSeconds = 0.3;       // the top is pulled up over this time...
+constexpr double kStretchSeconds = kStretchPullSeconds;     // the top is pulled up over this time...
 constexpr double kHoldSeconds = 0.1;          // ...then held
 constexpr double kStretchHeight = 0.05;       // m, the pull (more than half the ball's diameter)
 

@@ -31,6 +31,7 @@ struct BvhBenchOptions {
 // positions of `frames`; its triangles into `triangles`.
 constexpr double kStretchFrameSeconds = 1.0 / 60.0;
 constexpr double kStretchSettleSeconds = 0.4;
+constexpr double kStretchPullSeconds = 0.3;  // the pull after it (then held 0.1 s)
 void stretchTrajectory(Settings settings, std::vector<std::vector<glm::dvec3>>& frames, std::vector<Triangle>& triangles);
 
 // One JSON entry per update method; also appends rows to `table` (columns set by makeBvhTable).

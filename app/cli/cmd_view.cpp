@@ -1,6 +1,6 @@
 // `slime view` (and `slime` alone): the interactive window. Besides the scene options it takes the
 // camera options of `snapshot`, and a few for tests and scripts: --frames, --screenshot-on-exit, --report,
-// --frame-log; and --target-fps, the adaptive resolution's target (off by default).
+// --frame-log, --check-every; and --target-fps, the adaptive resolution's target (off by default).
 #include "app/cli/commands.h"
 #include "app/cli/snapshot.h"
 #include "app/viewer/viewer.h"
@@ -93,6 +93,11 @@ void registerViewCommand(CLI::App& root, int& exitCode) {
                       "Adaptive resolution: trace smaller while frames miss this rate as the view moves "
                       "(0 = off, the default: always full resolution); sets render.targetFps")
       ->check(CLI::Range(0.0, AdaptiveResolution::kMaximumTargetFps));
+  command->add_option("--check-every", options->viewer.checkEvery,
+                      "Every K-th frame, also trace in full the image the same physics state and camera give "
+                      "(what `snapshot` would write) and report the PSNR of the shown image against it in "
+                      "--report's \"check\" (0 = never, the default); the checks' time is left out of the frame times")
+      ->check(CLI::Range(0, 1000000));
   command->add_option("--screenshot-prefix", options->viewer.screenshotPrefix, "F12 writes <prefix>-<n>.png");
   command->add_flag("--redraw-whole-window", options->redrawWholeWindow,
                     "Draw the whole window every frame and swap buffers, instead of drawing again and "

@@ -9,17 +9,22 @@ namespace slime {
 bool writeFrameLogCsv(const std::vector<FrameRecord>& records, const std::string& path) {
   std::ofstream file(path);
   file << "frame,end_s,frame_ms,physics_ms,refit_ms,trace_ms,upload_ms,ui_ms,"
-          "traced,full_resolution,width,height,scale,grabbed,simulated_s\n";
-  char line[320];
+          "traced,full_resolution,width,height,scale,grabbed,simulated_s,check_psnr_db\n";
+  char line[360];
   for (std::size_t index = 0; index < records.size(); ++index) {
     const FrameRecord& frame = records[index];
     const StageTimes& stages = frame.stages;
-    std::snprintf(line, sizeof line, "%zu,%.4f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%d,%d,%d,%d,%.3f,%d,%.4f\n",
+    std::snprintf(line, sizeof line, "%zu,%.4f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%d,%d,%d,%d,%.3f,%d,%.4f,",
                   index, frame.endSeconds, frame.frameMs, stages.physics, stages.refit, stages.trace,
                   stages.upload, stages.ui, frame.traced ? 1 : 0, frame.fullResolution ? 1 : 0,
                   frame.imageWidth, frame.imageHeight, frame.scale, frame.grabbed ? 1 : 0,
                   frame.simulatedSeconds);
     file << line;
+    if (frame.checkPsnrDb >= 0.0) {
+      std::snprintf(line, sizeof line, "%.2f", frame.checkPsnrDb);
+      file << line;
+    }
+    file << '\n';
   }
   file.flush();
   return static_cast<bool>(file);

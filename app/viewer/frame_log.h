@@ -23,9 +23,11 @@ struct FrameRecord {
   double scale = 1.0;             // traced size / full size: render.scale × the adaptive factor
   bool grabbed = false;           // the slime was held, by the mouse or a scenario, at the frame's end
   double simulatedSeconds = 0.0;  // simulation time at the frame's end
+  double checkPsnrDb = -1.0;      // --check-every: the shown image's PSNR against the full trace; < 0: unchecked
 };
 
-// One line per frame under a header naming the columns (units in the names: _s, _ms). Returns false
+// One line per frame under a header naming the columns (units in the names: _s, _ms, _db; an
+// unchecked frame leaves check_psnr_db empty). Returns false
 // if the file cannot be written.
 bool writeFrameLogCsv(const std::vector<FrameRecord>& records, const std::string& path);
 

@@ -44,7 +44,8 @@ Viewer::Viewer(ViewerBackend& backend, const Settings& settings, ViewerOptions o
       scenePath_(options_.scenePath),
       simulation_(settings),
       renderer_(settings),
-      refinement_(options_.refineSamples) {
+      refinement_(options_.refineSamples),
+      check_(options_.checkEvery) {
   if (options_.scenario) scenario_.emplace(*options_.scenario);
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
@@ -70,29 +71,41 @@ bool Viewer::frame() {
   handleInput(input);
   if (options_.maxFrames > 0 && stats_.frames + 1 >= options_.maxFrames) quit_ = true;
   if (quit_ && !options_.screenshotOnExit.empty()) requestScreenshot(options_.screenshotOnExit);
-  // Physics runs beside the panels: this frame traces the slime as the last frame's steps left it,
-  // then this frame's steps run on a second thread while the main thread uploads the image, draws
-  // the panels and presents. The trace has both cores to itself; the panels are mostly one thread's
-  // work (measured: 28.5 fps with the physics beside the trace, 29.6 beside the panels). So that
-  // nothing is shared meanwhile, the steps hand back what they did (PhysicsOutcome) and the panels'
-  // requests wait; both are applied after the join. A scenario's "set" events edit the settings the
-  // trace reads, so while one is still to come the steps run first, alone; a scenario's grabs and
-  // drags run beside the panels, as the mouse's do.
+  // Physics runs on a second thread, never in series with the frame's other work: this frame traces
+  // the slime as the last frame's steps left it (refit first, into the renderer's own buffers), while
+  // this frame's steps run beside it. Where the steps take no longer than the upload, panels and
+  // present (a fast processor, or a light slime), they start after the trace instead, so the trace
+  // has both cores to itself (measured on AMD family 26: 28.5 fps beside the trace, 29.6 beside the
+  // panels); where they take longer (issue 28, AMD family 23/25: physics 18 ms against 3 ms of
+  // panels), they start with the trace and the two share the cores. So that nothing is shared
+  // meanwhile, the steps hand back what they did (PhysicsOutcome) and the panels' requests wait;
+  // both are applied after the join. A scenario's "set" events edit the settings the trace reads,
+  // so while one is still to come the steps run first, alone; a scenario's grabs and drags run on
+  // the second thread, as the mouse's do.
   refitSlime();
   const glm::dvec3 target = grabTargetFor();
   PanelRequests requests;
+  double checkMs = 0.0;
   if (scenarioSetPending()) {
     applyPhysicsOutcome(stepPhysics(input.elapsedSeconds, target));
     refitSlime();
+    keepCheckState();
     traceImage();
+    checkMs = checkImage();
     uploadImage();
     requests = drawPanelsAndOverlay(grabMarks());
     present();
   } else {
-    traceImage();
     const GrabMarks marks = grabMarks();
+    keepCheckState();
     PhysicsOutcome outcome;
-    std::thread physics([this, &input, &target, &outcome] { outcome = stepPhysics(input.elapsedSeconds, target); });
+    const auto steps = [this, &input, &target, &outcome] { outcome = stepPhysics(input.elapsedSeconds, target); };
+    std::thread physics;
+    const bool besideTrace = physicsBesideTrace();
+    if (besideTrace) physics = std::thread(steps);
+    traceImage();
+    checkMs = checkImage();
+    if (!besideTrace) physics = std::thread(steps);
     uploadImage();
     requests = drawPanelsAndOverlay(marks);
     present();
@@ -101,7 +114,7 @@ bool Viewer::frame() {
   }
   applyPanelRequests(requests);
   if (!rendered_ && !quit_) backend_.waitForInput(kIdleFrameSeconds - frameTime.milliseconds() / 1000.0);
-  finishFrame(frameTime.milliseconds());
+  finishFrame(frameTime.milliseconds() - checkMs);
   return !quit_;
 }
 
@@ -128,6 +141,9 @@ int Viewer::run() {
 
 FrameInput Viewer::readInput() {
   FrameInput input = backend_.pollInput();
+  // The last frame's check is not the user's time: the physics and the clocks do not see it.
+  input.elapsedSeconds = std::max(0.0, input.elapsedSeconds - checkSecondsToSkip_);
+  checkSecondsToSkip_ = 0.0;
   toViewCoordinates(input);
   backend_.newImGuiPlatformFrame();
   ImGui_ImplOpenGL3_NewFrame();
@@ -372,6 +388,42 @@ bool Viewer::refineImage(glm::ivec2 size) {
   return refinement_.add(sampleImage_, image_, &imageBytes_);
 }
 
+// The image this frame shows (traced now or kept from an earlier frame) against the full trace of the
+// physics state the frame stands for, with the camera in force (image_check.h).
+bool Viewer::physicsBesideTrace() const {
+  return stats_.stages.physics > stats_.stages.upload + stats_.stages.ui;
+}
+
+void Viewer::keepCheckState() {
+  checkStateKept_ = check_.due(stats_.frames);
+  if (!checkStateKept_) return;
+  checkPositions_ = simulation_.positions();
+  checkTriangles_ = simulation_.triangles();
+  checkHandled_ = simulation_.grabbing();
+}
+
+double Viewer::checkImage() {
+  framePsnrDb_ = -1.0;
+  if (!checkStateKept_) return 0.0;
+  const glm::ivec2 full = fullImageSize();
+  if (full.x <= 0 || image_.width <= 0 || imageBytes_.size() != 4 * image_.pixels.size()) return 0.0;
+  // A still image part-way through its refinement averages several points of each pixel: neither the
+  // one-sample nor the refined reference. Once refined fully it is the render.spp = target image.
+  Settings reference = frameSettings(full);
+  const int samples = refinement_.samples();
+  if (samples > 1 && !refinement_.converged()) {
+    check_.skipRefined();
+    return 0.0;
+  }
+  if (samples > 1) reference.render.spp = refinement_.target();
+  const double before = check_.milliseconds();
+  framePsnrDb_ = check_.check(reference, checkPositions_, checkTriangles_, imageBytes_, image_.width,
+                              image_.height, checkHandled_);
+  const double spent = check_.milliseconds() - before;
+  checkSecondsToSkip_ = spent / 1000.0;
+  return spent;
+}
+
 void Viewer::uploadImage() {
   const Stopwatch uploadTime;
   if (imageTraced_) compositor_.upload(imageBytes_, image_.width, image_.height, imageChanged_);
@@ -462,6 +514,7 @@ void Viewer::finishFrame(double frameMs) {
   record.scale = stats_.renderScale;
   record.grabbed = simulation_.grabbing();
   record.simulatedSeconds = simulation_.time();
+  record.checkPsnrDb = framePsnrDb_;
   frameRecords_.push_back(record);
 }
 

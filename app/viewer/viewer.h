@@ -13,6 +13,7 @@
 #include "app/viewer/frame_compositor.h"
 #include "app/viewer/frame_log.h"
 #include "app/viewer/frame_stats.h"
+#include "app/viewer/image_check.h"
 #include "app/viewer/interaction.h"
 #include "app/viewer/panels.h"
 #include "app/viewer/physics_clock.h"
@@ -40,6 +41,7 @@ struct ViewerOptions {
   std::optional<Scenario> scenario;                 // timed grab/drag/press/set events to replay
   std::string scenePath = "slime-scene.json";       // where Ctrl+S saves and Ctrl+O loads (panel field)
   int refineSamples = 16;  // samples per pixel a still image accumulates (1: none, as `snapshot` shows it)
+  int checkEvery = 0;      // every K-th frame, the image shown against a full trace (image_check.h); 0: never
 };
 
 // validateSettings, and what only the renderer finds out: that a floor image can be read
@@ -108,6 +110,13 @@ class Viewer {
   void traceImage();
   bool refineImage(glm::ivec2 size);    // traces one more sample of a still image; true if it shows
   void uploadImage();
+  // --check-every: the image this frame shows against the full trace of the same state (image_check.h);
+  // returns the milliseconds it took, which the frame's time and the physics clock leave out.
+  double checkImage();
+  // The physics state a checked frame stands for, kept before the steps start beside the trace.
+  void keepCheckState();
+  // Whether this frame's steps start with the trace (they outlasted the panels last frame) or after it.
+  bool physicsBesideTrace() const;
   // Where the grab ring and its line go: the target and the grabbed surface, whoever holds the slime.
   struct GrabMarks {
     std::optional<glm::dvec3> target;  // empty when nothing is held
@@ -163,6 +172,13 @@ class Viewer {
   PhysicsClock clock_;
   FrameStats stats_;
   AdaptiveResolution resolution_;
+  ImageCheck check_;
+  double checkSecondsToSkip_ = 0.0;  // the last check's time, taken off the next frame's elapsed time
+  double framePsnrDb_ = -1.0;        // this frame's checked PSNR; < 0: not checked
+  bool checkStateKept_ = false;      // this frame is checked: the state below is the traced one
+  std::vector<glm::dvec3> checkPositions_;
+  std::vector<Triangle> checkTriangles_;
+  bool checkHandled_ = false;
   std::vector<FrameRecord> frameRecords_;  // every frame, when a frame log or report is wanted
   SlimeMetrics metrics_;
   std::optional<ScenarioPlayer> scenario_;

@@ -92,6 +92,10 @@ nlohmann::json summaryJson(const FrameSummary& summary) {
           {"traced_reduced_resolution_frames", summary.reducedResolutionFrames}};
 }
 
+nlohmann::json psnrJson(const PsnrFigures& figures) {
+  return {{"frames", figures.frames}, {"psnr_db", {{"mean", figures.meanDb()}, {"min", figures.minimumDb()}}}};
+}
+
 }  // namespace
 
 void Viewer::writeReport() const {
@@ -127,6 +131,15 @@ void Viewer::writeReport() const {
       {"file_message", fileMessage_},
       {"reload_pending", differingReloadFields(wanted_, built_)},
       {"screenshots", screenshotsWritten_},
+      // --check-every K: the shown images against full traces of the same state (image_check.h);
+      // "frames" is 0 and the PSNRs 0 when no frame was checked. 100 dB: identical.
+      {"check",
+       {{"every", check_.every()},
+        {"frames", check_.all().frames},
+        {"psnr_db", {{"mean", check_.all().meanDb()}, {"min", check_.all().minimumDb()}}},
+        {"while_handled", psnrJson(check_.handled())},
+        {"skipped_refining_frames", check_.skippedRefined()},
+        {"milliseconds", check_.milliseconds()}}},
       {"settings", settingsToJson(settings_)}};
   try {
     writeFileAtomically(options_.reportPath, report.dump(2) + "\n");

@@ -140,6 +140,34 @@ TEST(BenchRender, OneTinyLevelHasEveryField) {
   EXPECT_TRUE(std::ifstream(outputPath("bench_render_seed.csv")).good());
 }
 
+// Issue 28: each headline row has the handled frame (camera still, the slime pulled frame after
+// frame, traced as the viewer does with its reuse) beside the every-pixel deforming frame.
+TEST(BenchRender, TheHeadlineHasTheHandledFrame) {
+  RenderBenchOptions options;
+  options.levels = {1};
+  options.threads = {1};
+  options.frames = 3;
+  options.warmup = 1;
+  options.width = 32;
+  options.height = 24;
+  options.bruteMaxLevel = -1;
+  options.bvhLevels = {};
+  options.headlineSizes = {{120, 90}};
+  options.headlineLevel = 2;
+  const json report = runRenderBench(defaultSettings(), options);
+  ASSERT_EQ(report["interactive_headline"].size(), 1u);
+  const json& row = report["interactive_headline"][0];
+  const double handled = row["handled_frame_ms"].get<double>(), deforming = row["deforming_frame_ms"].get<double>();
+  EXPECT_GT(handled, 0.0);
+  EXPECT_EQ(handled, row["handled_frame"]["ms"]["median"].get<double>());
+  EXPECT_NEAR(row["handled_over_deforming"].get<double>(), handled / deforming, 1e-12);
+  // The slime moved every frame, so some pixels were traced; the floor away from it was kept.
+  const auto reused = row["handled_frame"]["reused_pixels"].get<std::uint64_t>();
+  EXPECT_GT(reused, 0u);
+  EXPECT_LT(reused, 120u * 90u);
+  EXPECT_GT(row["handled_frame"]["rays"]["slime_queries"].get<std::uint64_t>(), 0u);
+}
+
 // Fewer brute-force samples than 3 are allowed (a quick run) but the headline says so.
 TEST(BenchRender, QuickBruteForceIsLabelled) {
   RenderBenchOptions options;
