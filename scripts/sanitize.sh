@@ -27,7 +27,7 @@ for preset in "${@:-asan tsan}"; do
         # Processes that load Mesa's GL driver (the window, the EGL snapshot) run without LeakSanitizer:
         # the driver's own allocations are reported only after it is unloaded at exit, from an
         # "<unknown module>" no suppression can name. ASan's memory errors and UBSan stay on for them.
-        gl='HeadlessViewer|UiSnapshot|FrameCompositor|^viewer_'
+        gl='HeadlessViewer|ViewerCheck|UiSnapshot|FrameCompositor|^viewer_'
         ctest --preset asan -j2 --timeout 900 -E "$gl|$long_physics"
         ASAN_OPTIONS="${ASAN_OPTIONS/detect_leaks=1/detect_leaks=0}" ctest --preset asan -j2 --timeout 900 -R "$gl" ;;
       tsan)
