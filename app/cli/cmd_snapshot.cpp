@@ -21,9 +21,11 @@ struct SnapshotOptions {
   std::vector<double> viewPoint, viewTarget;
   std::optional<double> fov;
   bool ui = false;  // --ui: the whole viewer, panels included, drawn headless (app/viewer/ui_snapshot.h)
+  std::string gl = "auto";  // --gl: which library draws it headless
 };
 
 void runSnapshot(const SnapshotOptions& options) {
+  const HeadlessApi api = headlessApiNamed(options.gl);
   Settings settings = loadSettings(options.scene);
   if (!options.size.empty()) applyImageSize(settings, options.size);
   if (options.fov) {
@@ -42,7 +44,7 @@ void runSnapshot(const SnapshotOptions& options) {
   if (options.ui) {
     writeUiSnapshot(settings, options.output, [&](Simulation& simulation) {
       settleForSnapshot(simulation, settings, options.settle, options.scene.scenarioFile);
-    });
+    }, api);
     std::printf("wrote %s (%dx%d, viewer with panels)\n", options.output.c_str(), settings.camera.width,
                 settings.camera.height);
     return;
@@ -75,7 +77,9 @@ void registerSnapshotCommand(CLI::App& root, int& exitCode) {
   command->add_option("--eye,--vp", options->viewPoint, "Eye position x y z, m")->expected(3);
   command->add_option("--look-at,--vi", options->viewTarget, "Point to look at x y z, m (sets yaw and pitch)")->expected(3);
   command->add_option("--fov", options->fov, "Vertical field of view, degrees");
-  command->add_flag("--ui", options->ui, "Draw the whole viewer (image and panels) headless, through EGL");
+  command->add_flag("--ui", options->ui, "Draw the whole viewer (image and panels) headless");
+  command->add_option("--gl", options->gl,
+                      "With --ui, the headless GL: egl, osmesa, or auto (EGL, else OSMesa; the default)");
   addSceneOptions(*command, options->scene);
   command->callback([options, &exitCode] {
     runSnapshot(*options);
