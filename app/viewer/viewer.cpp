@@ -399,7 +399,7 @@ PanelRequests Viewer::drawPanelsAndOverlay(const GrabMarks& marks) {
   draft_ = settings_;
   copyReloadFields(wanted_, draft_);
   const PanelView view{stats_,       metrics_, editError_, errorGroup_, differingReloadFields(draft_, built_),
-                       fileMessage_, fileFailed_};
+                       fileMessage_, fileFailed_, &settings_};
   const PanelRequests requests = drawPanels(draft_, scenePath_, view);
   if (showHelp_) drawHelpOverlay(requests.columnWidth);
 
