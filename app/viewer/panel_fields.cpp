@@ -25,21 +25,21 @@ std::vector<const void*> fieldAddresses(const Settings& settings) {
 }
 
 // Labels in words where the key's own words ("longTerm") would not say it; other keys' names are
-// split at their capitals ("timeScale" → "time scale"). The seed's stiffness and damping sliders are
-// the membrane's; the bulk labels say which of its settings carries them.
+// split at their capitals ("timeScale" → "time scale"). At most 15 letters: what the 250-pixel column
+// shows beside a widget. The meaning, with the unit and range, is in the tooltip.
 constexpr std::pair<std::string_view, std::string_view> kLabels[] = {
     {"camera.fov", "field of view"},          {"floor.colorA", "colour A"},
     {"floor.colorB", "colour B"},             {"floor.specular", "specular"},
-    {"slime.level", "mesh level"},            {"slime.resolution", "body resolution"},
-    {"slime.autoLevel", "automatic level"},   {"slime.stiffness", "spring stiffness"},
-    {"slime.damping", "spring damping"},      {"slime.pressure", "volume pressure"},
-    {"slime.rolling", "rolling decay"},       {"slime.modulus", "stiffness (shear modulus)"},
-    {"slime.longTerm", "long-term fraction"}, {"slime.relaxation", "relaxation time"},
-    {"slime.poisson", "Poisson ratio"},       {"slime.viscosity", "damping (viscosity)"},
-    {"slime.position", "start position"},    {"slime.color", "colour"},
-    {"slime.ior", "refractive index"},        {"render.depth", "ray depth"},
-    {"render.spp", "samples per pixel"},      {"render.scale", "resolution scale"},
-    {"render.targetFps", "target frame rate"}, {"render.optics", "optics"},
+    {"slime.level", "mesh level"},            {"slime.resolution", "body level"},
+    {"slime.autoLevel", "automatic level"},   {"slime.stiffness", "stiffness"},
+    {"slime.damping", "damping"},      {"slime.pressure", "volume pressure"},
+    {"slime.rolling", "rolling decay"},       {"slime.modulus", "shear modulus"},
+    {"slime.longTerm", "long-term part"}, {"slime.relaxation", "relaxation time"},
+    {"slime.poisson", "Poisson ratio"},       {"slime.viscosity", "viscosity"},
+    {"slime.position", "position"},    {"slime.color", "colour"},
+    {"slime.ior", "refraction"},        {"render.depth", "ray depth"},
+    {"render.spp", "samples/pixel"},      {"render.scale", "image scale"},
+    {"render.targetFps", "target frames/s"}, {"render.optics", "optics"},
     {"sim.dt", "time step"},                  {"sim.paused", "paused"},
 };
 

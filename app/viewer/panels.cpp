@@ -291,7 +291,7 @@ PanelRequests drawPanels(Settings& draft, std::string& scenePath, const PanelVie
   ImGui::PopStyleVar();
   if (open) {
     requests.columnWidth = width;
-    ImGui::PushItemWidth(width * 0.55f);
+    ImGui::PushItemWidth(width * 0.45f);  // the rest for labels in words ("long-term fraction")
     ImGui::SetNextItemOpen(true, ImGuiCond_Once);
     if (ImGui::CollapsingHeader("Scene file")) sceneSection(scenePath, view, requests);
     for (const PanelGroup& group : panelGroups()) {

@@ -40,7 +40,7 @@ screenshot 3
 click_at 60 82              # the Light section's header
 sleep 1
 screenshot 4
-type_into 122 105 "150"     # z 150 m: outside −100..100 m (its prefixes 1 and 15 are inside)
+type_into 100 105 "150"     # z 150 m: outside −100..100 m (its prefixes 1 and 15 are inside)
 screenshot 5
 quit_viewer
 

@@ -36,8 +36,8 @@ TEST(PanelOffer, BulkSlimeGetsNoMembraneSlider) {
   // The seed's sliders say where they went.
   EXPECT_NE(inactiveReason(fieldOf("slime.stiffness"), bulk).find("slime.modulus"), std::string::npos);
   EXPECT_NE(inactiveReason(fieldOf("slime.damping"), bulk).find("slime.viscosity"), std::string::npos);
-  EXPECT_NE(fieldOf("slime.modulus").label.find("stiffness"), std::string::npos);
-  EXPECT_NE(fieldOf("slime.viscosity").label.find("damping"), std::string::npos);
+  EXPECT_NE(fieldOf("slime.modulus").setting.help.find("stiffness"), std::string::npos);
+  EXPECT_NE(fieldOf("slime.viscosity").setting.help.find("damping"), std::string::npos);
 }
 
 TEST(PanelOffer, MembraneSlimeGetsNoBulkSlider) {
@@ -75,12 +75,15 @@ TEST(PanelOffer, LabelsAreLowerCaseWordsNotKeys) {
   for (const PanelField& field : panelFields()) {
     const std::string& label = field.label;
     EXPECT_FALSE(label.empty()) << field.setting.key;
+    if (field.widget != Widget::Checkbox)  // a checkbox's label starts at its box, not after a widget
+      EXPECT_LE(label.size() + (field.appliesOnReload ? 2 : 0), 15u) << field.setting.key << ": '" << label
+                                                                   << "' does not fit beside its widget";
     // No camelCase key name: a capital only starts a word ("Poisson ratio", "colour A").
     for (std::size_t i = 1; i < label.size(); ++i)
       EXPECT_FALSE(std::isupper(static_cast<unsigned char>(label[i])) && label[i - 1] != ' ')
           << field.setting.key << " is labelled '" << label << "'";
   }
-  EXPECT_EQ(fieldOf("slime.longTerm").label, "long-term fraction");
+  EXPECT_EQ(fieldOf("slime.longTerm").label, "long-term part");
   EXPECT_EQ(fieldOf("slime.relaxation").label, "relaxation time");
   EXPECT_EQ(fieldOf("slime.autoLevel").label, "automatic level");
 }
