@@ -135,10 +135,11 @@ void registerRecordCommand(CLI::App& root, int& exitCode) {
   command->add_option("--fps", options->fps, "Frames per simulated second (1..120, default 30)");
   command->add_option("--size", options->size,
                       "Frame size WxH in pixels, default camera.width x camera.height");
-  command->add_flag("--ui", options->ui,
+  auto* ui = command->add_flag("--ui", options->ui,
                     "Record the whole viewer (image and panels), drawn headless");
   command->add_option("--gl", options->gl,
-                      "With --ui, the headless GL: egl, osmesa, or auto (EGL, else OSMesa; the default)");
+                      "With --ui, the headless GL: egl, osmesa, or auto (EGL, else OSMesa; the default)")
+      ->needs(ui);
   addSceneOptions(*command, options->scene);
   command->callback([options, &exitCode] {
     runRecord(*options);

@@ -89,9 +89,10 @@ void registerSnapshotCommand(CLI::App& root, int& exitCode) {
   command->add_option("--eye,--vp", options->viewPoint, "Eye position x y z, m")->expected(3);
   command->add_option("--look-at,--vi", options->viewTarget, "Point to look at x y z, m (sets yaw and pitch)")->expected(3);
   command->add_option("--fov", options->fov, "Vertical field of view, degrees");
-  command->add_flag("--ui", options->ui, "Draw the whole viewer (image and panels) headless");
+  auto* ui = command->add_flag("--ui", options->ui, "Draw the whole viewer (image and panels) headless");
   command->add_option("--gl", options->gl,
-                      "With --ui, the headless GL: egl, osmesa, or auto (EGL, else OSMesa; the default)");
+                      "With --ui, the headless GL: egl, osmesa, or auto (EGL, else OSMesa; the default)")
+      ->needs(ui);
   command->add_option("--export-mesh", options->exportMesh,
                       "Also write the frame's slime surface: .ply (binary), .obj or .glb, by the extension");
   addSceneOptions(*command, options->scene);
