@@ -28,7 +28,7 @@ struct SnapshotOptions {
 
 void runSnapshot(const SnapshotOptions& options) {
   const HeadlessApi api = headlessApiNamed(options.gl);
-  if (!options.exportMesh.empty()) meshFormatOf(options.exportMesh);  // a bad name fails before the work
+  if (!options.exportMesh.empty()) checkMeshPath(options.exportMesh);  // a bad path fails before the work
   Settings settings = loadSettings(options.scene);
   if (!options.size.empty()) applyImageSize(settings, options.size);
   if (options.fov) {

@@ -109,10 +109,14 @@ MeshFormat meshFormatOf(const std::string& path, const std::string& option) {
   throw SettingsError(option + " " + path + ": expected a file ending in .ply, .obj or .glb");
 }
 
-void writeSurfaceMesh(const std::string& path, const SurfaceMesh& mesh) {
+MeshFormat checkMeshPath(const std::string& path) {
   const MeshFormat format = meshFormatOf(path);
   checkWritable(path, "--export-mesh");
-  writeFileAtomically(path, bytesOf(format, mesh));
+  return format;
+}
+
+void writeSurfaceMesh(const std::string& path, const SurfaceMesh& mesh) {
+  writeFileAtomically(path, bytesOf(checkMeshPath(path), mesh));
 }
 
 MeshExporter::MeshExporter(std::string pattern, double every, double dt, double seconds)

@@ -17,6 +17,10 @@ enum class MeshFormat { Ply, Obj, Glb };
 // The format of `path` by its extension; SettingsError naming `option` and the allowed ones otherwise.
 MeshFormat meshFormatOf(const std::string& path, const std::string& option = "--export-mesh");
 
+// The format of `path`, after checking that its directory exists and takes a new file: a SettingsError
+// otherwise, so that a command can refuse the path before its work.
+MeshFormat checkMeshPath(const std::string& path);
+
 // Writes one surface to `path` in the format of its extension (a .glb without animation).
 void writeSurfaceMesh(const std::string& path, const SurfaceMesh& mesh);
 

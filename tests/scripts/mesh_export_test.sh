@@ -49,4 +49,5 @@ refused "no directory" sim --seconds 0.1 --export-mesh "$OUT/missing/a%d.ply" --
 refused "no interval" sim --seconds 0.1 --export-mesh "$OUT/a%d.ply"
 refused "a zero interval" sim --seconds 0.1 --export-mesh "$OUT/a%d.ply" --export-every 0
 refused "snapshot, unknown format" snapshot --size 64x48 --settle 0.1 -o "$OUT/x.png" --export-mesh "$OUT/x.stl"
-echo "PASS: .ply, .obj, .glb and the snapshot's surface read by assimp; 8 bad uses refused"
+refused "snapshot, no directory" snapshot --size 64x48 --settle 0.1 -o "$OUT/x.png" --export-mesh "$OUT/no/x.ply"
+echo "PASS: .ply, .obj, .glb and the snapshot's surface read by assimp; 9 bad uses refused"
