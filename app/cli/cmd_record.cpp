@@ -31,6 +31,7 @@ struct RecordOptions {
   int fps = 30;
   std::string size;
   bool ui = false;
+  std::string gl = "auto";
 };
 
 constexpr double kLongestClipSeconds = 600.0;
@@ -77,6 +78,7 @@ void showProgress(int done, int total) {
 
 void runRecord(const RecordOptions& options) {
   checkOptions(options);
+  const HeadlessApi api = headlessApiNamed(options.gl);
   Settings settings = loadSettings(options.scene);
   if (!options.size.empty()) applyImageSize(settings, options.size);
   validateSettings(settings);
@@ -87,7 +89,7 @@ void runRecord(const RecordOptions& options) {
   std::unique_ptr<TracedFrames> traced;
   std::unique_ptr<UiFrames> ui;
   if (options.ui)
-    ui = std::make_unique<UiFrames>(settings);
+    ui = std::make_unique<UiFrames>(settings, api);
   else
     traced = std::make_unique<TracedFrames>(settings);
   Simulation& simulation = ui ? ui->simulation() : traced->simulation();
@@ -133,8 +135,11 @@ void registerRecordCommand(CLI::App& root, int& exitCode) {
   command->add_option("--fps", options->fps, "Frames per simulated second (1..120, default 30)");
   command->add_option("--size", options->size,
                       "Frame size WxH in pixels, default camera.width x camera.height");
-  command->add_flag("--ui", options->ui,
-                    "Record the whole viewer (image and panels), drawn headless through EGL");
+  auto* ui = command->add_flag("--ui", options->ui,
+                    "Record the whole viewer (image and panels), drawn headless");
+  command->add_option("--gl", options->gl,
+                      "With --ui, the headless GL: egl, osmesa, or auto (EGL, else OSMesa; the default)")
+      ->needs(ui);
   addSceneOptions(*command, options->scene);
   command->callback([options, &exitCode] {
     runRecord(*options);

@@ -2,6 +2,7 @@
 // and optionally write a JSON report. The same inputs give a bitwise identical report, apart from the
 // timing fields (ms_per_step, wall_seconds).
 #include "app/cli/commands.h"
+#include "core/export/mesh_exporter.h"
 #include "core/settings/file_output.h"
 #include "core/integrators/integrators.h"
 #include "core/scene/scenario.h"
@@ -30,6 +31,8 @@ struct SimOptions {
   SceneOptions scene;
   double seconds = 3.0;
   std::string reportFile;
+  std::string exportMesh;     // --export-mesh PATTERN (core/export/mesh_exporter.h)
+  double exportEvery = -1.0;  // --export-every S, s of simulated time
 };
 
 void checkSeconds(double seconds) {
@@ -80,6 +83,18 @@ int runSim(const SimOptions& options) {
 
   Simulation simulation(settings);
   const double dt = settings.sim.dt;
+  std::optional<MeshExporter> exporter;
+  if (!options.exportMesh.empty()) {
+    if (options.exportEvery < 0.0) throw SettingsError("--export-mesh needs --export-every S (simulated seconds)");
+    exporter.emplace(options.exportMesh, options.exportEvery, dt, options.seconds);
+  } else if (options.exportEvery >= 0.0) {
+    throw SettingsError("--export-every needs --export-mesh PATTERN");
+  }
+  const auto exportIfDue = [&] {
+    if (exporter && exporter->due(simulation.stepCount()))
+      exporter->add(simulation.time(), simulation.positions(), simulation.triangles());
+  };
+  exportIfDue();
   const auto totalSteps = static_cast<std::int64_t>(std::llround(options.seconds / dt));
   const auto sampleEvery = std::max<std::int64_t>(1, std::llround(kSeriesInterval / dt));
 
@@ -98,6 +113,7 @@ int runSim(const SimOptions& options) {
     simulation.step();
     stepSeconds += threadSeconds() - start;
     ++stepsRun;
+    exportIfDue();
     metrics = simulation.metrics();
     volumeMin = std::min(volumeMin, metrics.volumeRatio);
     volumeMax = std::max(volumeMax, metrics.volumeRatio);
@@ -107,6 +123,10 @@ int runSim(const SimOptions& options) {
       series.push_back(metricsSample(static_cast<double>(simulation.stepCount()) * dt, metrics));
   }
   const double wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
+  if (exporter) {
+    exporter->finish();
+    std::printf("exported %d frames of the surface to %s\n", exporter->frames(), options.exportMesh.c_str());
+  }
   metrics = simulation.metrics();
   const bool nan = !std::isfinite(metrics.volumeRatio) || !std::isfinite(metrics.kineticEnergy) ||
                    std::any_of(simulation.divergences().begin(), simulation.divergences().end(),
@@ -174,6 +194,11 @@ void registerSimCommand(CLI::App& root, int& exitCode) {
   command->add_option("--seconds", options->seconds, "Simulated seconds to run (> 0, at most 3600)")
       ->capture_default_str();
   command->add_option("--report", options->reportFile, "Write a JSON report to this file");
+  command->add_option("--export-mesh", options->exportMesh,
+                      "Write the slime's surface: PATTERN.ply or .obj with a frame number (out/slime_%04d.ply), "
+                      "or one animated FILE.glb");
+  command->add_option("--export-every", options->exportEvery,
+                      "Simulated seconds between exported surfaces, from t = 0 (at least sim.dt)");
   addSceneOptions(*command, options->scene);
   command->callback([options, &exitCode] { exitCode = runSim(*options); });
 }

@@ -2,6 +2,7 @@
 #include "app/cli/commands.h"
 #include "app/cli/snapshot.h"
 #include "app/viewer/ui_snapshot.h"
+#include "core/export/mesh_exporter.h"
 #include "core/scene/camera.h"
 #include "core/settings/settings_io.h"
 #include "render/image/image_io.h"
@@ -21,9 +22,13 @@ struct SnapshotOptions {
   std::vector<double> viewPoint, viewTarget;
   std::optional<double> fov;
   bool ui = false;  // --ui: the whole viewer, panels included, drawn headless (app/viewer/ui_snapshot.h)
+  std::string gl = "auto";  // --gl: which library draws it headless
+  std::string exportMesh;   // --export-mesh: the frame's surface as .ply, .obj or .glb
 };
 
 void runSnapshot(const SnapshotOptions& options) {
+  const HeadlessApi api = headlessApiNamed(options.gl);
+  if (!options.exportMesh.empty()) checkMeshPath(options.exportMesh);  // a bad path fails before the work
   Settings settings = loadSettings(options.scene);
   if (!options.size.empty()) applyImageSize(settings, options.size);
   if (options.fov) {
@@ -42,13 +47,22 @@ void runSnapshot(const SnapshotOptions& options) {
   if (options.ui) {
     writeUiSnapshot(settings, options.output, [&](Simulation& simulation) {
       settleForSnapshot(simulation, settings, options.settle, options.scene.scenarioFile);
-    });
+      if (!options.exportMesh.empty())
+        writeSurfaceMesh(options.exportMesh,
+                         surfaceMeshOf(simulation.time(), simulation.positions(), simulation.triangles()));
+    }, api);
+    if (!options.exportMesh.empty()) std::printf("wrote %s (the frame's surface)\n", options.exportMesh.c_str());
     std::printf("wrote %s (%dx%d, viewer with panels)\n", options.output.c_str(), settings.camera.width,
                 settings.camera.height);
     return;
   }
   const SnapshotResult snapshot = takeSnapshot(settings, options.settle, options.scene.scenarioFile);
   writePng(snapshot.image, options.output);
+  if (!options.exportMesh.empty()) {
+    writeSurfaceMesh(options.exportMesh, snapshot.surface);
+    std::printf("wrote %s (the frame's surface: %zu vertices, %zu triangles)\n", options.exportMesh.c_str(),
+                snapshot.surface.positions.size(), snapshot.surface.triangles.size());
+  }
   const RayCounts& rays = snapshot.stats.rays;
   std::printf("wrote %s (%dx%d) after %.3f s simulated\n", options.output.c_str(), snapshot.image.width,
               snapshot.image.height, snapshot.simulatedSeconds);
@@ -75,7 +89,12 @@ void registerSnapshotCommand(CLI::App& root, int& exitCode) {
   command->add_option("--eye,--vp", options->viewPoint, "Eye position x y z, m")->expected(3);
   command->add_option("--look-at,--vi", options->viewTarget, "Point to look at x y z, m (sets yaw and pitch)")->expected(3);
   command->add_option("--fov", options->fov, "Vertical field of view, degrees");
-  command->add_flag("--ui", options->ui, "Draw the whole viewer (image and panels) headless, through EGL");
+  auto* ui = command->add_flag("--ui", options->ui, "Draw the whole viewer (image and panels) headless");
+  command->add_option("--gl", options->gl,
+                      "With --ui, the headless GL: egl, osmesa, or auto (EGL, else OSMesa; the default)")
+      ->needs(ui);
+  command->add_option("--export-mesh", options->exportMesh,
+                      "Also write the frame's slime surface: .ply (binary), .obj or .glb, by the extension");
   addSceneOptions(*command, options->scene);
   command->callback([options, &exitCode] {
     runSnapshot(*options);

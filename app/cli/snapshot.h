@@ -2,6 +2,8 @@
 // `slime snapshot` writes it to a PNG; the viewer's `--ui` mode can call the same function.
 #pragma once
 
+#include "core/export/surface_mesh.h"
+
 #include "core/settings/settings.h"
 #include "core/scene/simulation.h"
 #include "render/trace/renderer.h"
@@ -16,6 +18,7 @@ struct SnapshotResult {
   double simulatedSeconds = 0.0;
   SlimeMetrics metrics;     // the slime's shape when the frame was taken
   std::size_t divergences = 0;  // steps the physics rolled back while settling
+  SurfaceMesh surface;      // the drawn surface the frame shows (`--export-mesh`)
 };
 
 // Simulates the slime for `settleSeconds` (negative: until it rests, at most kMaxSettleSeconds after

@@ -1,9 +1,10 @@
 #include "app/viewer/headless_gl.h"
 
+#include "app/viewer/egl_context.h"
 #include "app/viewer/gl.h"
+#include "app/viewer/osmesa_context.h"
+#include "core/settings/settings_io.h"
 
-#include <EGL/egl.h>
-#include <EGL/eglext.h>
 #include <imgui.h>
 
 #include <cfloat>
@@ -12,36 +13,43 @@
 #include <string>
 
 namespace slime {
-namespace {
 
-[[noreturn]] void failEgl(const char* step) {
-  char code[16];
-  std::snprintf(code, sizeof code, "0x%04x", static_cast<unsigned>(eglGetError()));
-  throw std::runtime_error(std::string("headless GL: ") + step + " failed (EGL error " + code +
-                           "); is Mesa's EGL installed?");
+HeadlessApi headlessApiNamed(const std::string& name) {
+  if (name == "auto") return HeadlessApi::Auto;
+  if (name == "egl") return HeadlessApi::Egl;
+  if (name == "osmesa") return HeadlessApi::OsMesa;
+  throw SettingsError("--gl " + name + ": expected egl, osmesa or auto");
 }
 
-}  // namespace
+const char* nameOf(HeadlessApi api) {
+  switch (api) {
+    case HeadlessApi::Egl: return "egl";
+    case HeadlessApi::OsMesa: return "osmesa";
+    case HeadlessApi::Auto: break;
+  }
+  return "auto";
+}
 
-HeadlessGl::HeadlessGl(int width, int height) : size_(width, height) {
-  EGLDisplay display = eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-  if (display == EGL_NO_DISPLAY) failEgl("eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA)");
-  if (!eglInitialize(display, nullptr, nullptr)) failEgl("eglInitialize");
-  display_ = display;
-  if (!eglBindAPI(EGL_OPENGL_API)) failEgl("eglBindAPI(EGL_OPENGL_API)");
-  const EGLint configAttributes[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, EGL_PBUFFER_BIT,
-                                     EGL_NONE};
-  EGLConfig config = nullptr;
-  EGLint configCount = 0;
-  if (!eglChooseConfig(display, configAttributes, &config, 1, &configCount) || configCount == 0)
-    failEgl("eglChooseConfig");
-  const EGLint contextAttributes[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
-                                      EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                                      EGL_NONE};
-  EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, contextAttributes);
-  if (context == EGL_NO_CONTEXT) failEgl("eglCreateContext(GL 3.3 core)");
-  context_ = context;
-  if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) failEgl("eglMakeCurrent (surfaceless)");
+HeadlessGl::HeadlessGl(int width, int height, HeadlessApi api) : size_(width, height), api_(api) {
+  if (api == HeadlessApi::Egl) {
+    egl_ = std::make_unique<EglContext>();
+  } else if (api == HeadlessApi::OsMesa) {
+    osMesa_ = std::make_unique<OsMesaContext>(width, height);
+  } else {
+    try {
+      egl_ = std::make_unique<EglContext>();
+      api_ = HeadlessApi::Egl;
+    } catch (const std::runtime_error& eglFailure) {
+      std::fprintf(stderr, "headless GL: %s\nheadless GL: drawing with OSMesa instead\n", eglFailure.what());
+      try {
+        osMesa_ = std::make_unique<OsMesaContext>(width, height);
+      } catch (const std::runtime_error& osMesaFailure) {
+        throw std::runtime_error(std::string("headless GL: no context from EGL (") + eglFailure.what() +
+                                 ") nor from OSMesa (" + osMesaFailure.what() + ")");
+      }
+      api_ = HeadlessApi::OsMesa;
+    }
+  }
 
   // There is no window, so the frame is drawn into an FBO and read back from it. Colour only, as the
   // window (window.cpp): nothing drawn uses depth or stencil.
@@ -58,10 +66,6 @@ HeadlessGl::HeadlessGl(int width, int height) : size_(width, height) {
 HeadlessGl::~HeadlessGl() {
   glDeleteRenderbuffers(1, &colorBuffer_);
   glDeleteFramebuffers(1, &framebuffer_);
-  eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-  eglDestroyContext(display_, context_);
-  eglTerminate(display_);
-  eglReleaseThread();  // the thread's EGL state, which eglTerminate leaves allocated
 }
 
 FrameInput HeadlessGl::pollInput() {

@@ -1,19 +1,33 @@
-// The headless back-end of the viewer: an EGL surfaceless context (Mesa llvmpipe, no display) with
-// GL 3.3 core, drawing into an FBO of a fixed size. No input arrives and time stands still, so the
-// same frame code that runs the window draws a reproducible picture of it.
+// The headless back-end of the viewer: a GL 3.3 core context without a display — EGL surfaceless or
+// OSMesa, both Mesa's llvmpipe — drawing into an FBO of a fixed size. No input arrives and time
+// stands still, so the same frame code that runs the window draws a reproducible picture of it.
 #pragma once
 
 #include "app/viewer/viewer_backend.h"
 
+#include <memory>
+#include <string>
+
 namespace slime {
+
+class EglContext;
+class OsMesaContext;
+
+// Which library gives the headless context (`--gl`): auto tries EGL and falls back to OSMesa,
+// saying so on stderr, when EGL gives no context (no vendor library, a broken driver).
+enum class HeadlessApi { Auto, Egl, OsMesa };
+HeadlessApi headlessApiNamed(const std::string& name);  // "auto", "egl", "osmesa"; else SettingsError
+const char* nameOf(HeadlessApi api);
 
 class HeadlessGl final : public ViewerBackend {
  public:
-  HeadlessGl(int width, int height);  // throws std::runtime_error naming the EGL step that failed
+  // Throws std::runtime_error saying why no context could be made (both reasons, for auto).
+  HeadlessGl(int width, int height, HeadlessApi api = HeadlessApi::Auto);
   ~HeadlessGl() override;
   HeadlessGl(const HeadlessGl&) = delete;
   HeadlessGl& operator=(const HeadlessGl&) = delete;
 
+  HeadlessApi api() const { return api_; }  // the one in use: Egl or OsMesa
   FrameInput pollInput() override;
   glm::ivec2 framebufferSize() const override { return size_; }
   glm::ivec2 windowSize() const override { return size_; }
@@ -25,8 +39,9 @@ class HeadlessGl final : public ViewerBackend {
 
  private:
   glm::ivec2 size_;
-  void* display_ = nullptr;  // EGLDisplay
-  void* context_ = nullptr;  // EGLContext
+  HeadlessApi api_;
+  std::unique_ptr<EglContext> egl_;
+  std::unique_ptr<OsMesaContext> osMesa_;
   unsigned framebuffer_ = 0;
   unsigned colorBuffer_ = 0;
 };

@@ -1,6 +1,8 @@
 #include "app/viewer/panel_fields.h"
 
 #include <algorithm>
+#include <cctype>
+#include <utility>
 #include <type_traits>
 
 #include "core/settings/settings_fields.h"
@@ -20,6 +22,40 @@ std::vector<const void*> fieldAddresses(const Settings& settings) {
   forEachField(settings,
                [&](std::string_view, const auto& field, const auto&) { addresses.push_back(&field); });
   return addresses;
+}
+
+// Labels in words where the key's own words ("longTerm") would not say it; other keys' names are
+// split at their capitals ("timeScale" → "time scale"). At most 15 letters: what the 250-pixel column
+// shows beside a widget. The meaning, with the unit and range, is in the tooltip.
+constexpr std::pair<std::string_view, std::string_view> kLabels[] = {
+    {"camera.fov", "field of view"},          {"floor.colorA", "colour A"},
+    {"floor.colorB", "colour B"},             {"floor.specular", "specular"},
+    {"slime.level", "mesh level"},            {"slime.resolution", "body level"},
+    {"slime.autoLevel", "automatic level"},   {"slime.stiffness", "stiffness"},
+    {"slime.damping", "damping"},      {"slime.pressure", "volume pressure"},
+    {"slime.rolling", "rolling decay"},       {"slime.modulus", "shear modulus"},
+    {"slime.longTerm", "long-term part"}, {"slime.relaxation", "relaxation time"},
+    {"slime.poisson", "Poisson ratio"},       {"slime.viscosity", "viscosity"},
+    {"slime.position", "position"},    {"slime.color", "colour"},
+    {"slime.ior", "refraction"},        {"render.depth", "ray depth"},
+    {"render.spp", "samples/pixel"},      {"render.scale", "image scale"},
+    {"render.targetFps", "target frames/s"}, {"render.optics", "optics"},
+    {"sim.dt", "time step"},                  {"sim.paused", "paused"},
+};
+
+std::string labelFor(const SettingInfo& info) {
+  for (const auto& [key, label] : kLabels)
+    if (key == info.key) return std::string(label);
+  std::string words;
+  for (char c : info.name()) {
+    if (std::isupper(static_cast<unsigned char>(c))) {
+      words += ' ';
+      words += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    } else {
+      words += c;
+    }
+  }
+  return words;
 }
 
 // A number whose range spans this many orders of magnitude gets a logarithmic slider.
@@ -53,6 +89,7 @@ std::vector<PanelField> generateFields() {
     PanelField field;
     field.widget = widgetFor(info);
     field.appliesOnReload = appliesOnReload(info.key);
+    field.label = labelFor(info);
     field.setting = std::move(info);
     fields.push_back(std::move(field));
   }
@@ -71,6 +108,30 @@ const std::vector<PanelGroup>& panelGroups() {
 const std::vector<PanelField>& panelFields() {
   static const std::vector<PanelField> fields = generateFields();
   return fields;
+}
+
+std::string inactiveReason(const PanelField& field, const Settings& shown) {
+  const SettingInfo& info = field.setting;
+  const std::string model = info.model();
+  if (!model.empty() && model != shown.slime.model) {
+    std::string reason = "acts on the " + model + " model only; this slime is " + shown.slime.model + " (slime.model)";
+    if (info.key == "slime.stiffness") reason += "; its stiffness is slime.modulus";
+    if (info.key == "slime.damping") reason += "; its damping is slime.viscosity";
+    return reason;
+  }
+  if ((info.key == "slime.level" || info.key == "slime.autoLevel") && shown.slime.shape == "sphere")
+    return "the analytic sphere is drawn, not the mesh (slime.shape)";
+  if (info.key == "slime.level" && shown.slime.autoLevel) return "slime.autoLevel picks the level";
+  if (info.key == "floor.image" && shown.floor.pattern != "image")
+    return "used when floor.pattern is image; it is " + shown.floor.pattern;
+  return "";
+}
+
+std::vector<const PanelField*> offeredFields(const std::string& group, const Settings& shown) {
+  std::vector<const PanelField*> offered;
+  for (const PanelField& field : panelFields())
+    if (field.setting.group() == group && inactiveReason(field, shown).empty()) offered.push_back(&field);
+  return offered;
 }
 
 bool appliesOnReload(std::string_view key) {

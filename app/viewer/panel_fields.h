@@ -26,6 +26,7 @@ enum class Widget {
 
 struct PanelField {
   SettingInfo setting;  // key, range, unit, choices, meaning: the table's
+  std::string label;    // in words ("long-term fraction"); the key goes in the tooltip
   Widget widget = Widget::Slider;
   bool appliesOnReload = false;  // rebuilds the slime: held until "Reload slime"
 };
@@ -40,6 +41,14 @@ const std::vector<PanelGroup>& panelGroups();
 
 // Every setting, in the table's order, with how the panels edit it.
 const std::vector<PanelField>& panelFields();
+
+// Why `field` does nothing to the slime on screen, built from `shown` (its slime.model and shape, the
+// floor's pattern): "" when it acts. The panels leave such a field out and list it, with this reason,
+// under the section.
+std::string inactiveReason(const PanelField& field, const Settings& shown);
+
+// The fields of `group` the panels offer for the slime built from `shown`, in the table's order.
+std::vector<const PanelField*> offeredFields(const std::string& group, const Settings& shown);
 
 // Settings that rebuild the slime (its mesh, size or start): the viewer applies them on Reload only.
 bool appliesOnReload(std::string_view key);

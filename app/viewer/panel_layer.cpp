@@ -1,10 +1,10 @@
 #include "app/viewer/panel_layer.h"
 
 #include "app/viewer/gl.h"
+#include "app/viewer/imgui_gl.h"
 #include "app/viewer/gl_blit.h"
 
 #include <imgui.h>
-#include <backends/imgui_impl_opengl3.h>
 
 #include <algorithm>
 #include <cmath>
@@ -85,7 +85,7 @@ void PanelLayer::drawColumnLists(const ImDrawData& data, glm::ivec2 framebufferS
   glClearColor(kViewerBackground[0], kViewerBackground[1], kViewerBackground[2], kViewerBackground[3]);
   glClear(GL_COLOR_BUFFER_BIT);
   ImDrawData column = subset(data, 0, lists_);
-  ImGui_ImplOpenGL3_RenderDrawData(&column);
+  renderImGuiGl(column);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(target));
 }
 
@@ -200,7 +200,7 @@ void PanelLayer::drawOverlays(const ImDrawData& data, PixelRect rect, glm::ivec2
       command.ClipRect = narrowed.empty() ? ImVec4(0.0f, 0.0f, 0.0f, 0.0f) : toDisplay(narrowed);
     }
   ImDrawData rest = subset(data, lists_, data.CmdListsCount - lists_);
-  ImGui_ImplOpenGL3_RenderDrawData(&rest);
+  renderImGuiGl(rest);
   auto own = clipRects_.begin();
   for (int i = lists_; i < data.CmdListsCount; ++i)
     for (ImDrawCmd& command : data.CmdLists[i]->CmdBuffer) command.ClipRect = *own++;

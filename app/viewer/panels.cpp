@@ -11,6 +11,8 @@
 #include <string>
 #include <string_view>
 #include <unordered_map>
+#include <utility>
+#include <vector>
 
 #include "app/viewer/adaptive_resolution.h"
 #include "app/viewer/panel_fields.h"
@@ -37,8 +39,8 @@ void tooltip(const PanelField& field) {
   if (!ImGui::IsItemHovered()) return;
   const SettingInfo& info = field.setting;
   ImGui::BeginTooltip();
-  ImGui::TextUnformatted(info.key.c_str());
   ImGui::TextUnformatted(info.help.c_str());
+  ImGui::TextDisabled("key: %s", info.key.c_str());
   std::string allowed = "allowed: " + allowedText(info);
   if (!info.unit.empty()) allowed += " " + info.unit;
   ImGui::TextDisabled("%s", allowed.c_str());
@@ -47,7 +49,7 @@ void tooltip(const PanelField& field) {
 }
 
 std::string labelOf(const PanelField& field) {
-  return field.setting.name() + (field.appliesOnReload ? " *" : "") + "##" + field.setting.key;
+  return field.label + (field.appliesOnReload ? " *" : "") + "##" + field.setting.key;
 }
 
 // A number typed into a slider or a component of a three-component field (Ctrl+click) counts when
@@ -156,13 +158,21 @@ void showError(const std::string& error) {
 
 // Every setting of one group, in the table's order; true when one changed. The field an error names
 // ("slime.mass: 0 is not allowed ...") is drawn red with the message under it.
+// Settings that do nothing to what is on screen are left out and listed in one grey line whose
+// tooltip gives each one's key and reason.
 bool groupFields(Settings& draft, const std::string& group, const PanelView& view) {
   const std::vector<PanelField>& fields = panelFields();
+  const Settings& shown = view.shown != nullptr ? *view.shown : draft;
   std::size_t index = 0;
   bool edited = false, errorShown = false;
+  std::vector<std::pair<const PanelField*, std::string>> hidden;
   forEachField(draft, [&](std::string_view key, auto& value, const auto&) {
     const PanelField& field = fields[index++];
     if (field.setting.group() != group || field.setting.key != key) return;
+    if (std::string reason = inactiveReason(field, shown); !reason.empty()) {
+      hidden.emplace_back(&field, std::move(reason));
+      return;
+    }
     const bool invalid = !view.editError.empty() && view.editError.rfind(field.setting.key + ":", 0) == 0;
     if (invalid) ImGui::PushStyleColor(ImGuiCol_FrameBg, ImVec4(0.55f, 0.12f, 0.1f, 1.0f));
     edited |= edit(field, value);
@@ -171,6 +181,15 @@ bool groupFields(Settings& draft, const std::string& group, const PanelView& vie
     if (invalid) showError(view.editError), errorShown = true;
   });
   if (!errorShown && view.errorGroup == group && !view.editError.empty()) showError(view.editError);
+  if (!hidden.empty()) {
+    ImGui::TextDisabled("%zu not acting here (hover)", hidden.size());
+    if (ImGui::IsItemHovered()) {
+      ImGui::BeginTooltip();
+      for (const auto& [field, reason] : hidden)
+        ImGui::Text("%s (%s): %s", field->label.c_str(), field->setting.key.c_str(), reason.c_str());
+      ImGui::EndTooltip();
+    }
+  }
   return edited;
 }
 
@@ -272,7 +291,7 @@ PanelRequests drawPanels(Settings& draft, std::string& scenePath, const PanelVie
   ImGui::PopStyleVar();
   if (open) {
     requests.columnWidth = width;
-    ImGui::PushItemWidth(width * 0.55f);
+    ImGui::PushItemWidth(width * 0.45f);  // the rest for labels in words ("long-term fraction")
     ImGui::SetNextItemOpen(true, ImGuiCond_Once);
     if (ImGui::CollapsingHeader("Scene file")) sceneSection(scenePath, view, requests);
     for (const PanelGroup& group : panelGroups()) {

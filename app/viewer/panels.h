@@ -35,6 +35,9 @@ struct PanelView {
   std::vector<std::string> reloadPending;  // rebuild-type keys changed since the slime was built
   const std::string& fileMessage;          // the outcome of the last save or load
   bool fileFailed = false;                 // ... and whether it failed (shown in red)
+  // What is on screen (the slime as built, the floor as applied): settings that do nothing to it are
+  // left out (inactiveReason, panel_fields.h). Null: judged from the draft.
+  const Settings* shown = nullptr;
 };
 
 // Width of the column for a display of this width, in window pixels.

@@ -11,8 +11,8 @@ namespace slime {
 constexpr int kFramesForLayout = 3;
 
 void writeUiSnapshot(const Settings& settings, const std::string& path,
-                     const std::function<void(Simulation&)>& settle) {
-  HeadlessGl backend(settings.camera.width, settings.camera.height);
+                     const std::function<void(Simulation&)>& settle, HeadlessApi api) {
+  HeadlessGl backend(settings.camera.width, settings.camera.height, api);
   ViewerOptions options;
   options.maxFrames = kFramesForLayout;
   options.screenshotOnExit = path;
@@ -27,14 +27,14 @@ void writeUiSnapshot(const Settings& settings, const std::string& path,
 }
 
 struct UiFrames::State {
-  explicit State(const Settings& settings) : backend(settings.camera.width, settings.camera.height),
+  State(const Settings& settings, HeadlessApi api) : backend(settings.camera.width, settings.camera.height, api),
                                              viewer(backend, settings) {}
   HeadlessGl backend;
   Viewer viewer;
   int frames = 0;
 };
 
-UiFrames::UiFrames(const Settings& settings) : state_(std::make_unique<State>(settings)) {}
+UiFrames::UiFrames(const Settings& settings, HeadlessApi api) : state_(std::make_unique<State>(settings, api)) {}
 UiFrames::~UiFrames() = default;
 
 Simulation& UiFrames::simulation() { return state_->viewer.simulation(); }

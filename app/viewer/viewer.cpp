@@ -1,13 +1,13 @@
 #include "app/viewer/viewer.h"
 
 #include "app/viewer/gl.h"
+#include "app/viewer/imgui_gl.h"
 #include "app/viewer/panel_fields.h"
 #include "app/viewer/screenshot.h"
 #include "core/scene/camera.h"
 #include "core/scene/level_of_detail.h"
 #include "core/settings/settings_io.h"
 
-#include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
 #include <algorithm>
@@ -52,7 +52,7 @@ Viewer::Viewer(ViewerBackend& backend, const Settings& settings, ViewerOptions o
   ImGui::GetIO().IniFilename = nullptr;  // the same layout every run: tests click known places
   ImGui::StyleColorsDark();
   backend_.initImGuiPlatform();
-  ImGui_ImplOpenGL3_Init("#version 330 core");
+  initImGuiGl();
   metrics_ = simulation_.metrics();
   columnWidth_ = panelColumnWidth(static_cast<float>(backend_.windowSize().x));
   followTargetFps();
@@ -60,7 +60,7 @@ Viewer::Viewer(ViewerBackend& backend, const Settings& settings, ViewerOptions o
 }
 
 Viewer::~Viewer() {
-  ImGui_ImplOpenGL3_Shutdown();
+  shutdownImGuiGl();
   backend_.shutdownImGuiPlatform();
   ImGui::DestroyContext();
 }
@@ -146,7 +146,7 @@ FrameInput Viewer::readInput() {
   checkSecondsToSkip_ = 0.0;
   toViewCoordinates(input);
   backend_.newImGuiPlatformFrame();
-  ImGui_ImplOpenGL3_NewFrame();
+  newImGuiGlFrame();
   ImGui::NewFrame();
   const ImGuiIO& io = ImGui::GetIO();
   input.mouseCapturedByUi = io.WantCaptureMouse;
@@ -451,7 +451,7 @@ PanelRequests Viewer::drawPanelsAndOverlay(const GrabMarks& marks) {
   draft_ = settings_;
   copyReloadFields(wanted_, draft_);
   const PanelView view{stats_,       metrics_, editError_, errorGroup_, differingReloadFields(draft_, built_),
-                       fileMessage_, fileFailed_};
+                       fileMessage_, fileFailed_, &settings_};
   const PanelRequests requests = drawPanels(draft_, scenePath_, view);
   if (showHelp_) drawHelpOverlay(requests.columnWidth);
 

@@ -1,5 +1,7 @@
 #include "app/viewer/window.h"
 
+#include "app/viewer/gl_loader.h"
+
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
 #include <imgui.h>
@@ -50,6 +52,13 @@ Window::Window(const std::string& title, int width, int height, bool presentChan
     throw std::runtime_error("cannot create a GL 3.3 core window");
   }
   glfwMakeContextCurrent(window_);
+  try {
+    loadGl([](const char* name) { return reinterpret_cast<void*>(glfwGetProcAddress(name)); });
+  } catch (...) {
+    glfwDestroyWindow(window_);
+    glfwTerminate();
+    throw;
+  }
   glfwSwapInterval(0);  // the ray tracer sets the pace; waiting for vsync would only add latency
   glfwSetWindowUserPointer(window_, this);
   // Our callbacks first: ImGui's back-end, installed later, chains to them.

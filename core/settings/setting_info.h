@@ -26,6 +26,13 @@ struct SettingInfo {
 
   std::string group() const { return key.substr(0, key.find('.')); }  // "slime" of "slime.level"
   std::string name() const { return key.substr(key.find('.') + 1); }  // "level" of "slime.level"
+  // The slime.model the setting acts on alone — its meaning in the table starts "bulk:" or
+  // "membrane:" — or "" when it acts on both.
+  std::string model() const {
+    for (const char* only : {"bulk", "membrane"})
+      if (help.rfind(std::string(only) + ":", 0) == 0) return only;
+    return "";
+  }
 };
 
 // Every setting in table order, with its value taken from `settings`.

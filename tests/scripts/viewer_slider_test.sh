@@ -8,12 +8,12 @@
 # instead of rebuilding the slime. Clicks on the panel are not seen by the app (no grab starts under them).
 # The column is 250 wide at the left; with the Scene file section closed its rows are 23 px apart.
 source "$(dirname "$0")/viewer_lib.sh"
-start_viewer --size 730x360 --set sim.paused=true
+start_viewer --size 730x360 --set sim.paused=true --set slime.model=membrane  # stiffness is the membrane's
 sleep 2
 click_at 60 36      # close the Scene file section
 sleep 1
 screenshot 1
-click_at 12 312     # stiffness slider (logarithmic 1..1000), near 1 N/m
+click_at 12 289     # stiffness slider (logarithmic 1..1000), near 1 N/m
 sleep 1
 click_at 12 220     # level slider at its left end: 0, held for Reload
 sleep 1
@@ -32,15 +32,15 @@ type_into() {  # X Y TEXT
   xdotool keyup --window "$WINDOW" Return
   sleep 1
 }
-type_into 60 312 "7"        # stiffness 7 N/m: inside the range, applied on Enter
-type_into 60 312 "2000"     # stiffness 2000 N/m: outside 1..1000 N/m (its prefixes are inside)
+type_into 60 289 "7"        # stiffness 7 N/m: inside the range, applied on Enter
+type_into 60 289 "2000"     # stiffness 2000 N/m: outside 1..1000 N/m (its prefixes are inside)
 screenshot 3
 # A three-component field the same way (the refused stiffness does not block it): open the Light
 # section, type into the position's z.
 click_at 60 82              # the Light section's header
 sleep 1
 screenshot 4
-type_into 122 105 "150"     # z 150 m: outside −100..100 m (its prefixes 1 and 15 are inside)
+type_into 100 105 "150"     # z 150 m: outside −100..100 m (its prefixes 1 and 15 are inside)
 screenshot 5
 quit_viewer
 

@@ -4,13 +4,13 @@
 // only what changed, and with the panel column drawn afresh only when what it draws changed.
 #include "app/viewer/frame_compositor.h"
 #include "app/viewer/gl.h"
+#include "app/viewer/imgui_gl.h"
 #include "app/viewer/gl_blit.h"
 #include "app/viewer/headless_gl.h"
 #include "app/viewer/panels.h"
 #include "app/viewer/screenshot.h"
 #include "core/settings/settings_io.h"
 
-#include <backends/imgui_impl_opengl3.h>
 #include <gtest/gtest.h>
 #include <imgui.h>
 
@@ -51,7 +51,7 @@ class FrameCompositorTest : public testing::Test {
     ImGui::GetIO().IniFilename = nullptr;
     ImGui::StyleColorsDark();
     gl_.initImGuiPlatform();
-    ImGui_ImplOpenGL3_Init("#version 330 core");
+    initImGuiGl();
     // The live frame's own framebuffer; the compositor's is the back-end's, which keeps its pixels.
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &keptFramebuffer_);
     glGenFramebuffers(1, &liveFramebuffer_);
@@ -70,7 +70,7 @@ class FrameCompositorTest : public testing::Test {
     liveBlit_.reset();
     glDeleteRenderbuffers(1, &liveColor_);
     glDeleteFramebuffers(1, &liveFramebuffer_);
-    ImGui_ImplOpenGL3_Shutdown();
+    shutdownImGuiGl();
     gl_.shutdownImGuiPlatform();
     ImGui::DestroyContext();
   }
@@ -80,7 +80,7 @@ class FrameCompositorTest : public testing::Test {
   void buildFrames(const Settings& settings, const std::string& scenePath, std::optional<ImVec2> ring, int frames = 1) {
     for (int i = 0; i < frames; ++i) {
       gl_.newImGuiPlatformFrame();
-      ImGui_ImplOpenGL3_NewFrame();
+      newImGuiGlFrame();
       ImGui::NewFrame();
       Settings draft = settings;
       std::string path = scenePath;
@@ -107,7 +107,7 @@ class FrameCompositorTest : public testing::Test {
     Pictures pictures;
     glBindFramebuffer(GL_FRAMEBUFFER, liveFramebuffer_);
     liveBlit_->draw(kSize, column_, {0, 0, kSize.x, kSize.y});
-    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    renderImGuiGl(*ImGui::GetDrawData());
     pictures.live = readFramebufferRgb(kSize);
     glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(keptFramebuffer_));
     const long long before = compositor_->pixelsDrawn();

@@ -1,0 +1,18 @@
+// Frames of the surface as one binary glTF 2.0 file (.glb), written with tinygltf. The mesh is the
+// first frame; every frame k is a morph target holding p_k − p_0 (and n_k − n_0), and one animation
+// drives the weights, one-hot at frame k's time and linear between frames, so Blender and other glTF
+// readers play the run. glTF stores 32-bit floats: a reader's p_0 + (p_k − p_0) is within a float's
+// rounding of the simulation's p_k.
+#pragma once
+
+#include "core/export/surface_mesh.h"
+
+#include <string>
+#include <vector>
+
+namespace slime {
+
+// Throws std::runtime_error when the frames do not share one set of triangles (the level changed).
+std::string glbBytes(const std::vector<SurfaceMesh>& frames);
+
+}  // namespace slime
