@@ -75,9 +75,10 @@ TEST(PanelOffer, LabelsAreLowerCaseWordsNotKeys) {
   for (const PanelField& field : panelFields()) {
     const std::string& label = field.label;
     EXPECT_FALSE(label.empty()) << field.setting.key;
-    if (field.widget != Widget::Checkbox)  // a checkbox's label starts at its box, not after a widget
+    if (field.widget != Widget::Checkbox) {  // a checkbox's label starts at its box, not after a widget
       EXPECT_LE(label.size() + (field.appliesOnReload ? 2 : 0), 15u) << field.setting.key << ": '" << label
                                                                    << "' does not fit beside its widget";
+    }
     // No camelCase key name: a capital only starts a word ("Poisson ratio", "colour A").
     for (std::size_t i = 1; i < label.size(); ++i)
       EXPECT_FALSE(std::isupper(static_cast<unsigned char>(label[i])) && label[i - 1] != ' ')
