@@ -12,5 +12,5 @@ $SUDO apt-get install -y -qq --no-install-recommends \
   libosmesa6-dev libtinygltf-dev libassimp-dev assimp-utils \
   libgtest-dev libgmock-dev libbenchmark-dev \
   xvfb xauth xdotool x11-utils jq gnuplot-nox imagemagick ffmpeg \
-  clang libclang-rt-14-dev libbullet-dev >/dev/null
+  clang libclang-rt-14-dev libbullet-dev libeigen3-dev >/dev/null
 echo "setup: dependencies installed"

@@ -10,8 +10,9 @@ Integrator parseIntegrator(std::string_view name) {
   if (name == "rk4") return Integrator::Rk4;
   if (name == "implicit_euler") return Integrator::ImplicitEuler;
   if (name == "xpbd") return Integrator::Xpbd;
+  if (name == "projective") return Integrator::Projective;
   throw std::invalid_argument("unknown integrator \"" + std::string(name) +
-                              "\" (explicit_euler, symplectic_euler, rk4, implicit_euler, xpbd)");
+                              "\" (explicit_euler, symplectic_euler, rk4, implicit_euler, xpbd, projective)");
 }
 
 std::string integratorName(Integrator integrator) {
@@ -21,12 +22,13 @@ std::string integratorName(Integrator integrator) {
     case Integrator::Rk4: return "rk4";
     case Integrator::ImplicitEuler: return "implicit_euler";
     case Integrator::Xpbd: return "xpbd";
+    case Integrator::Projective: return "projective";
   }
   return "unknown";
 }
 
 std::vector<std::string> integratorNames() {
-  return {"explicit_euler", "symplectic_euler", "rk4", "implicit_euler", "xpbd"};
+  return {"explicit_euler", "symplectic_euler", "rk4", "implicit_euler", "xpbd", "projective"};
 }
 
 void explicitEulerStep(ParticleState& state, double dt, const AccelerationField& field,

@@ -17,9 +17,10 @@
 
 namespace slime {
 
-enum class Integrator { ExplicitEuler, SymplecticEuler, Rk4, ImplicitEuler, Xpbd };
+enum class Integrator { ExplicitEuler, SymplecticEuler, Rk4, ImplicitEuler, Xpbd, Projective };
 
-// "explicit_euler" ... "xpbd"; parseIntegrator throws std::invalid_argument on an unknown name.
+// "explicit_euler" ... "xpbd", "projective" (the bulk body's backward Euler by projective dynamics,
+// core/bulk/projective_dynamics.h); parseIntegrator throws std::invalid_argument on an unknown name.
 Integrator parseIntegrator(std::string_view name);
 std::string integratorName(Integrator integrator);
 std::vector<std::string> integratorNames();

@@ -71,6 +71,7 @@ double largestStableStep(Integrator integrator, double omega, double dampingRate
     case Integrator::Rk4:
       return omega + dampingRate > 0.0 ? 2.78 / (omega + dampingRate) : infinity;
     case Integrator::ImplicitEuler:
+    case Integrator::Projective:
       return infinity;
   }
   return infinity;

@@ -62,6 +62,7 @@ void Simulation::start() {
   stepCount_ = 0;
   refinement_ = 1;
   divergences_.clear();
+  projectiveActive_ = false;  // a new body: its metrics are the live Maxwell state
   grabbing_ = false;
   grabbed_.clear();
   grabOffsets_.clear();
@@ -100,6 +101,13 @@ void Simulation::rebuildModels() {
   integrator_ = parseIntegrator(settings_.sim.integrator);
   const glm::dvec3 gravity{0.0, 0.0, -settings_.sim.gravity};
   if (bulk_) {
+    // The Maxwell state moves between the projective solver's stretches U_v and the body's metrics G_v.
+    if (projectiveActive_) projective_.storeMaxwell(bulkBody_);
+    projectiveActive_ = integrator_ == Integrator::Projective;
+    if (projectiveActive_) {
+      projective_.loadMaxwell(bulkBody_);
+      projective_.invalidate();
+    }
     accelerationField_ = [this](const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v,
                                 std::vector<glm::dvec3>& a) { bulkAccelerations(x, v, a); };
     highestFrequency_ = bulkHighestFrequency(bulkBody_, bulkScratch_);
@@ -109,6 +117,8 @@ void Simulation::rebuildModels() {
     bulkScratch_.decayStep = -1.0;
     return;
   }
+  if (integrator_ == Integrator::Projective)
+    throw std::invalid_argument("sim.integrator=projective is the bulk body's only (slime.model=bulk)");
   const bool hasVolume = settings_.slime.pressure > 0.0;
   forceModel_ = ForceModel{};
   forceModel_.springs = &body_.springs;
@@ -190,7 +200,11 @@ void Simulation::step() {
   time_ += settings_.sim.dt;
   ++stepCount_;
   if (bulk_) {
-    if (stepCount_ % kRelaxInterval == 0) relaxBulk(bulkBody_, kRelaxInterval * settings_.sim.dt);
+    // projective flows its Maxwell branches every substep; the body's metrics follow as a copy.
+    if (stepCount_ % kRelaxInterval == 0) {
+      if (projectiveActive_) projective_.storeMaxwell(bulkBody_);
+      else relaxBulk(bulkBody_, kRelaxInterval * settings_.sim.dt);
+    }
     const bool touching = resolveDrawnFloorContact(bulkBody_, settings_.slime.friction) > 0;
     // The floor's rolling resistance acts on the bulk slime too: Coulomb friction lets a ball roll,
     // and the bulk's own viscosity barely slows a bun rolling on its patch (a yanked slime rolled 3 m).
@@ -241,6 +255,7 @@ void Simulation::substep(double h) {
       lastSolverIterations_ = implicitEulerStep(state, h, forceModel_, ImplicitEulerOptions{}, implicitScratch_);
       break;
     case Integrator::Xpbd: xpbdSubstep(state, h, xpbdModel_, xpbdScratch_); break;
+    case Integrator::Projective: break;  // the bulk body's only (rebuildModels refuses it here)
   }
   placeGrabbedPoints();
   resolveFloorContact(state, settings_.slime.friction);
@@ -265,6 +280,16 @@ void Simulation::bulkSubstep(double h) {
   switch (integrator_) {
     case Integrator::ExplicitEuler: explicitEulerStep(state, h, accelerationField_, integratorScratch_); break;
     case Integrator::Rk4: rk4Step(state, h, accelerationField_, integratorScratch_); break;
+    case Integrator::Projective: {
+      ProjectiveStep options;
+      options.h = h;
+      options.iterations = settings_.sim.iterations;
+      options.gravity = glm::dvec3(0.0, 0.0, -settings_.sim.gravity);
+      options.friction = settings_.slime.friction;
+      options.mouse = grabbing_ ? &mouse_ : nullptr;
+      handForce_ = projective_.step(bulkBody_, bulkScratch_, options);
+      break;
+    }
     default: {
       // Kick with every force but the dampers, the dampers exactly (dampEdges), then drift.
       std::vector<glm::dvec3>& a = bulkScratch_.forces;
@@ -309,6 +334,7 @@ void Simulation::driveGrabbedPoints(double h) {
 }
 
 void Simulation::saveGoodState() {
+  if (projectiveActive_) projective_.storeMaxwell(bulkBody_);
   goodState_ = activeState();
   goodMaxwell_ = bulkBody_.maxwell;
   goodTime_ = time_;
@@ -327,6 +353,7 @@ void Simulation::rollBack(const std::string& what) {
   divergences_.push_back(event);
   activeState() = goodState_;
   bulkBody_.maxwell = goodMaxwell_;
+  if (projectiveActive_) projective_.loadMaxwell(bulkBody_);
   drawnStale_ = true;
   time_ = goodTime_;
   stepCount_ = goodStep_;

@@ -10,6 +10,7 @@
 #pragma once
 
 #include "core/bulk/bulk_body.h"
+#include "core/bulk/projective_dynamics.h"
 #include "core/integrators/damped_symplectic_euler.h"
 #include "core/membrane/force_model.h"
 #include "core/scene/grab.h"
@@ -133,6 +134,8 @@ class Simulation {
   DampedSymplecticEulerScratch symplecticScratch_;
   std::vector<std::size_t> independentSpringRuns_;  // for the fused substep's threads
   XpbdModel xpbdModel_;
+  ProjectiveSolver projective_;     // bulk, sim.integrator=projective
+  bool projectiveActive_ = false;   // its Maxwell stretches are the live ones (the body's metrics a copy)
   AccelerationField accelerationField_;
   ForceScratch forceScratch_;
   IntegratorScratch integratorScratch_;

@@ -78,8 +78,9 @@ struct RenderSettings {
 
 struct SimSettings {
   double dt = 0.001;                       // fixed time step, s
-  std::string integrator = "symplectic_euler";  // explicit_euler | symplectic_euler | rk4 | implicit_euler | xpbd
-  int substeps = 1;                        // substeps per step (xpbd)
+  std::string integrator = "symplectic_euler";  // explicit_euler | symplectic_euler | rk4 | implicit_euler | xpbd | projective
+  int substeps = 1;                        // substeps per step (xpbd, projective)
+  int iterations = 1;                      // projective: local/global iterations per substep
   double gravity = 9.81;                   // |g|, m/s^2, pointing along -z
   double timeScale = 1.0;                  // simulated seconds per wall-clock second in the viewer
   bool paused = false;                     // viewer: physics paused

@@ -133,9 +133,11 @@ void forEachField(S& s, Visitor&& visitor) {
   // Simulation
   visit("sim.dt", s.sim.dt, Limits{1e-6, 0.01, "s"}, "fixed time step");
   visit("sim.integrator", s.sim.integrator,
-        Choices{"explicit_euler", "symplectic_euler", "rk4", "implicit_euler", "xpbd"},
+        Choices{"explicit_euler", "symplectic_euler", "rk4", "implicit_euler", "xpbd", "projective"},
         "time integrator");
-  visit("sim.substeps", s.sim.substeps, Limits{1, 1000, "substeps"}, "substeps per step (xpbd)");
+  visit("sim.substeps", s.sim.substeps, Limits{1, 1000, "substeps"}, "substeps per step (xpbd, projective)");
+  visit("sim.iterations", s.sim.iterations, Limits{1, 100, "iterations"},
+        "projective: local/global iterations per substep (more: less numerical damping, more cost)");
   visit("sim.gravity", s.sim.gravity, Limits{0.0, 100.0, "m/s^2"}, "|g|, pointing along -z");
   visit("sim.timeScale", s.sim.timeScale, Limits{0.01, 10.0, "simulated s per wall s"},
         "viewer: simulated seconds per wall-clock second");

@@ -193,6 +193,7 @@ TEST(Settings, SaveAndLoadRoundTripEveryKey) {
     }
     if (info.key == "slime.position") value = json::array({0.01, -0.02, 0.5});  // above the floor: z >= radius
     if (info.key == "floor.pattern") value = "checker";                         // no image file needed
+    if (info.key == "sim.integrator") value = "rk4";  // valid for both models (projective, the last, is bulk only)
     setSetting(changed, info.key, value);
     EXPECT_NE(settingValue(changed, info.key), settingValue(defaultSettings(), info.key)) << info.key;
   }

@@ -1,0 +1,386 @@
+#include "core/bulk/projective_dynamics.h"
+
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace slime {
+namespace {
+
+constexpr int kPolarIterations = 2;        // Müller et al. 2016 sweeps per local step (warm-started)
+constexpr double kPinnedMassFactor = 1e6;  // a pinned node's mass in the matrix, × the body's mass
+
+// x^(1/3) for x > 0 near 1 (volume ratios): three Newton steps from 1 + (x − 1)/3, within 1e-6
+// for x in [0.3, 4], and still positive and monotone outside. Only arithmetic (bit tricks need
+// AVX-512's integer conversions), so the loop over a block vectorises on AVX2.
+inline double cubeRootNearOne(double x) {
+  double g = (2.0 + x) * (1.0 / 3.0);
+  for (int k = 0; k < 3; ++k) g = (2.0 * g + x / (g * g)) * (1.0 / 3.0);
+  return g;
+}
+
+// The symmetric stretch entries 00, 11, 22, 01, 02, 12.
+constexpr int kSym[3][3] = {{0, 3, 4}, {3, 1, 5}, {4, 5, 2}};
+
+}  // namespace
+
+// P A Pᵀ = L D Lᵀ (Eigen's SimplicialLDLT), L kept as plain arrays so that one pass over it solves
+// the three coordinates together (Eigen's solve with three right-hand sides walks L three times).
+struct ProjectiveSolver::Factor {
+  std::vector<int> columnStart, rows;  // L strictly below the diagonal, by column
+  std::vector<double> values, inverseDiagonal;
+  std::vector<int> permutation;        // (P b)[permutation[i]] = b[i]
+  std::vector<glm::dvec3> work;
+
+  void take(const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>& ldlt) {
+    const Eigen::SparseMatrix<double>& l = ldlt.matrixL().nestedExpression();
+    const int n = static_cast<int>(l.cols());
+    rows.clear();
+    values.clear();
+    for (int j = 0; j < n; ++j)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(l, j); it; ++it) {
+        rows.push_back(static_cast<int>(it.row()));
+        values.push_back(it.value());
+      }
+    columnStart.assign(static_cast<std::size_t>(n) + 1, 0);
+    for (int j = 0; j < n; ++j) {
+      int count = 0;
+      for (Eigen::SparseMatrix<double>::InnerIterator it(l, j); it; ++it) ++count;
+      columnStart[static_cast<std::size_t>(j) + 1] = columnStart[static_cast<std::size_t>(j)] + count;
+    }
+    inverseDiagonal.resize(static_cast<std::size_t>(n));
+    for (int j = 0; j < n; ++j) inverseDiagonal[static_cast<std::size_t>(j)] = 1.0 / ldlt.vectorD()(j);
+    permutation.resize(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i) permutation[static_cast<std::size_t>(i)] = ldlt.permutationP().indices()(i);
+    work.resize(static_cast<std::size_t>(n));
+  }
+
+  // x = A⁻¹ b = Pᵀ L⁻ᵀ D⁻¹ L⁻¹ P b.
+  void solve(const std::vector<glm::dvec3>& b, std::vector<glm::dvec3>& x) {
+    const std::size_t n = work.size();
+    for (std::size_t i = 0; i < n; ++i) work[static_cast<std::size_t>(permutation[i])] = b[i];
+    for (std::size_t j = 0; j < n; ++j) {
+      const glm::dvec3 xj = work[j];
+      for (int p = columnStart[j]; p < columnStart[j + 1]; ++p) work[static_cast<std::size_t>(rows[p])] -= values[p] * xj;
+    }
+    for (std::size_t j = 0; j < n; ++j) work[j] *= inverseDiagonal[j];
+    for (std::size_t j = n; j-- > 0;) {
+      glm::dvec3 sum = work[j];
+      for (int p = columnStart[j]; p < columnStart[j + 1]; ++p) sum -= values[p] * work[static_cast<std::size_t>(rows[p])];
+      work[j] = sum;
+    }
+    x.resize(n);
+    for (std::size_t i = 0; i < n; ++i) x[i] = work[static_cast<std::size_t>(permutation[i])];
+  }
+};
+
+ProjectiveSolver::ProjectiveSolver() : factor_(std::make_unique<Factor>()) {}
+ProjectiveSolver::~ProjectiveSolver() = default;
+ProjectiveSolver::ProjectiveSolver(const ProjectiveSolver& other)
+    : blocks_(other.blocks_), factor_(std::make_unique<Factor>()) {}
+ProjectiveSolver& ProjectiveSolver::operator=(const ProjectiveSolver& other) {
+  if (this != &other) {
+    blocks_ = other.blocks_;
+    factor_ = std::make_unique<Factor>();
+    factoredStep_ = -1.0;
+  }
+  return *this;
+}
+
+void ProjectiveSolver::reset(const BulkBody& body) {
+  blocks_.assign(body.restBlocks.size(), ProjectiveBlock{});
+  for (ProjectiveBlock& block : blocks_)
+    for (std::size_t lane = 0; lane < kTetLanes; ++lane) block.rotation[0][lane] = 1.0;
+  loadMaxwell(body);
+  factoredStep_ = -1.0;
+}
+
+void ProjectiveSolver::loadMaxwell(const BulkBody& body) {
+  if (blocks_.size() != body.restBlocks.size()) {
+    reset(body);
+    return;
+  }
+  for (std::size_t block = 0; block < blocks_.size(); ++block)
+    for (std::size_t lane = 0; lane < kTetLanes; ++lane) {
+      Eigen::Matrix3d g;
+      for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) g(r, c) = body.maxwell[block].metric[3 * c + r][lane];
+      // U_v = √G_v through G_v's eigenvectors (a zero lane past the last tetrahedron gives U_v = 0).
+      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(g);
+      const Eigen::Vector3d roots = eigen.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+      const Eigen::Matrix3d u = eigen.eigenvectors() * roots.asDiagonal() * eigen.eigenvectors().transpose();
+      for (int r = 0; r < 3; ++r)
+        for (int c = r; c < 3; ++c) blocks_[block].maxwellStretch[kSym[r][c]][lane] = u(r, c);
+    }
+}
+
+void ProjectiveSolver::storeMaxwell(BulkBody& body) const {
+  if (blocks_.size() != body.maxwell.size()) return;
+  for (std::size_t block = 0; block < blocks_.size(); ++block)
+    for (std::size_t lane = 0; lane < kTetLanes; ++lane) {
+      glm::dmat3 u;
+      for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) u[c][r] = blocks_[block].maxwellStretch[kSym[r][c]][lane];
+      const glm::dmat3 g = u * u;
+      const double det = glm::determinant(g);
+      const glm::dmat3 b = det > 0.0 ? glm::inverse(g) : glm::dmat3(1.0);
+      for (int entry = 0; entry < 9; ++entry) {
+        body.maxwell[block].metric[entry][lane] = det > 0.0 ? g[entry / 3][entry % 3] : (entry % 4 == 0 ? 1.0 : 0.0);
+        body.maxwell[block].inverse[entry][lane] = b[entry / 3][entry % 3];
+      }
+    }
+}
+
+void ProjectiveSolver::factor(const BulkBody& body, double h) {
+  const ViscoelasticMaterial& m = body.material;
+  const double mu = m.longTermShear + m.maxwellShear, lambda = m.lameLambda;
+  const std::size_t n = body.state.size();
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(n + 16 * body.mesh.tetrahedra.size());
+  masses_.resize(n);
+  const std::vector<double>& w = body.state.inverseMasses;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double mass = w[i] > 0.0 ? 1.0 / w[i] : kPinnedMassFactor * body.totalMass;
+    masses_[i] = mass / (h * h);
+    triplets.emplace_back(static_cast<int>(i), static_cast<int>(i), masses_[i]);
+  }
+  // w_e D_eᵀD_e with D_e x = F: Q = Dm⁻¹Dm⁻ᵀ on nodes 1..3, node 0 the negative sums.
+  for (std::size_t e = 0; e < body.mesh.tetrahedra.size(); ++e) {
+    const Tetrahedron& t = body.mesh.tetrahedra[e];
+    const TetRest& rest = body.rest[e];
+    const double weight = rest.volume * (2.0 * mu + 3.0 * lambda);
+    double k[4][4] = {};
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) {
+        double q = 0.0;  // (Dm⁻¹Dm⁻ᵀ)_ab, glm [column][row]
+        for (int c = 0; c < 3; ++c) q += rest.restInverse[c][a] * rest.restInverse[c][b];
+        k[a + 1][b + 1] = weight * q;
+      }
+    for (int b = 1; b < 4; ++b) {
+      k[0][b] = -(k[1][b] + k[2][b] + k[3][b]);
+      k[b][0] = k[0][b];
+    }
+    k[0][0] = -(k[0][1] + k[0][2] + k[0][3]);
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b) triplets.emplace_back(static_cast<int>(t[a]), static_cast<int>(t[b]), k[a][b]);
+  }
+  Eigen::SparseMatrix<double> matrix(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+  matrix.setFromTriplets(triplets.begin(), triplets.end());
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(matrix);
+  factor_->take(ldlt);
+  factoredStep_ = h;
+  factoredShear_ = mu;
+  factoredLambda_ = lambda;
+  factoredInverseMasses_ = w;
+  ++factorisations_;
+}
+
+// Targets p_e of every tetrahedron at the current positions, summed into targets_ as w_e D_eᵀ p_e.
+// `flow`: the Maxwell rest stretch flows towards this shape first (once per step).
+void ProjectiveSolver::localStep(const BulkBody& body, double h, bool flow) {
+  const ViscoelasticMaterial& m = body.material;
+  const double decay = m.maxwellShear > 0.0 ? std::exp(-h / m.relaxationTime) : 1.0;
+  if (flow && m.maxwellShear > 0.0) localPass<true>(body, decay);
+  else localPass<false>(body, decay);
+}
+
+template <bool Flows>
+void ProjectiveSolver::localPass(const BulkBody& body, double decay) {
+  const ViscoelasticMaterial& m = body.material;
+  const double muInf = m.longTermShear, muMaxwell = m.maxwellShear, lambda = m.lameLambda;
+  const double mu = muInf + muMaxwell;
+  const double volumeWeight = 1.5 * lambda;
+  const double blend = 1.0 / (mu + volumeWeight);
+  const double forceScale = -(2.0 * mu + 3.0 * lambda);  // w_e p Dm⁻ᵀ = −(2μ + 3λ) p·forceMap
+  const std::vector<Tetrahedron>& tetrahedra = body.mesh.tetrahedra;
+  const std::vector<glm::dvec3>& x = body.state.positions;
+  targets_.assign(x.size(), glm::dvec3(0.0));
+  alignas(64) double shape[9][kTetLanes];
+  alignas(64) double out[9][kTetLanes];
+  for (std::size_t block = 0; block < blocks_.size(); ++block) {
+    const std::size_t first = block * kTetLanes;
+    const std::size_t count = std::min(kTetLanes, tetrahedra.size() - first);
+    for (std::size_t lane = 0; lane < count; ++lane) {
+      const Tetrahedron& t = tetrahedra[first + lane];
+      const glm::dvec3 edges[3] = {x[t.y] - x[t.x], x[t.z] - x[t.x], x[t.w] - x[t.x]};
+      for (int entry = 0; entry < 9; ++entry) shape[entry][lane] = edges[entry / 3][entry % 3];
+    }
+    for (std::size_t lane = count; lane < kTetLanes; ++lane)
+      for (int entry = 0; entry < 9; ++entry) shape[entry][lane] = 0.0;
+    const TetBlock& rest = body.restBlocks[block];
+    // The block's state in a local copy: stores to it cannot alias the rest data, so the loop
+    // vectorises without runtime alias checks.
+    ProjectiveBlock state = blocks_[block];
+    // One tetrahedron per lane, no branches and no calls: the loop the compiler vectorises.
+    for (std::size_t lane = 0; lane < kTetLanes; ++lane) {
+      double f[9];  // F = Ds·Dm⁻¹, [3·column + row]
+      #pragma GCC unroll 9
+      for (int c = 0; c < 3; ++c)
+        #pragma GCC unroll 9
+        for (int r = 0; r < 3; ++r)
+          f[3 * c + r] = shape[r][lane] * rest.restInverse[3 * c][lane] + shape[3 + r][lane] * rest.restInverse[3 * c + 1][lane] +
+                         shape[6 + r][lane] * rest.restInverse[3 * c + 2][lane];
+      double qw = state.rotation[0][lane], qx = state.rotation[1][lane], qy = state.rotation[2][lane],
+             qz = state.rotation[3][lane];
+      double rot[9];
+      const auto rotationMatrix = [&] {
+        rot[0] = 1.0 - 2.0 * (qy * qy + qz * qz), rot[1] = 2.0 * (qx * qy + qw * qz), rot[2] = 2.0 * (qx * qz - qw * qy);
+        rot[3] = 2.0 * (qx * qy - qw * qz), rot[4] = 1.0 - 2.0 * (qx * qx + qz * qz), rot[5] = 2.0 * (qy * qz + qw * qx);
+        rot[6] = 2.0 * (qx * qz + qw * qy), rot[7] = 2.0 * (qy * qz - qw * qx), rot[8] = 1.0 - 2.0 * (qx * qx + qy * qy);
+      };
+      #pragma GCC unroll 9
+      for (int sweep = 0; sweep < kPolarIterations; ++sweep) {
+        rotationMatrix();
+        // ω = Σ r_i × f_i / (|Σ r_i·f_i| + ε) over the columns; the rotation by ω taken as the
+        // quaternion (1, ω/2) normalised (the same to second order, and no trigonometry).
+        double ox = 0.0, oy = 0.0, oz = 0.0, dot = 0.0;
+        #pragma GCC unroll 9
+        for (int c = 0; c < 3; ++c) {
+          const double* r = rot + 3 * c;
+          const double* g = f + 3 * c;
+          ox += r[1] * g[2] - r[2] * g[1];
+          oy += r[2] * g[0] - r[0] * g[2];
+          oz += r[0] * g[1] - r[1] * g[0];
+          dot += r[0] * g[0] + r[1] * g[1] + r[2] * g[2];
+        }
+        const double scale = 0.5 / (std::abs(dot) + 1e-12);
+        ox *= scale, oy *= scale, oz *= scale;
+        const double nw = qw - ox * qx - oy * qy - oz * qz;
+        const double nx = qx + ox * qw + oy * qz - oz * qy;
+        const double ny = qy + oy * qw + oz * qx - ox * qz;
+        const double nz = qz + oz * qw + ox * qy - oy * qx;
+        const double norm = 1.0 / std::sqrt(nw * nw + nx * nx + ny * ny + nz * nz);
+        qw = nw * norm, qx = nx * norm, qy = ny * norm, qz = nz * norm;
+      }
+      rotationMatrix();
+      state.rotation[0][lane] = qw, state.rotation[1][lane] = qx, state.rotation[2][lane] = qy, state.rotation[3][lane] = qz;
+      double u[6];
+      #pragma GCC unroll 9
+      for (int k = 0; k < 6; ++k) u[k] = state.maxwellStretch[k][lane];
+      if constexpr (Flows) {
+        // U = sym(RᵀF); U_v ← U + (U_v − U)·decay, then det U_v = 1 (an inverted blend keeps U_v).
+        double s[9];
+        #pragma GCC unroll 9
+        for (int c = 0; c < 3; ++c)
+          #pragma GCC unroll 9
+          for (int r = 0; r < 3; ++r)
+            s[3 * c + r] = rot[3 * r] * f[3 * c] + rot[3 * r + 1] * f[3 * c + 1] + rot[3 * r + 2] * f[3 * c + 2];
+        const double sym[6] = {s[0], s[4], s[8], 0.5 * (s[1] + s[3]), 0.5 * (s[2] + s[6]), 0.5 * (s[5] + s[7])};
+        double blended[6];
+        #pragma GCC unroll 9
+        for (int k = 0; k < 6; ++k) blended[k] = sym[k] + (u[k] - sym[k]) * decay;
+        const double det = blended[0] * (blended[1] * blended[2] - blended[5] * blended[5]) -
+                           blended[3] * (blended[3] * blended[2] - blended[5] * blended[4]) +
+                           blended[4] * (blended[3] * blended[5] - blended[1] * blended[4]);
+        const bool positive = det > 0.0;
+        const double normalise = 1.0 / cubeRootNearOne(positive ? det : 1.0);
+        #pragma GCC unroll 9
+        for (int k = 0; k < 6; ++k) {
+          u[k] = positive ? blended[k] * normalise : u[k];
+          state.maxwellStretch[k][lane] = u[k];
+        }
+      }
+      // J^(1/3); an element squashed flat or inverted (J ≤ 0.01) takes 1 + (J − 1)/3, which keeps
+      // pushing it out along R.
+      const double j = f[0] * (f[4] * f[8] - f[5] * f[7]) - f[3] * (f[1] * f[8] - f[2] * f[7]) + f[6] * (f[1] * f[5] - f[2] * f[4]);
+      const double cubeRoot = j > 0.01 ? cubeRootNearOne(j) : (2.0 + j) * (1.0 / 3.0);
+      // p = (μ∞ R + μ1 R U_v + (3λ/2)(F − (J^(1/3) − 1) R)) / (μ + 3λ/2).
+      double p[9];
+      #pragma GCC unroll 9
+      for (int c = 0; c < 3; ++c)
+        #pragma GCC unroll 9
+        for (int r = 0; r < 3; ++r) {
+          const double ru = rot[r] * u[kSym[0][c]] + rot[3 + r] * u[kSym[1][c]] + rot[6 + r] * u[kSym[2][c]];
+          p[3 * c + r] = blend * (muInf * rot[3 * c + r] + muMaxwell * ru +
+                                  volumeWeight * (f[3 * c + r] - (cubeRoot - 1.0) * rot[3 * c + r]));
+        }
+      // −(2μ + 3λ) p·forceMap: the columns go to nodes 1..3.
+      #pragma GCC unroll 9
+      for (int c = 0; c < 3; ++c)
+        #pragma GCC unroll 9
+        for (int r = 0; r < 3; ++r)
+          out[3 * c + r][lane] = forceScale * (p[r] * rest.forceMap[3 * c][lane] + p[3 + r] * rest.forceMap[3 * c + 1][lane] +
+                                               p[6 + r] * rest.forceMap[3 * c + 2][lane]);
+    }
+    blocks_[block] = state;
+    for (std::size_t lane = 0; lane < count; ++lane) {
+      const Tetrahedron& t = tetrahedra[first + lane];
+      const glm::dvec3 a(out[0][lane], out[1][lane], out[2][lane]), b(out[3][lane], out[4][lane], out[5][lane]),
+          c(out[6][lane], out[7][lane], out[8][lane]);
+      targets_[t.y] += a;
+      targets_[t.z] += b;
+      targets_[t.w] += c;
+      targets_[t.x] -= a + b + c;
+    }
+  }
+}
+
+glm::dvec3 ProjectiveSolver::step(BulkBody& body, BulkScratch& scratch, const ProjectiveStep& options) {
+  const double h = options.h;
+  ParticleState& state = body.state;
+  const std::size_t n = state.size();
+  if (blocks_.size() != body.restBlocks.size()) reset(body);
+  const ViscoelasticMaterial& m = body.material;
+  if (factoredStep_ != h || factoredShear_ != m.longTermShear + m.maxwellShear || factoredLambda_ != m.lameLambda ||
+      factoredInverseMasses_ != state.inverseMasses)
+    factor(body, h);
+  dampEdges(body, h, scratch, state);
+  // The mouse spring, node by node backward Euler on m (v' − v)/h = s_k (k (t_k − x − h v') + c (v_t − v')),
+  // then the whole hand's force limited as addMouseSpringForces does.
+  glm::dvec3 hand(0.0);
+  if (options.mouse != nullptr && !options.mouse->nodes.empty()) {
+    const MouseSpring& mouse = *options.mouse;
+    std::vector<glm::dvec3>& change = scratch.positions;  // velocity changes, reused scratch
+    change.assign(mouse.nodes.size(), glm::dvec3(0.0));
+    for (std::size_t k = 0; k < mouse.nodes.size(); ++k) {
+      const std::uint32_t i = mouse.nodes[k];
+      const double w = state.inverseMasses[i];
+      if (w <= 0.0) continue;
+      const double mass = 1.0 / w, stiffness = mouse.shares[k] * mouse.stiffness, damping = mouse.shares[k] * mouse.damping;
+      const glm::dvec3 v = state.velocities[i];
+      const glm::dvec3 next =
+          (mass / h * v + stiffness * (mouse.target + mouse.offsets[k] - state.positions[i]) + damping * mouse.targetVelocity) /
+          (mass / h + stiffness * h + damping);
+      change[k] = next - v;
+      hand += mass * change[k] / h;
+    }
+    const double magnitude = glm::length(hand);
+    const double scale = magnitude > mouse.maxForce ? mouse.maxForce / magnitude : 1.0;
+    for (std::size_t k = 0; k < mouse.nodes.size(); ++k) state.velocities[mouse.nodes[k]] += scale * change[k];
+    hand *= scale;
+  }
+  start_ = state.positions;
+  predicted_.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    predicted_[i] = state.positions[i] + h * state.velocities[i] + (state.inverseMasses[i] > 0.0 ? h * h : 0.0) * options.gravity;
+  state.positions = predicted_;
+  for (int iteration = 0; iteration < std::max(1, options.iterations); ++iteration) {
+    localStep(body, h, iteration == 0);
+    for (std::size_t i = 0; i < n; ++i) targets_[i] += masses_[i] * predicted_[i];  // the right-hand side
+    factor_->solve(targets_, solved_);
+    for (std::size_t i = 0; i < n; ++i) state.positions[i] = state.inverseMasses[i] > 0.0 ? solved_[i] : predicted_[i];
+  }
+  // The floor on positions (as xpbd.h): on it, and the slide across it undone up to μ × depth.
+  for (std::size_t i = 0; i < n; ++i) {
+    glm::dvec3& x = state.positions[i];
+    if (x.z >= 0.0 || state.inverseMasses[i] == 0.0) continue;
+    const double depth = -x.z;
+    x.z = 0.0;
+    const glm::dvec2 slide(x.x - start_[i].x, x.y - start_[i].y);
+    const double length = glm::length(slide);
+    const double undo = length <= options.friction * depth ? 1.0 : options.friction * depth / length;
+    x.x -= undo * slide.x;
+    x.y -= undo * slide.y;
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    if (state.inverseMasses[i] > 0.0) state.velocities[i] = (state.positions[i] - start_[i]) / h;
+  return hand;
+}
+
+}  // namespace slime

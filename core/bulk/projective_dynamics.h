@@ -1,0 +1,91 @@
+// The bulk body's unconditionally stable integrator (sim.integrator=projective): backward Euler
+// solved by projective dynamics (Bouaziz, Martin, Liu, Kavan & Pauly, "Projective Dynamics: Fusing
+// Constraint Projections for Fast Simulation", SIGGRAPH 2014) with the global matrix factored once
+// (Eigen's SimplicialLDLT) and one or a few local/global iterations per step.
+//
+// Each tetrahedron's energy is written as a distance to a target, E_e = w_e/2 ‖F − p_e‖² with a
+// constant weight, so that the global matrix A = M/h² + Σ w_e D_eᵀD_e (D_e x = F) never changes:
+//   w_e = V0 (2μ + 3λ),   p_e = (μ∞ R + μ1 R U_v + (3λ/2) F J^(−1/3)) / (μ + 3λ/2),
+// R the rotation of F (F = R U, found by Müller, Bender, Chentanez & Macklin 2016, "A robust method
+// to extract the rotational part of deformations", warm-started from the last step), U_v the Maxwell
+// branch's rest stretch and μ = μ∞ + μ1. At small strain this is linear elasticity with shear
+// modulus μ and Lamé λ, the same as the explicit integrators' stable neo-Hookean material
+// (viscoelastic.h): μ∞‖F − R‖² ≈ μ∞ ε:ε, μ1‖F − R U_v‖² ≈ μ1 (ε − ε_v):(ε − ε_v), and
+// (3λ/2)‖F − F J^(−1/3)‖² ≈ λ/2 (tr ε)². Inverted elements (J ≤ 0) take R as their volume target,
+// so they are pushed back out rather than further in.
+// The standard linear solid is kept: the Maxwell branch's rest stretch U_v flows towards the current
+// stretch U = sym(RᵀF) every step, U_v ← U + (U_v − U) exp(−h/τ), then U_v ← U_v / det(U_v)^(1/3) (at
+// small strain ε_v' = (ε − ε_v)/τ, as the explicit integrators' metric flow). U_v² is the metric G_v
+// of bulk_body.h's MaxwellBlock; storeMaxwell / loadMaxwell move between the two.
+//
+// One step h: the seed's edge dampers exactly (dampEdges, a contraction), the mouse spring
+// implicitly node by node (with the hand's force limit), the inertial prediction y = x + h v + h² g,
+// then `iterations` local steps (targets p_e, vectorised over kTetLanes tetrahedra) and global
+// solves A x = M y/h² + Σ w_e D_eᵀ p_e; the floor puts the nodes that went below it on it and undoes
+// their sliding up to μ times the depth (as xpbd.h); v = (x − x_start)/h.
+// Each iteration lowers the step's objective, so no step length makes it blow up; what a long step
+// costs is numerical damping (backward Euler's ζ ≈ hω/2 for a mode ω; see docs/physics.md).
+#pragma once
+
+#include "core/bulk/bulk_body.h"
+#include "core/scene/grab.h"
+
+#include <memory>
+#include <vector>
+
+namespace slime {
+
+// Per block of kTetLanes tetrahedra: the rotation of F as a unit quaternion (w, x, y, z; warm start
+// of the next polar decomposition) and the Maxwell rest stretch U_v (symmetric: 00, 11, 22, 01, 02, 12).
+struct ProjectiveBlock {
+  alignas(64) double rotation[4][kTetLanes] = {};
+  alignas(64) double maxwellStretch[6][kTetLanes] = {};
+};
+
+struct ProjectiveStep {
+  double h = 0.001;               // s
+  int iterations = 1;             // local/global iterations
+  glm::dvec3 gravity{0.0, 0.0, -9.81};
+  double friction = 0.0;          // Coulomb μ of the floor
+  const MouseSpring* mouse = nullptr;  // null: nothing grabbed
+};
+
+class ProjectiveSolver {
+ public:
+  ProjectiveSolver();
+  ~ProjectiveSolver();
+  // A copy keeps the per-element state and factors again on its first step.
+  ProjectiveSolver(const ProjectiveSolver& other);
+  ProjectiveSolver& operator=(const ProjectiveSolver& other);
+  // Sizes the per-element state for `body` and takes U_v = √G_v from its Maxwell metrics, R = I.
+  void reset(const BulkBody& body);
+  // U_v = √G_v from the body's metrics (after a rollback or a switch from another integrator).
+  void loadMaxwell(const BulkBody& body);
+  // G_v = U_v², B_v = G_v⁻¹ into the body (for its energy, a rollback, another integrator).
+  void storeMaxwell(BulkBody& body) const;
+  // One step; returns the hand's force, N (zero when nothing is grabbed).
+  glm::dvec3 step(BulkBody& body, BulkScratch& scratch, const ProjectiveStep& step);
+  // Forget the factorisation (after a material change); the next step factors again.
+  void invalidate() { factoredStep_ = -1.0; }
+  int factorisations() const { return factorisations_; }
+
+ private:
+  void factor(const BulkBody& body, double h);
+  void localStep(const BulkBody& body, double h, bool flow);
+  template <bool Flows>
+  void localPass(const BulkBody& body, double decay);
+
+  struct Factor;  // Eigen's SimplicialLDLT and the right-hand sides (Eigen stays out of this header)
+
+  std::vector<ProjectiveBlock> blocks_;
+  std::unique_ptr<Factor> factor_;
+  double factoredStep_ = -1.0;
+  double factoredShear_ = 0.0, factoredLambda_ = 0.0;
+  std::vector<double> factoredInverseMasses_;
+  int factorisations_ = 0;
+  std::vector<double> masses_;             // m_i/h² on the diagonal (pinned: a huge mass)
+  std::vector<glm::dvec3> start_, predicted_, targets_;  // x at the step's start, y, Σ w Dᵀp per node
+  std::vector<glm::dvec3> solved_;
+};
+
+}  // namespace slime
