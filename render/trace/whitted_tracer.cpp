@@ -26,6 +26,12 @@ float floorDistance(const Ray& ray) {
   return t <= ray.tFar ? t : kInfinity;
 }
 
+// A ray inside the jelly that reaches its surface within kContactHeight of the floor meets the floor
+// there (the contact patch, optics.h): shaded as the floor seen through the jelly, never as an exit.
+bool meetsFloorInContact(const Ray& ray, bool inside, float t) {
+  return inside && ray.direction.z < 0.0f && ray.origin.z + t * ray.direction.z <= kContactHeight;
+}
+
 }  // namespace
 
 struct WhittedTracer::Wavefront {
@@ -112,7 +118,8 @@ void WhittedTracer::tracePrimaries(const Ray* rays, const SlimeHit* hits, int co
     int hitCount = 0;
     for (std::size_t r = 0; r < wavefront.current.size(); ++r) {
       const PendingRay& ray = wavefront.current[r];
-      if (ray.kind != Kind::Environment && ray.hit.valid() && ray.hit.t <= floorDistance(ray.ray)) {
+      if (ray.kind != Kind::Environment && ray.hit.valid() && ray.hit.t <= floorDistance(ray.ray) &&
+          !meetsFloorInContact(ray.ray, ray.path.inside, ray.hit.t)) {
         slimeHits[hitCount++] = &ray;
         if (hitCount == 8) {
           shadeSlimes8(slimeHits, hitCount, wavefront, counters, colors);
@@ -275,7 +282,9 @@ void WhittedTracer::lookUpFloors(const std::vector<PendingRay>& rays, std::vecto
     const PendingRay& ray = rays[r];
     if (ray.kind == Kind::Primary) continue;  // a primary's floor goes through the renderer's cache
     const float tFloor = floorDistance(ray.ray);
-    if (tFloor == kInfinity || (ray.hit.valid() && ray.hit.t <= tFloor)) continue;
+    if (tFloor == kInfinity ||
+        (ray.hit.valid() && ray.hit.t <= tFloor && !meetsFloorInContact(ray.ray, ray.path.inside, ray.hit.t)))
+      continue;
     packet[size] = ray.ray;
     t[size] = tFloor;
     distances[size] = ray.path.travelled + tFloor;
