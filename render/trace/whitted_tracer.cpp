@@ -435,7 +435,7 @@ void WhittedTracer::shadeSlimes8(const PendingRay* const* pending, int count, Wa
         const glm::vec3 toLight = lightDirections[i];
         const glm::vec3 light = ray.factor * p.lightColor * (p.diffuse * cosLights[i] * p.slimeColor + p.specular * lobe);
         // Towards the light out of a supporting triangle, nothing of the slime is in the way.
-        if (p.shadows) addLight(offsetRayOrigin(point, facing, toLight), light, ray.pixel, geometry_.supports(ray.hit.primitive), wavefront, counters, colors);
+        if (p.shadows) addLight(offsetRayOrigin(point, facing, toLight), light, ray.pixel, geometry_.supports(ray.hit.primitive), false, wavefront, counters, colors);
         else pixel += light;
       }
     }
@@ -513,7 +513,7 @@ void WhittedTracer::shadeFloorWith(const Ray& ray, float t, const FloorShading& 
   colors[pixel] += nearFactor * shading.ambient + factor * (shading.haze * p.skyHorizon);
   if (shading.lit != glm::vec3(0.0f)) {  // else the light is below the floor, or black
     if (p.shadows) {
-      addLight(point + glm::vec3(0.0f, 0.0f, kRayOffset), nearFactor * shading.lit, pixel, unshadowed, wavefront, counters,
+      addLight(point + glm::vec3(0.0f, 0.0f, kRayOffset), nearFactor * shading.lit, pixel, unshadowed, true, wavefront, counters,
                colors);
     } else {
       colors[pixel] += nearFactor * shading.lit;
@@ -532,7 +532,7 @@ void WhittedTracer::shadeFloorWith(const Ray& ray, float t, const FloorShading& 
   }
 }
 
-void WhittedTracer::addLight(const glm::vec3& origin, const glm::vec3& multiplier, int pixel, bool unshadowed,
+void WhittedTracer::addLight(const glm::vec3& origin, const glm::vec3& multiplier, int pixel, bool unshadowed, bool fromFloor,
                              Wavefront& wavefront, TraceCounters& counters, glm::vec3* colors) const {
   ++counters.rays.shadow;
   if (unshadowed) {
@@ -550,6 +550,7 @@ void WhittedTracer::addLight(const glm::vec3& origin, const glm::vec3& multiplie
   shadow.ray = ray;
   shadow.multiplier = multiplier;
   shadow.pixel = pixel;
+  shadow.fromFloor = fromFloor;
 }
 
 }  // namespace slime
