@@ -24,6 +24,16 @@ struct Branch {
   bool inside = false;
 };
 
+// A number in [0, 1) from the photon's index and its crossing (PCG's output hash, O'Neill 2014): the
+// same photon takes the same path every frame.
+float uniformHash(std::uint64_t index, int crossing) {
+  std::uint64_t x = index * 0x9E3779B97F4A7C15ull + static_cast<std::uint64_t>(crossing) * 0xBF58476D1CE4E5B9ull;
+  x ^= x >> 31;
+  x *= 0x94D049BB133111EBull;
+  x ^= x >> 29;
+  return static_cast<float>(x >> 40) * (1.0f / 16777216.0f);
+}
+
 }  // namespace
 
 PhotonTally& PhotonTally::operator+=(const PhotonTally& o) {
@@ -93,11 +103,12 @@ void PhotonTracer::trace(const PhotonCone& cone, std::uint64_t first, std::uint6
   for (std::uint64_t i = first; i < first + count; ++i) {
     const Ray ray{cone.apex, cone.direction(i), 0.0f, kInfinity};
     tally.emitted += 1.0;
-    tracePhoton(ray, landings, tally);
+    tracePhoton(ray, i, landings, tally);
   }
 }
 
-void PhotonTracer::tracePhoton(const Ray& fromLight, std::vector<PhotonLanding>& landings, PhotonTally& tally) const {
+void PhotonTracer::tracePhoton(const Ray& fromLight, std::uint64_t index, std::vector<PhotonLanding>& landings,
+                               PhotonTally& tally) const {
   const ShadingParameters& p = parameters_;
   if (!geometry_.mayHit(fromLight)) return;
   Branch stack[kMaxCrossings + 1];
@@ -169,11 +180,20 @@ void PhotonTracer::tracePhoton(const Ray& fromLight, std::vector<PhotonLanding>&
       tally.reflected += glm::dvec3(r);
       continue;
     }
-    if (largest(r) >= kMinPhotonWeight && canBranch) {
+    // A partial reflection (F of a few per cent) survives Russian roulette with probability F and
+    // its weight divided by F: unbiased, and only one photon in 1/F pays for the extra queries.
+    // Total internal reflection (F = 1) always goes on.
+    glm::vec3 kept = r;
+    if (reflectedShare < 1.0f) {
+      const float survive = std::max(reflectedShare, 1e-6f);
+      if (uniformHash(index, crossings) >= survive) continue;
+      kept = r / survive;
+    }
+    if (largest(kept) >= kMinPhotonWeight && canBranch) {
       const glm::vec3 along = reflect(ray.direction, facing);
-      stack[size++] = Branch{Ray{offsetRayOrigin(point, outward, along), along, 0.0f, kInfinity}, r, true};
+      stack[size++] = Branch{Ray{offsetRayOrigin(point, outward, along), along, 0.0f, kInfinity}, kept, true};
     } else {
-      tally.dropped += glm::dvec3(r);
+      tally.dropped += glm::dvec3(kept);
     }
   }
 }

@@ -55,7 +55,7 @@ class PhotonTracer {
              PhotonTally& tally) const;
 
  private:
-  void tracePhoton(const Ray& fromLight, std::vector<PhotonLanding>& landings, PhotonTally& tally) const;
+  void tracePhoton(const Ray& fromLight, std::uint64_t index, std::vector<PhotonLanding>& landings, PhotonTally& tally) const;
   float surfaceTransmission(float cosine, bool entering, float& reflectedShare) const;
 
   const SlimeGeometry& geometry_;
