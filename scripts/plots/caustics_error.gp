@@ -4,6 +4,8 @@ load "scripts/plots/_style.gp"
 set output dir."/caustics_error.png"
 set multiplot layout 1,2 title "Caustics: ball lens, map against a map of 64x the photons (lower is better)"
 set logscale xy
+set key inside top right box opaque
+set format x "%.0s%c"
 set ylabel "error (share of the reference's light)"
 set xlabel "photons"
 plot dir."/caustics.csv" using 1:3 skip 1 with linespoints pt 7 title "shadow outside the focus: sum|m-r| / sum r", \
