@@ -236,5 +236,27 @@ TEST(Caustics, BallLensProfileMatchesABruteForceLightTracer) {
   EXPECT_LT(largestError, 0.06) << "largest ring error, relative to the largest ring";
 }
 
+// Through the renderer: a clear slime lit from low at the side focuses light into its shadow, so
+// with caustics some floor pixels there are brighter than without (where the straight shadow ray
+// drew a tinted shadow never brighter than full light), and no pixel is NaN.
+TEST(Caustics, RendererBrightensTheClearSlimesShadow) {
+  Settings settings = smallScene(96, 72);
+  settings.slime.color = {1.0, 1.0, 1.0};
+  settings.slime.absorption = 0.0;
+  settings.slime.transmission = 1.0;
+  settings.light.position = {0.25, -0.05, 0.12};
+  RenderStats off, on;
+  const Image without = renderScene(settings, &off);
+  settings.render.caustics = true;
+  const Image with = renderScene(settings, &on);
+  EXPECT_EQ(on.nonFinitePixels, 0u);
+  EXPECT_EQ(on.causticPhotons, static_cast<std::uint64_t>(settings.render.photons));
+  EXPECT_EQ(off.causticPhotons, 0u);
+  const std::vector<std::uint8_t> a = toSrgb8(without), b = toSrgb8(with);
+  int brighter = 0;
+  for (std::size_t i = 0; i < a.size(); i += 3) brighter += b[i] > a[i] + 20;
+  EXPECT_GE(brighter, 5) << "pixels brighter by more than 20/255 with caustics";
+}
+
 }  // namespace
 }  // namespace slime::testing
