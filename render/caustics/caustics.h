@@ -1,6 +1,7 @@
-// Caustics for the renderer, frame by frame: photons traced through the slime (photon_tracer.h) and
-// gathered into the floor's caustic map (caustic_map.h); a bounded budget while anything moves,
-// more photons accumulated while all stays still.
+// Caustics: light the slime focuses onto the floor, as photons gathered into a floor map, kept across frames.
+//
+// Photons are traced through the slime (photon_tracer.h) and gathered into the floor's caustic map
+// (caustic_map.h): a bounded budget while anything moves, more photons accumulated while all stays still.
 #pragma once
 
 #include "core/settings/settings.h"
