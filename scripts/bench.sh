@@ -41,6 +41,7 @@ if [ "$quick" = 1 ]; then
     --stiffnesses 40 --accuracy-level 2 --steps 1e-3,5e-3 --settle 0.1 --json "$out/physics.json" --csv "$out/physics.csv"
   "$slime" bench accuracy --levels 1,2 --depths 1,2 --frames 1 --size 160x120 --json "$out/accuracy.json" --csv "$out/accuracy.csv"
   "$slime" bench material --quick --json "$out/material.json" --csv "$out/material.csv"
+  "$slime" bench caustics --photons 1000,2000 --frames 1 --csv "$out/caustics.csv"
   if [ -x "$bin/app/bench/bullet_ball" ]; then "$bin/app/bench/bullet_ball" --levels 2 --seconds 0.1 --json "$out/bullet.json"; fi
   "$bin/app/bench/micro_bench" --benchmark_min_time=0.01 --benchmark_filter='springForces/4|renderTile' >/dev/null
 else
@@ -56,6 +57,7 @@ else
     --json "$out/accuracy.json" --csv "$out/accuracy.csv"
   "$slime" bench physics --levels 3-6 --seconds 1 --json "$out/physics.json" --csv "$out/physics.csv"
   "$slime" bench material --resolutions 1-4 --json "$out/material.json" --csv "$out/material.csv"
+  "$slime" bench caustics --photons 2500,5000,10000,20000,40000 --frames 3 --csv "$out/caustics.csv"
   if [ -x "$bin/app/bench/bullet_ball" ]; then "$bin/app/bench/bullet_ball" --levels 4,6 --seconds 2 --json "$out/bullet.json"; fi
   "$bin/app/bench/micro_bench" --benchmark_out="$out/micro.json" --benchmark_out_format=json
   # The viewer over a scripted drag at 1280×720 (issue 15): every frame's time from the frame log, at

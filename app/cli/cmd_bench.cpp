@@ -1,6 +1,7 @@
 // `slime bench render|physics|accuracy|material`: the benchmarks behind docs/bench (scripts/bench.sh
 // runs them all and redraws the charts). Each prints a table, and writes every figure with --json/--csv.
 #include "app/bench/bench_accuracy.h"
+#include "app/bench/bench_caustics.h"
 #include "app/bench/bench_material.h"
 #include "app/bench/bench_physics.h"
 #include "app/bench/bench_render.h"
@@ -184,6 +185,38 @@ void registerMaterial(CLI::App& bench, int& exitCode) {
   });
 }
 
+void registerCaustics(CLI::App& bench, int& exitCode) {
+  struct CausticsCommand {
+    SceneOptions scene;
+    CausticsBenchOptions bench;
+    std::string photons = "2500,5000,10000,20000,40000,80000,160000";
+  };
+  auto options = std::make_shared<CausticsCommand>();
+  auto* command = bench.add_subcommand("caustics", "Caustic map error against photon count and time (the ball lens)");
+  command->add_option("--photons", options->photons, "Photon counts, comma separated")->capture_default_str();
+  command->add_option("--frames", options->bench.frames, "Timed runs per count (median)")->check(CLI::Range(1, 100))->capture_default_str();
+  command->add_option("--csv", options->bench.csvFile, "Write the table as CSV");
+  addSceneOptions(*command, options->scene);
+  command->callback([options, &exitCode] {
+    CausticsBenchOptions bench = options->bench;
+    bench.photons.clear();
+    std::size_t start = 0;
+    const std::string& text = options->photons;
+    while (start <= text.size()) {
+      const std::size_t end = std::min(text.find(',', start), text.size());
+      const std::string item = text.substr(start, end - start);
+      char* rest = nullptr;
+      const long value = std::strtol(item.c_str(), &rest, 10);
+      if (item.empty() || *rest != '\0' || value < 100 || value > 10000000)
+        throw CLI::ValidationError("--photons", "each count must be a whole number 100..10000000, got '" + item + "'");
+      bench.photons.push_back(static_cast<int>(value));
+      start = end + 1;
+    }
+    runCausticsBench(loadSettings(options->scene), bench);
+    exitCode = 0;
+  });
+}
+
 }  // namespace
 
 void registerBenchCommand(CLI::App& root, int& exitCode) {
@@ -193,6 +226,7 @@ void registerBenchCommand(CLI::App& root, int& exitCode) {
   registerPhysics(*bench, exitCode);
   registerAccuracy(*bench, exitCode);
   registerMaterial(*bench, exitCode);
+  registerCaustics(*bench, exitCode);
 }
 
 }  // namespace slime

@@ -70,6 +70,9 @@ void runSnapshot(const SnapshotOptions& options) {
   std::printf("slime: height %.4f m, width %.4f m, min z %.2e m, max speed %.2e m/s, volume %.4f, rollbacks %zu\n",
               m.height, m.width, m.minZ, m.maxSpeed, m.volumeRatio, snapshot.divergences);
   std::printf("render %.2f ms (refit %.3f ms)\n", snapshot.stats.traceMs, snapshot.stats.refitMs);
+  if (snapshot.stats.causticPhotons > 0)
+    std::printf("caustics %.2f ms of it (%llu photons)\n", snapshot.stats.causticsMs,
+                static_cast<unsigned long long>(snapshot.stats.causticPhotons));
   std::printf("rays %llu: primary %llu, shadow %llu, reflection %llu, refraction %llu; slime queries %llu\n",
               static_cast<unsigned long long>(rays.total()), static_cast<unsigned long long>(rays.primary),
               static_cast<unsigned long long>(rays.shadow), static_cast<unsigned long long>(rays.reflection),

@@ -128,6 +128,10 @@ void forEachField(S& s, Visitor&& visitor) {
   visit("render.scale", s.render.scale, Limits{0.1, 1.0, "of the window size"},
         "resolution of the viewer's traced image");
   visit("render.shadows", s.render.shadows, Choices{}, "trace shadow rays to the point light");
+  visit("render.caustics", s.render.caustics, Choices{},
+        "caustics: light focused through the slime onto the floor, traced as photons from the light");
+  visit("render.photons", s.render.photons, Limits{1000, 10000000, "photons per frame"},
+        "caustic photons shot per frame while the slime or the light moves (16 times as many gathered while still)");
   visit("render.targetFps", s.render.targetFps, Limits{0.0, 240.0, "frames per second"},
         "viewer: trace the image smaller while moving frames miss this rate (0: always full resolution)");
   // Simulation

@@ -61,6 +61,15 @@ glm::vec3 absorptionCoefficients(const glm::vec3& color, float absorption);
 // (render_tests: SecondaryOffset.* measure the self-intersection threshold and check this margin).
 constexpr float kRayOffset = 1e-5f;
 
+// The jelly lies on the floor: where its surface is within kContactHeight of the plane z = 0 it is
+// in optical contact with it (no air between), so a ray inside the slime that reaches its surface
+// there meets the floor, not a jelly–air interface. The drawn surface's contact patch lies exactly
+// in the plane (its vertices at z = 0 ± 1e-19 m), where the triangle's t and the plane's t differ
+// only by rounding: which one came first was a coin toss, and the loser's total internal reflection
+// drew green speckles over the contact patch. Twice the ray offset, so a ray started
+// kRayOffset above the floor inside the patch (a shadow ray) is above the patch's triangles.
+constexpr float kContactHeight = 2.0f * kRayOffset;
+
 // p moved by `offset` along n_g towards the side `direction` points to.
 inline glm::vec3 offsetRayOrigin(const glm::vec3& p, const glm::vec3& geometricNormal, const glm::vec3& direction,
                                  float offset = kRayOffset) {

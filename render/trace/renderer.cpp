@@ -1,6 +1,7 @@
 #include "render/trace/renderer.h"
 
 #include "core/scene/camera.h"
+#include "render/caustics/caustics.h"
 #include "render/trace/brute_tracer.h"
 #include "render/trace/embree_scene.h"
 #include "render/trace/embree_util.h"
@@ -81,6 +82,7 @@ struct Renderer::Impl {
   std::unique_ptr<tbb::task_arena> arena;
   tbb::enumerable_thread_specific<TraceCounters> counters;
   double refitMs = 0.0;
+  Caustics caustics;  // the photons and the floor's caustic map, kept while nothing moves
   // Per pixel, the FloorShading its primary ray saw (one sample per pixel only). The floor does not
   // move: while the camera, the image size and the floor's lighting stay, only the shadow ray and the
   // slime are traced again there; the entries are recomputed whenever floorCacheKey changes.
@@ -277,7 +279,11 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
   const int samplesPerAxis = std::max(1, static_cast<int>(std::lround(std::sqrt(std::max(1, settings.render.spp)))));
   const bool brute = settings.render.backend == "brute";
   const SlimeIntersector& intersector = brute ? static_cast<const SlimeIntersector&>(impl.brute) : impl.embree;
-  const WhittedTracer tracer(impl.geometry, intersector, impl.floor, parameters);
+  WhittedTracer tracer(impl.geometry, intersector, impl.floor, parameters);
+  const auto causticsStart = std::chrono::steady_clock::now();
+  tracer.setCaustics(impl.caustics.update(settings, parameters, impl.geometry, intersector, brute ? nullptr : impl.arena.get()));
+  stats.causticsMs = millisecondsSince(causticsStart);
+  stats.causticPhotons = impl.caustics.photons();
 
   FloorShading* floorShadings = nullptr;  // the caches, with one sample per pixel while the view holds
   const bool lastKeptCaches = impl.lastKeptCaches;

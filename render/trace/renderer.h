@@ -32,7 +32,9 @@ struct RayCounts {
 struct RenderStats {
   double refitMs = 0.0;  // BVH refit/rebuild in the last updateSlime
   double setupMs = 0.0;  // before tracing: settings sync (a new floor texture), shading constants, floor cache
-  double traceMs = 0.0;  // tracing and shading the image (wall time, setupMs included)
+  double traceMs = 0.0;  // tracing and shading the image (wall time, setupMs and causticsMs included)
+  double causticsMs = 0.0;  // photons traced and gathered into the caustic map this frame (wall time)
+  std::uint64_t causticPhotons = 0;  // photons behind this frame's caustic map (0: no caustics)
   double busyMs = 0.0;   // time the threads spent in tiles, summed: busyMs / (traceMs · threads) = parallel use
   int threads = 0;       // threads tracing (the arena's concurrency)
   std::uint64_t cachedFloorPixels = 0;  // primary floor hits served from the still-view floor cache

@@ -20,27 +20,57 @@ constexpr int kMaxShadowCrossings = 8;
 
 void WhittedTracer::traceShadows(const std::vector<PendingShadow>& shadows, TraceCounters& counters,
                                  glm::vec3* colors) const {
-  Ray rays[8];
-  bool active[8] = {};
-  int pixels[8] = {};
-  glm::vec3 multipliers[8];
-  int size = 0;
-  const auto flush = [&] {
+  // Two batches of 8: the shadow rays whose light is the straight ray's transmittance, and (with
+  // caustics) those from the floor, whose light is the caustic map's wherever the slime is in the way.
+  struct Batch {
+    Ray rays[8];
+    bool active[8] = {};
+    int pixels[8] = {};
+    glm::vec3 multipliers[8];
+    int size = 0;
+  };
+  Batch straight, floor;
+  const auto flush = [&](Batch& batch, bool caustic) {
     glm::vec3 visible[8];
-    lightTransmittance8(rays, active, visible, counters);
-    for (int k = 0; k < size; ++k)
-      if (largest(visible[k]) > 0.0f) colors[pixels[k]] += visible[k] * multipliers[k];
-    for (bool& a : active) a = false;
-    size = 0;
+    if (caustic) {
+      bool blocked[8] = {};
+      lightBlocked8(batch.rays, batch.active, blocked, counters);
+      for (int k = 0; k < batch.size; ++k)
+        visible[k] = blocked[k] ? caustics_->gain(batch.rays[k].origin, parameters_.lightPosition) : glm::vec3(1.0f);
+    } else {
+      lightTransmittance8(batch.rays, batch.active, visible, counters);
+    }
+    for (int k = 0; k < batch.size; ++k)
+      if (largest(visible[k]) > 0.0f) colors[batch.pixels[k]] += visible[k] * batch.multipliers[k];
+    for (bool& a : batch.active) a = false;
+    batch.size = 0;
   };
   for (const PendingShadow& shadow : shadows) {
-    rays[size] = shadow.ray;
-    active[size] = true;
-    pixels[size] = shadow.pixel;
-    multipliers[size] = shadow.multiplier;
-    if (++size == 8) flush();
+    const bool caustic = caustics_ && shadow.fromFloor;
+    Batch& batch = caustic ? floor : straight;
+    batch.rays[batch.size] = shadow.ray;
+    batch.active[batch.size] = true;
+    batch.pixels[batch.size] = shadow.pixel;
+    batch.multipliers[batch.size] = shadow.multiplier;
+    if (++batch.size == 8) flush(batch, caustic);
   }
-  if (size > 0) flush();
+  if (straight.size > 0) flush(straight, false);
+  if (floor.size > 0) flush(floor, true);
+}
+
+void WhittedTracer::lightBlocked8(const Ray* rays, const bool* active, bool* blocked, TraceCounters& counters) const {
+  for (int i = 0; i < 8; ++i) {
+    blocked[i] = false;
+    counters.slimeQueries += active[i];
+  }
+  SegmentCrossings crossings[8];
+  if (intersector_.lightCrossings8(rays, active, crossings)) {
+    for (int i = 0; i < 8; ++i) blocked[i] = active[i] && crossings[i].count > 0;
+    return;
+  }
+  SlimeHit hits[8];
+  intersector_.intersect8(rays, active, hits);
+  for (int i = 0; i < 8; ++i) blocked[i] = active[i] && hits[i].valid();
 }
 
 float WhittedTracer::surfaceTransmission(float cosine, bool entering) const {

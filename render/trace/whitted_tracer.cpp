@@ -26,6 +26,12 @@ float floorDistance(const Ray& ray) {
   return t <= ray.tFar ? t : kInfinity;
 }
 
+// A ray inside the jelly that reaches its surface within kContactHeight of the floor meets the floor
+// there (the contact patch, optics.h): shaded as the floor seen through the jelly, never as an exit.
+bool meetsFloorInContact(const Ray& ray, bool inside, float t) {
+  return inside && ray.direction.z < 0.0f && ray.origin.z + t * ray.direction.z <= kContactHeight;
+}
+
 }  // namespace
 
 struct WhittedTracer::Wavefront {
@@ -112,7 +118,8 @@ void WhittedTracer::tracePrimaries(const Ray* rays, const SlimeHit* hits, int co
     int hitCount = 0;
     for (std::size_t r = 0; r < wavefront.current.size(); ++r) {
       const PendingRay& ray = wavefront.current[r];
-      if (ray.kind != Kind::Environment && ray.hit.valid() && ray.hit.t <= floorDistance(ray.ray)) {
+      if (ray.kind != Kind::Environment && ray.hit.valid() && ray.hit.t <= floorDistance(ray.ray) &&
+          !meetsFloorInContact(ray.ray, ray.path.inside, ray.hit.t)) {
         slimeHits[hitCount++] = &ray;
         if (hitCount == 8) {
           shadeSlimes8(slimeHits, hitCount, wavefront, counters, colors);
@@ -275,7 +282,9 @@ void WhittedTracer::lookUpFloors(const std::vector<PendingRay>& rays, std::vecto
     const PendingRay& ray = rays[r];
     if (ray.kind == Kind::Primary) continue;  // a primary's floor goes through the renderer's cache
     const float tFloor = floorDistance(ray.ray);
-    if (tFloor == kInfinity || (ray.hit.valid() && ray.hit.t <= tFloor)) continue;
+    if (tFloor == kInfinity ||
+        (ray.hit.valid() && ray.hit.t <= tFloor && !meetsFloorInContact(ray.ray, ray.path.inside, ray.hit.t)))
+      continue;
     packet[size] = ray.ray;
     t[size] = tFloor;
     distances[size] = ray.path.travelled + tFloor;
@@ -426,7 +435,7 @@ void WhittedTracer::shadeSlimes8(const PendingRay* const* pending, int count, Wa
         const glm::vec3 toLight = lightDirections[i];
         const glm::vec3 light = ray.factor * p.lightColor * (p.diffuse * cosLights[i] * p.slimeColor + p.specular * lobe);
         // Towards the light out of a supporting triangle, nothing of the slime is in the way.
-        if (p.shadows) addLight(offsetRayOrigin(point, facing, toLight), light, ray.pixel, geometry_.supports(ray.hit.primitive), wavefront, counters, colors);
+        if (p.shadows) addLight(offsetRayOrigin(point, facing, toLight), light, ray.pixel, geometry_.supports(ray.hit.primitive), false, wavefront, counters, colors);
         else pixel += light;
       }
     }
@@ -504,7 +513,7 @@ void WhittedTracer::shadeFloorWith(const Ray& ray, float t, const FloorShading& 
   colors[pixel] += nearFactor * shading.ambient + factor * (shading.haze * p.skyHorizon);
   if (shading.lit != glm::vec3(0.0f)) {  // else the light is below the floor, or black
     if (p.shadows) {
-      addLight(point + glm::vec3(0.0f, 0.0f, kRayOffset), nearFactor * shading.lit, pixel, unshadowed, wavefront, counters,
+      addLight(point + glm::vec3(0.0f, 0.0f, kRayOffset), nearFactor * shading.lit, pixel, unshadowed, true, wavefront, counters,
                colors);
     } else {
       colors[pixel] += nearFactor * shading.lit;
@@ -523,7 +532,7 @@ void WhittedTracer::shadeFloorWith(const Ray& ray, float t, const FloorShading& 
   }
 }
 
-void WhittedTracer::addLight(const glm::vec3& origin, const glm::vec3& multiplier, int pixel, bool unshadowed,
+void WhittedTracer::addLight(const glm::vec3& origin, const glm::vec3& multiplier, int pixel, bool unshadowed, bool fromFloor,
                              Wavefront& wavefront, TraceCounters& counters, glm::vec3* colors) const {
   ++counters.rays.shadow;
   if (unshadowed) {
@@ -541,6 +550,7 @@ void WhittedTracer::addLight(const glm::vec3& origin, const glm::vec3& multiplie
   shadow.ray = ray;
   shadow.multiplier = multiplier;
   shadow.pixel = pixel;
+  shadow.fromFloor = fromFloor;
 }
 
 }  // namespace slime

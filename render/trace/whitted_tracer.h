@@ -12,6 +12,7 @@
 // shadow rays' walk through the slime in shadow_rays.cpp.
 #pragma once
 
+#include "render/caustics/caustic_map.h"
 #include "render/floor/floor_texture.h"
 #include "render/trace/ray.h"
 #include "render/trace/renderer.h"
@@ -83,6 +84,10 @@ class WhittedTracer {
 
   struct Wavefront;  // per-thread work lists (whitted_tracer.cpp)
 
+  // Caustics (render/caustics/): the floor in the slime's shadow gets the light the map says came
+  // through the slime, in place of the straight shadow ray's transmittance. Null: no caustics.
+  void setCaustics(const CausticMap* map) { caustics_ = map; }
+
  private:
   // Environment: a ray out of segments leaving the jelly: it sees only the floor, unshadowed, or the sky.
   enum class Kind { Primary, Reflection, Refraction, Environment };
@@ -109,6 +114,7 @@ class WhittedTracer {
     Ray ray;
     glm::vec3 multiplier{0.0f};
     int pixel = 0;
+    bool fromFloor = false;  // from a floor point: with caustics, blocked or not, and then the caustic map's gain
   };
 
   // The slime hits of the rays that do not know theirs, queried 8 at a time.
@@ -128,7 +134,7 @@ class WhittedTracer {
   // The light reaching `origin` times `multiplier`, for pixel `pixel`: added at once when nothing can
   // shadow it (`unshadowed`: it leaves a convex slime's outside, or lies outside the slime's
   // footprint; or its ray misses the slime's bounds), else queued.
-  void addLight(const glm::vec3& origin, const glm::vec3& multiplier, int pixel, bool unshadowed,
+  void addLight(const glm::vec3& origin, const glm::vec3& multiplier, int pixel, bool unshadowed, bool fromFloor,
                 Wavefront& wavefront, TraceCounters& counters, glm::vec3* colors) const;
   // Traces the packet's queued shadow rays 8 at a time and adds what reaches each pixel.
   void traceShadows(const std::vector<PendingShadow>& shadows, TraceCounters& counters, glm::vec3* colors) const;
@@ -179,6 +185,9 @@ class WhittedTracer {
   // rays are consumed), per channel: partial and coloured behind the translucent slime (surface
   // transmission and Beer–Lambert along the chord), 0 if opaque. Crossings are traced as packets.
   void lightTransmittance8(Ray* rays, const bool* active, glm::vec3* visible, TraceCounters& counters) const;
+  // With caustics, for shadow rays from the floor: whether each meets the slime at all (one query, or
+  // the light's grid); the light that passes the slime is then the caustic map's, not the straight ray's.
+  void lightBlocked8(const Ray* rays, const bool* active, bool* blocked, TraceCounters& counters) const;
   // lightTransmittance8's first step: each walking shadow ray's crossing found from both its ends at
   // once, where it crosses no non-supporting triangle; the rays it settles stop walking (the others,
   // e.g. from inside the jelly or through a dent, walk on from past their first crossing).
@@ -192,6 +201,7 @@ class WhittedTracer {
   const SlimeIntersector& intersector_;
   const FloorTexture& floor_;
   const ShadingParameters& parameters_;
+  const CausticMap* caustics_ = nullptr;
 };
 
 }  // namespace slime

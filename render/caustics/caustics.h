@@ -1,0 +1,46 @@
+// Caustics: light the slime focuses onto the floor, as photons gathered into a floor map, kept across frames.
+//
+// Photons are traced through the slime (photon_tracer.h) and gathered into the floor's caustic map
+// (caustic_map.h): a bounded budget while anything moves, more photons accumulated while all stays still.
+#pragma once
+
+#include "core/settings/settings.h"
+#include "render/caustics/caustic_map.h"
+#include "render/caustics/photon_tracer.h"
+
+#include <tbb/task_arena.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace slime {
+
+class Caustics {
+ public:
+  // While the slime, the light and the optics stay as in the last frame, each frame adds this many
+  // budgets of photons to the last, up to kStillBudgets in all.
+  static constexpr int kStillBudgets = 16;
+
+  // The map for this frame, or null when caustics are off (render.caustics, render.shadows, the light
+  // below the floor, no slime). `arena`: the photons in its threads; null: on this thread (the brute
+  // force, the oracle). Brings the map up to date: a new shape, light or setting starts again from
+  // render.photons photons; an unchanged one adds render.photons more until kStillBudgets of them.
+  const CausticMap* update(const Settings& settings, const ShadingParameters& parameters, const SlimeGeometry& geometry,
+                           const SlimeIntersector& intersector, tbb::task_arena* arena);
+
+  std::uint64_t photons() const { return traced_; }  // photons behind the current map
+  const PhotonTally& tally() const { return tally_; }
+  bool converged() const { return traced_ >= budget_ * kStillBudgets; }
+  double lastMs() const { return lastMs_; }  // the last update's time, wall clock
+
+ private:
+  std::vector<float> key_;  // the slime's vertices, the light, the optics and the budget of the map
+  std::vector<PhotonLanding> landings_;
+  PhotonTally tally_;
+  CausticMap map_;
+  PhotonCone cone_;
+  std::uint64_t traced_ = 0, budget_ = 0;
+  double lastMs_ = 0.0;
+};
+
+}  // namespace slime

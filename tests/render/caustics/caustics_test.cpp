@@ -1,0 +1,262 @@
+// Caustics' oracles (render/caustics/): (a) power: what leaves a ball through it equals what it
+// intercepts times its Fresnel and Beer–Lambert transmittance, summed over the internal reflections
+// in closed form; (b) a ball lens: the caustic's peak on the floor lies at the paraxial focus
+// f = nR / (2 (n − 1)) from the centre, and the map's profile matches an independent brute-force light
+// tracer (random photons, 100 times as many, a histogram).
+#include "render_fixture.h"
+
+#include "render/caustics/caustic_map.h"
+#include "render/caustics/photon_tracer.h"
+#include "render/trace/brute_tracer.h"
+#include "render/trace/embree_scene.h"
+#include "render/trace/optics.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+namespace slime::testing {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// The analytic sphere of radius R at `center`, Embree's, with the shading constants of `settings`.
+struct Ball {
+  Settings settings = defaultSettings();
+  SlimeGeometry geometry;
+  EmbreeScene embree{0};
+  ShadingParameters parameters;
+  Ball(const glm::dvec3& center, const glm::dvec3& light, const glm::dvec3& color, double absorption) {
+    settings.slime.shape = "sphere";
+    settings.slime.position = center;
+    settings.slime.color = color;
+    settings.slime.absorption = absorption;
+    settings.slime.transmission = 1.0;
+    settings.light.position = light;
+    const TriangleMesh mesh = makeIcosphere(2, settings.slime.radius, center);
+    const bool topology = geometry.update(mesh.positions, mesh.triangles);
+    geometry.setAnalyticSphere(true, static_cast<float>(settings.slime.radius));
+    embree.update(geometry, topology);
+    parameters = makeShadingParameters(settings, 100);
+  }
+};
+
+// Per unit intensity, the power a ball of radius R and index n at distance D from a point light
+// sends out through its surface: over the cone of directions that meet it (impact parameter
+// b = D sin ψ, sin θi = b / R), each ray enters with 1 − F, crosses a chord L = 2R cos θt losing
+// exp(−σL), and at each of its exits leaves 1 − F (the same F: the angles inside are all θt),
+//   P = ∫ (1 − F)² e^{−σL} / (1 − F e^{−σL}) dΩ   (the internal reflections' geometric series).
+double ballTransmittedPower(double distance, double radius, double n, double sigma) {
+  const double psiMax = std::asin(radius / distance);
+  const int steps = 20000;
+  double sum = 0.0;
+  for (int k = 0; k < steps; ++k) {
+    const double psi = (k + 0.5) / steps * psiMax;
+    const double b = distance * std::sin(psi);
+    const double sinI = std::min(1.0, b / radius), cosI = std::sqrt(1.0 - sinI * sinI);
+    const double sinT = sinI / n, cosT = std::sqrt(1.0 - sinT * sinT);
+    const double rs = (cosI - n * cosT) / (cosI + n * cosT), rp = (n * cosI - cosT) / (n * cosI + cosT);
+    const double f = 0.5 * (rs * rs + rp * rp);
+    const double a = std::exp(-sigma * 2.0 * radius * cosT);
+    sum += (1.0 - f) * (1.0 - f) * a / (1.0 - f * a) * 2.0 * kPi * std::sin(psi) * (psiMax / steps);
+  }
+  return sum;
+}
+
+TEST(Caustics, PowerThroughABallMatchesFresnelAndBeerLambert) {
+  const glm::dvec3 color{0.5, 0.7, 0.9};
+  Ball ball({0.0, 0.0, 0.04}, {0.1, 0.05, 0.5}, color, 20.0);
+  const PhotonCone cone = photonCone(ball.geometry, ball.parameters.lightPosition);
+  const PhotonTracer tracer(ball.geometry, ball.embree, ball.parameters);
+  std::vector<PhotonLanding> landings;
+  PhotonTally tally;
+  tracer.trace(cone, 0, 40000, landings, tally);
+  const double distance = glm::length(glm::dvec3(ball.parameters.lightPosition) - glm::dvec3(0.0, 0.0, 0.04));
+  for (int c = 0; c < 3; ++c) {
+    const double sigma = ball.parameters.slimeAbsorption[c];
+    const double expected = ballTransmittedPower(distance, ball.settings.slime.radius, ball.settings.slime.ior, sigma);
+    const double traced = (tally.landed[c] + tally.escaped[c]) * cone.solidAngle / tally.emitted;
+    EXPECT_NEAR(traced / expected, 1.0, 0.02) << "channel " << c << ": traced " << traced << ", expected " << expected;
+    EXPECT_GT(tally.landed[c], 0.9 * (tally.landed[c] + tally.escaped[c]));  // nearly all of it reaches the floor
+  }
+  // The map keeps the power: its irradiance integrated over the floor is what landed.
+  CausticMap map;
+  map.build(landings, tally.emitted, cone.solidAngle, shadowRegion(cone, ball.geometry.boundCenter, ball.geometry.boundRadius));
+  const float cell = map.cellSize() / 2.0f;
+  glm::dvec3 integral(0.0);
+  for (float y = -0.2f; y < 0.2f; y += cell)
+    for (float x = -0.2f; x < 0.2f; x += cell) integral += glm::dvec3(map.irradiance(x, y)) * double(cell) * double(cell);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(integral[c] / (tally.landed[c] * cone.solidAngle / tally.emitted), 1.0, 0.02);
+}
+
+// A ball of radius R lit from far along unit direction d (from the light), its centre at height
+// f |d_z| so that its paraxial focus c + f d lies on the floor.
+struct Lens {
+  glm::dvec3 direction, center, focus;
+  double focal = 0.0;
+};
+Lens lensOnTheFloor(const glm::dvec3& direction, double radius, double n) {
+  Lens lens;
+  lens.direction = glm::normalize(direction);
+  lens.focal = n * radius / (2.0 * (n - 1.0));
+  lens.center = glm::dvec3(0.0, 0.0, lens.focal * -lens.direction.z);
+  lens.focus = lens.center + lens.focal * lens.direction;
+  return lens;
+}
+
+// The floor point of the map's largest irradiance, searched on a grid of `step` around `around`.
+glm::dvec2 peakOf(const CausticMap& map, const glm::dvec2& around, double halfWidth, double step) {
+  glm::dvec2 best = around;
+  float bestValue = -1.0f;
+  for (double y = around.y - halfWidth; y <= around.y + halfWidth; y += step)
+    for (double x = around.x - halfWidth; x <= around.x + halfWidth; x += step) {
+      const float value = map.irradiance(static_cast<float>(x), static_cast<float>(y)).x;
+      if (value > bestValue) bestValue = value, best = {x, y};
+    }
+  return best;
+}
+
+void expectPeakAtTheParaxialFocus(const glm::dvec3& direction) {
+  const double radius = defaultSettings().slime.radius, n = defaultSettings().slime.ior;
+  const Lens lens = lensOnTheFloor(direction, radius, n);
+  const glm::dvec3 light = lens.center - 50.0 * lens.direction;  // far: the rays all but parallel
+  Ball ball(lens.center, light, {1.0, 1.0, 1.0}, 0.0);
+  const PhotonCone cone = photonCone(ball.geometry, ball.parameters.lightPosition);
+  const PhotonTracer tracer(ball.geometry, ball.embree, ball.parameters);
+  std::vector<PhotonLanding> landings;
+  PhotonTally tally;
+  tracer.trace(cone, 0, 100000, landings, tally);
+  CausticMap map;
+  map.build(landings, tally.emitted, cone.solidAngle, shadowRegion(cone, ball.geometry.boundCenter, ball.geometry.boundRadius));
+  const glm::dvec2 peak = peakOf(map, {lens.focus.x, lens.focus.y}, 0.01, 2e-5);
+  // Within one cell of the map (its kernel's half width) of the paraxial focus.
+  EXPECT_LT(glm::length(peak - glm::dvec2(lens.focus.x, lens.focus.y)), map.cellSize())
+      << "peak (" << peak.x << ", " << peak.y << "), focus (" << lens.focus.x << ", " << lens.focus.y << "), cell "
+      << map.cellSize();
+}
+
+TEST(Caustics, BallLensPeaksAtTheParaxialFocusFromAbove) { expectPeakAtTheParaxialFocus({0.0, 0.0, -1.0}); }
+TEST(Caustics, BallLensPeaksAtTheParaxialFocusFromTheSide) { expectPeakAtTheParaxialFocus({0.5, 0.2, -0.8}); }
+
+// The brute-force light tracer: random photons into the ball (uniform in the cone), Snell and
+// Fresnel chosen at random at each crossing (Russian roulette), to the floor; the irradiance in
+// rings about the axis, per unit intensity.
+std::vector<double> bruteForceRings(const Lens& lens, double radius, double n, const glm::dvec3& light,
+                                    std::int64_t photons, double ringWidth, int rings, std::uint32_t seed) {
+  std::mt19937_64 random(seed);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  const glm::dvec3 axis = glm::normalize(lens.center - light);
+  const double distance = glm::length(lens.center - light), cosAlpha = std::sqrt(1.0 - radius * radius / (distance * distance));
+  const double solidAngle = 2.0 * kPi * (1.0 - cosAlpha);
+  const glm::dvec3 u = glm::normalize(glm::cross(std::abs(axis.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0), axis));
+  const glm::dvec3 v = glm::cross(axis, u);
+  std::vector<double> power(rings, 0.0);
+  const auto sphereExit = [&](const glm::dvec3& o, const glm::dvec3& d) {  // far root from inside
+    const glm::dvec3 oc = o - lens.center;
+    const double b = glm::dot(oc, d), c = glm::dot(oc, oc) - radius * radius;
+    return -b + std::sqrt(std::max(0.0, b * b - c));
+  };
+  const auto fresnel = [](double cosI, double from, double to) {
+    const double sinT = from / to * std::sqrt(std::max(0.0, 1.0 - cosI * cosI));
+    if (sinT >= 1.0) return 1.0;
+    const double cosT = std::sqrt(1.0 - sinT * sinT);
+    const double rs = (from * cosI - to * cosT) / (from * cosI + to * cosT), rp = (to * cosI - from * cosT) / (to * cosI + from * cosT);
+    return 0.5 * (rs * rs + rp * rp);
+  };
+  for (std::int64_t k = 0; k < photons; ++k) {
+    const double cosTheta = 1.0 - uniform(random) * (1.0 - cosAlpha), phi = 2.0 * kPi * uniform(random);
+    const double sinTheta = std::sqrt(1.0 - cosTheta * cosTheta);
+    glm::dvec3 d = cosTheta * axis + sinTheta * std::cos(phi) * u + sinTheta * std::sin(phi) * v;
+    const glm::dvec3 oc = light - lens.center;
+    const double b = glm::dot(oc, d), c = glm::dot(oc, oc) - radius * radius, disc = b * b - c;
+    if (disc < 0.0) continue;
+    glm::dvec3 p = light + (-b - std::sqrt(disc)) * d;
+    glm::dvec3 normal = (p - lens.center) / radius;
+    double cosI = -glm::dot(d, normal);
+    if (uniform(random) < fresnel(cosI, 1.0, n)) continue;  // reflected away
+    const auto refracted = [](const glm::dvec3& dir, const glm::dvec3& nrm, double eta) {
+      const double ci = -glm::dot(nrm, dir), s2 = eta * eta * (1.0 - ci * ci);
+      return eta * dir + (eta * ci - std::sqrt(1.0 - s2)) * nrm;
+    };
+    d = refracted(d, normal, 1.0 / n);
+    bool out = false;
+    for (int bounce = 0; bounce < 32 && !out; ++bounce) {
+      p += sphereExit(p, d) * d;
+      normal = (p - lens.center) / radius;
+      cosI = glm::dot(d, normal);
+      if (uniform(random) < fresnel(cosI, n, 1.0)) {
+        d = d - 2.0 * glm::dot(d, normal) * normal;
+      } else {
+        d = refracted(d, -normal, n);
+        out = true;
+      }
+    }
+    if (!out || d.z >= 0.0) continue;
+    const glm::dvec3 floor = p + (-p.z / d.z) * d;
+    const int ring = static_cast<int>(glm::length(glm::dvec2(floor.x - lens.focus.x, floor.y - lens.focus.y)) / ringWidth);
+    if (ring < rings) power[ring] += solidAngle / static_cast<double>(photons);
+  }
+  for (int r = 0; r < rings; ++r) power[r] /= kPi * ringWidth * ringWidth * ((r + 1.0) * (r + 1.0) - r * r);
+  return power;
+}
+
+TEST(Caustics, BallLensProfileMatchesABruteForceLightTracer) {
+  const double radius = defaultSettings().slime.radius, n = defaultSettings().slime.ior;
+  const Lens lens = lensOnTheFloor({0.0, 0.0, -1.0}, radius, n);
+  const glm::dvec3 light = lens.center - 50.0 * lens.direction;
+  Ball ball(lens.center, light, {1.0, 1.0, 1.0}, 0.0);
+  const PhotonCone cone = photonCone(ball.geometry, ball.parameters.lightPosition);
+  const PhotonTracer tracer(ball.geometry, ball.embree, ball.parameters);
+  std::vector<PhotonLanding> landings;
+  PhotonTally tally;
+  constexpr std::int64_t kPhotons = 20000;
+  tracer.trace(cone, 0, kPhotons, landings, tally);
+  CausticMap map;
+  map.build(landings, tally.emitted, cone.solidAngle, shadowRegion(cone, ball.geometry.boundCenter, ball.geometry.boundRadius));
+  // Rings 2 mm wide out to 2 cm, the centre's ring left out (the kernel blurs the focus's spike).
+  constexpr double kRing = 0.002;
+  constexpr int kRings = 10;
+  const std::vector<double> brute = bruteForceRings(lens, radius, n, light, 100 * kPhotons, kRing, kRings, 7);
+  double largestError = 0.0, scale = 0.0;
+  for (int r = 1; r < kRings; ++r) scale = std::max(scale, brute[r]);
+  for (int r = 1; r < kRings; ++r) {
+    double mean = 0.0;  // the map averaged over the ring
+    const int samples = 2000;
+    for (int k = 0; k < samples; ++k) {
+      const double radial = (r + (k % 20 + 0.5) / 20.0) * kRing, angle = 2.0 * kPi * (k / 20 + 0.5) / (samples / 20);
+      mean += map.irradiance(static_cast<float>(lens.focus.x + radial * std::cos(angle)),
+                             static_cast<float>(lens.focus.y + radial * std::sin(angle))).x *
+              radial;
+    }
+    mean /= samples * (r + 0.5) * kRing;  // area-weighted over the ring
+    largestError = std::max(largestError, std::abs(mean - brute[r]) / scale);
+    std::printf("ring %d: map %.4g brute %.4g\n", r, mean, brute[r]);
+  }
+  EXPECT_LT(largestError, 0.06) << "largest ring error, relative to the largest ring";
+}
+
+// Through the renderer: a clear slime lit from low at the side focuses light into its shadow, so
+// with caustics some floor pixels there are brighter than without (where the straight shadow ray
+// drew a tinted shadow never brighter than full light), and no pixel is NaN.
+TEST(Caustics, RendererBrightensTheClearSlimesShadow) {
+  Settings settings = smallScene(96, 72);
+  settings.slime.color = {1.0, 1.0, 1.0};
+  settings.slime.absorption = 0.0;
+  settings.slime.transmission = 1.0;
+  settings.light.position = {0.25, -0.05, 0.12};
+  RenderStats off, on;
+  const Image without = renderScene(settings, &off);
+  settings.render.caustics = true;
+  const Image with = renderScene(settings, &on);
+  EXPECT_EQ(on.nonFinitePixels, 0u);
+  EXPECT_EQ(on.causticPhotons, static_cast<std::uint64_t>(settings.render.photons));
+  EXPECT_EQ(off.causticPhotons, 0u);
+  const std::vector<std::uint8_t> a = toSrgb8(without), b = toSrgb8(with);
+  int brighter = 0;
+  for (std::size_t i = 0; i < a.size(); i += 3) brighter += b[i] > a[i] + 20;
+  EXPECT_GE(brighter, 5) << "pixels brighter by more than 20/255 with caustics";
+}
+
+}  // namespace
+}  // namespace slime::testing
