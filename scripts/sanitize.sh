@@ -17,7 +17,8 @@ export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:suppressions=$PWD/scripts/a
 export LSAN_OPTIONS="suppressions=$PWD/scripts/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
 export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:suppressions=$PWD/scripts/tsan.supp"
-long_physics='Torture|DefaultsHoldLevel6|DefaultsHold.BallFallsSettlesSoftAndRound/5'
+# Suites named *Long (ContactLong) are long runs too.
+long_physics='Torture|DefaultsHoldLevel6|DefaultsHold.BallFallsSettlesSoftAndRound/5|[A-Za-z]+Long\.'
 for preset in "${@:-asan tsan}"; do
   for p in $preset; do
     cmake --preset "$p" -G Ninja >/dev/null
@@ -34,7 +35,7 @@ for preset in "${@:-asan tsan}"; do
         cmake --build --preset tsan --target core_tests render_tests
         # FusedSubstep at level 6 runs many thousands of TBB passes, each reported and suppressed inside
         # Debian's uninstrumented libtbb (minutes per simulated second); level 3 keeps its passes here.
-        ctest --preset tsan -j2 --timeout 900 -L '^render$'
+        ctest --preset tsan -j2 --timeout 900 -L '^render$' -E "$long_physics"
         ctest --preset tsan -j2 --timeout 900 -L '^core$' -R 'Thread|Parallel|DampedSymplecticEuler|FusedSubstep' \
           -E 'FusedSubstep.MatchesThePassByPassOne/6' ;;
     esac
