@@ -1,11 +1,10 @@
 #include "app/viewer/gl_blit.h"
 
 #include "app/viewer/gl.h"
+#include "app/viewer/gl_program.h"
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
-#include <string>
 
 namespace slime {
 namespace {
@@ -33,34 +32,11 @@ uniform sampler2D image;
 void main() { color = vec4(texture(image, uv).rgb, 1.0); }
 )";
 
-unsigned compileShader(GLenum kind, const char* source) {
-  const unsigned shader = glCreateShader(kind);
-  glShaderSource(shader, 1, &source, nullptr);
-  glCompileShader(shader);
-  GLint ok = 0;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[1024] = {};
-    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
-    throw std::runtime_error(std::string("image blit shader: ") + log);
-  }
-  return shader;
-}
 
 }  // namespace
 
 GlBlit::GlBlit() {
-  const unsigned vertex = compileShader(GL_VERTEX_SHADER, kVertexShader);
-  const unsigned fragment = compileShader(GL_FRAGMENT_SHADER, kFragmentShader);
-  program_ = glCreateProgram();
-  glAttachShader(program_, vertex);
-  glAttachShader(program_, fragment);
-  glLinkProgram(program_);
-  glDeleteShader(vertex);
-  glDeleteShader(fragment);
-  GLint ok = 0;
-  glGetProgramiv(program_, GL_LINK_STATUS, &ok);
-  if (!ok) throw std::runtime_error("image blit shader: link failed");
+  program_ = linkShaderProgram(kVertexShader, kFragmentShader, "image blit");
   glUseProgram(program_);
   glUniform1i(glGetUniformLocation(program_, "image"), 0);  // the sampler reads texture unit 0
   glUseProgram(0);

@@ -1,13 +1,12 @@
 #include "app/viewer/imgui_gl.h"
 
 #include "app/viewer/gl.h"
+#include "app/viewer/gl_program.h"
 
 #include <imgui.h>
 
 #include <cstddef>
 #include <cstdint>
-#include <stdexcept>
-#include <string>
 
 namespace slime {
 namespace {
@@ -39,29 +38,9 @@ struct Objects {
 
 Objects* objects() { return static_cast<Objects*>(ImGui::GetIO().BackendRendererUserData); }
 
-GLuint compile(GLenum type, const char* source) {
-  const GLuint shader = glCreateShader(type);
-  glShaderSource(shader, 1, &source, nullptr);
-  glCompileShader(shader);
-  GLint ok = 0;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[1024] = {};
-    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
-    throw std::runtime_error(std::string("panels: the ImGui shader does not compile: ") + log);
-  }
-  return shader;
-}
 
 void createObjects(Objects& o) {
-  const GLuint vertex = compile(GL_VERTEX_SHADER, kVertexShader);
-  const GLuint fragment = compile(GL_FRAGMENT_SHADER, kFragmentShader);
-  o.program = glCreateProgram();
-  glAttachShader(o.program, vertex);
-  glAttachShader(o.program, fragment);
-  glLinkProgram(o.program);
-  glDeleteShader(vertex);
-  glDeleteShader(fragment);
+  o.program = linkShaderProgram(kVertexShader, kFragmentShader, "panels (the ImGui renderer)");
   o.texture = glGetUniformLocation(o.program, "Texture");
   o.projection = glGetUniformLocation(o.program, "ProjMtx");
   o.position = glGetAttribLocation(o.program, "Position");

@@ -204,15 +204,7 @@ void ProjectiveSolver::localPass(const BulkBody& body, double decay) {
   alignas(64) double shape[9][kTetLanes];
   alignas(64) double out[9][kTetLanes];
   for (std::size_t block = 0; block < blocks_.size(); ++block) {
-    const std::size_t first = block * kTetLanes;
-    const std::size_t count = std::min(kTetLanes, tetrahedra.size() - first);
-    for (std::size_t lane = 0; lane < count; ++lane) {
-      const Tetrahedron& t = tetrahedra[first + lane];
-      const glm::dvec3 edges[3] = {x[t.y] - x[t.x], x[t.z] - x[t.x], x[t.w] - x[t.x]};
-      for (int entry = 0; entry < 9; ++entry) shape[entry][lane] = edges[entry / 3][entry % 3];
-    }
-    for (std::size_t lane = count; lane < kTetLanes; ++lane)
-      for (int entry = 0; entry < 9; ++entry) shape[entry][lane] = 0.0;
+    gatherShapes(tetrahedra, x, block, shape);
     const TetBlock& rest = body.restBlocks[block];
     // The block's state in a local copy: stores to it cannot alias the rest data, so the loop
     // vectorises without runtime alias checks.
@@ -309,6 +301,8 @@ void ProjectiveSolver::localPass(const BulkBody& body, double decay) {
                                                p[6 + r] * rest.forceMap[3 * c + 2][lane]);
     }
     blocks_[block] = state;
+    const std::size_t first = block * kTetLanes;
+    const std::size_t count = std::min(kTetLanes, tetrahedra.size() - first);
     for (std::size_t lane = 0; lane < count; ++lane) {
       const Tetrahedron& t = tetrahedra[first + lane];
       const glm::dvec3 a(out[0][lane], out[1][lane], out[2][lane]), b(out[3][lane], out[4][lane], out[5][lane]),
