@@ -79,7 +79,8 @@ else
   fi
 fi
 
-# Charts: every scripts/plots/*.gp (but _style.gp) reads $out/*.csv and writes $out/<name>.png.
+# Charts: every scripts/plots/*.gp (but _style.gp) reads $out/*.csv and writes $out/<name>.png
+# (scripts/plots/comparisons/ holds one-off comparisons, each reading its own data in docs/bench/).
 # The quick run's tables are nearly empty: its charts only prove that the scripts run.
 for plot in scripts/plots/[!_]*.gp; do
   if [ "$quick" = 1 ]; then gnuplot -e "dir='$out'" "$plot" 2>/dev/null; else gnuplot -e "dir='$out'" "$plot"; fi

@@ -3,7 +3,7 @@
 # tests/scenarios/drag_top_in_circles_6s.json --frames 260 --frame-log`), and below, the PSNR of the
 # checked frames (`--check-every 10`) of this build against the full trace of the same state.
 # Frame log columns: 3 frame_ms, 14 grabbed, 15 simulated_s, 16 check_psnr_db.
-# Run from the repository root: gnuplot -e 'dir="docs/bench/issue28"' scripts/plots/viewer_drag_issue28.gp
+# Run from the repository root: gnuplot -e 'dir="docs/bench/issue28"' scripts/plots/comparisons/viewer_drag_issue28.gp
 load "scripts/plots/_style.gp"
 main = dir."/drag_main.csv"
 this = dir."/drag_this.csv"
