@@ -278,19 +278,35 @@ void ProjectiveSolver::localPass(const BulkBody& body, double decay) {
           state.maxwellStretch[k][lane] = u[k];
         }
       }
-      // J^(1/3); an element squashed flat or inverted (J ≤ 0.01) takes 1 + (J − 1)/3, which keeps
-      // pushing it out along R.
-      const double j = f[0] * (f[4] * f[8] - f[5] * f[7]) - f[3] * (f[1] * f[8] - f[2] * f[7]) + f[6] * (f[1] * f[5] - f[2] * f[4]);
-      const double cubeRoot = j > 0.01 ? cubeRootNearOne(j) : (2.0 + j) * (1.0 / 3.0);
-      // p = (μ∞ R + μ1 R U_v + (3λ/2)(F − (J^(1/3) − 1) R)) / (μ + 3λ/2).
+      // The volume target: one Newton step from F towards det = 1 along det's gradient cof F,
+      // p_V = F + δ cof F with δ = (1 − J)/|cof F|² (at small strain F − (tr ε/3) I, the same
+      // stiffness as F J^(−1/3)); it stays at a bounded distance from F for an element squashed flat
+      // (cof F points out of its plane), where F J^(−1/3) grows without bound. R lies on det = 1 too,
+      // so no closer point is farther than R: an inverted element (J ≤ 0), or a step that would go
+      // farther, takes R.
+      double cof[9];  // cof F = columns f1×f2, f2×f0, f0×f1 (∂J/∂F)
+      cof[0] = f[4] * f[8] - f[5] * f[7], cof[1] = f[5] * f[6] - f[3] * f[8], cof[2] = f[3] * f[7] - f[4] * f[6];
+      cof[3] = f[7] * f[2] - f[8] * f[1], cof[4] = f[8] * f[0] - f[6] * f[2], cof[5] = f[6] * f[1] - f[7] * f[0];
+      cof[6] = f[1] * f[5] - f[2] * f[4], cof[7] = f[2] * f[3] - f[0] * f[5], cof[8] = f[0] * f[4] - f[1] * f[3];
+      const double j = f[0] * cof[0] + f[1] * cof[1] + f[2] * cof[2];
+      double cofSquared = 0.0, toRotation = 0.0;
+      #pragma GCC unroll 9
+      for (int k = 0; k < 9; ++k) {
+        cofSquared += cof[k] * cof[k];
+        toRotation += (f[k] - rot[k]) * (f[k] - rot[k]);
+      }
+      const double delta = (1.0 - j) / (cofSquared + 1e-300);
+      const bool newton = j > 0.0 && delta * delta * cofSquared <= toRotation;
+      const double step = newton ? delta : 0.0, keep = newton ? 1.0 : 0.0;
+      // p = (μ∞ R + μ1 R U_v + (3λ/2) p_V) / (μ + 3λ/2).
       double p[9];
       #pragma GCC unroll 9
       for (int c = 0; c < 3; ++c)
         #pragma GCC unroll 9
         for (int r = 0; r < 3; ++r) {
           const double ru = rot[r] * u[kSym[0][c]] + rot[3 + r] * u[kSym[1][c]] + rot[6 + r] * u[kSym[2][c]];
-          p[3 * c + r] = blend * (muInf * rot[3 * c + r] + muMaxwell * ru +
-                                  volumeWeight * (f[3 * c + r] - (cubeRoot - 1.0) * rot[3 * c + r]));
+          const double volumeTarget = keep * f[3 * c + r] + step * cof[3 * c + r] + (1.0 - keep) * rot[3 * c + r];
+          p[3 * c + r] = blend * (muInf * rot[3 * c + r] + muMaxwell * ru + volumeWeight * volumeTarget);
         }
       // −(2μ + 3λ) p·forceMap: the columns go to nodes 1..3.
       #pragma GCC unroll 9

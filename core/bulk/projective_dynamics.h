@@ -5,14 +5,18 @@
 //
 // Each tetrahedron's energy is written as a distance to a target, E_e = w_e/2 ‖F − p_e‖² with a
 // constant weight, so that the global matrix A = M/h² + Σ w_e D_eᵀD_e (D_e x = F) never changes:
-//   w_e = V0 (2μ + 3λ),   p_e = (μ∞ R + μ1 R U_v + (3λ/2) F J^(−1/3)) / (μ + 3λ/2),
+//   w_e = V0 (2μ + 3λ),   p_e = (μ∞ R + μ1 R U_v + (3λ/2) p_V) / (μ + 3λ/2),
 // R the rotation of F (F = R U, found by Müller, Bender, Chentanez & Macklin 2016, "A robust method
 // to extract the rotational part of deformations", warm-started from the last step), U_v the Maxwell
 // branch's rest stretch and μ = μ∞ + μ1. At small strain this is linear elasticity with shear
 // modulus μ and Lamé λ, the same as the explicit integrators' stable neo-Hookean material
 // (viscoelastic.h): μ∞‖F − R‖² ≈ μ∞ ε:ε, μ1‖F − R U_v‖² ≈ μ1 (ε − ε_v):(ε − ε_v), and
-// (3λ/2)‖F − F J^(−1/3)‖² ≈ λ/2 (tr ε)². Inverted elements (J ≤ 0) take R as their volume target,
-// so they are pushed back out rather than further in.
+// (3λ/2)‖F − p_V‖² ≈ λ/2 (tr ε)², with p_V the volume target: one Newton step from F onto det = 1,
+// p_V = F + (1 − J) cof F / ‖cof F‖², which stays within ‖F − R‖ of F (R lies on det = 1 too), or R
+// itself for an inverted element (J ≤ 0) or where the step would go farther. So every target stays
+// at a bounded distance from its F: the earlier p_V = F J^(−1/3) (and its extension (2 + J)/3 past
+// J = 0.01) grew without bound for an element pressed flat or inverted, and each such element was
+// pushed further in, step after step (pressed through to the floor: J = −6000, 21 rollbacks).
 // The standard linear solid is kept: the Maxwell branch's rest stretch U_v flows towards the current
 // stretch U = sym(RᵀF) every step, U_v ← U + (U_v − U) exp(−h/τ), then U_v ← U_v / det(U_v)^(1/3) (at
 // small strain ε_v' = (ε − ε_v)/τ, as the explicit integrators' metric flow). U_v² is the metric G_v
