@@ -89,6 +89,8 @@ void forEachField(S& s, Visitor&& visitor) {
         "Coulomb friction coefficient against the floor");
   visit("slime.rolling", s.slime.rolling, Limits{0.0, 1000.0, "1/s"},
         "membrane: rate at which the slime's rolling decays on the floor");
+  visit("slime.adhesion", s.slime.adhesion, Limits{0.0, 1.0e4, "Pa"},
+        "bulk: tension the floor contact holds before it peels (a sticky table; 0 = none)");
   // The bulk material: moduli from a soft jelly to a stiff rubber; τ from a fast to a near-solid gel.
   visit("slime.modulus", s.slime.modulus, Limits{50.0, 1.0e5, "Pa"},
         "bulk: instantaneous shear modulus G (the seed's stiffness slider)");
