@@ -483,7 +483,9 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
     }
   }
 
-  impl.halved = settings.render.checkerboard && buffersKept && samplesPerAxis == 1 && !brute;
+  // Only where the last frame's pixels stand (the camera still, a window's buffers): a first frame or
+  // a turning camera is traced whole.
+  impl.halved = settings.render.checkerboard && impl.imageInPlace && !brute;
   if (impl.halved) {
     impl.parity ^= 1;  // the other colour from the last halved frame
     if (impl.skipped.size() != image.pixels.size()) impl.skipped.assign(image.pixels.size(), 0);

@@ -71,9 +71,9 @@ class Renderer {
   // `buffersKept` promises that `image` and `srgba` are the buffers of the last call, unwritten
   // since (a window's): pixels that cannot have changed, outside the slime's footprint now and in the
   // last frame, are then left as they are. Without it every pixel is written.
-  // With settings.render.checkerboard, buffersKept and one sample a pixel, the pixels of the slime's
-  // footprint are traced in a checkerboard and the others filled in (RenderStats::filledPixels): a
-  // window's frame while things move. Without buffersKept (a snapshot, a still image's refinement, the
+  // With settings.render.checkerboard, buffersKept and one sample a pixel, while the camera stays and
+  // the last frame's pixels stand, the pixels of the slime's footprint are traced in a checkerboard and
+  // the others filled in (RenderStats::filledPixels): a window's frame while the slime moves. Without buffersKept (a snapshot, a still image's refinement, the
   // check's reference) every pixel is traced.
   // `pixelOffset`, with one sample per pixel (render.spp = 1), is the point of each pixel its ray goes
   // through, in pixels from the pixel's top-left corner: (0.5, 0.5), the centre, unless a caller
