@@ -25,7 +25,7 @@ plot dir."/settle_main.csv" using 2:(1000.0 / $3) with lines lw 1 lc rgb "#7570b
 set ylabel "PSNR (dB)"
 set xlabel "frame"
 set yrange [25:102]
-set key inside right bottom box opaque
+set key inside right top box opaque
 plot dir."/drag_fps.csv" using 1:($16 > 0 ? $16 : NaN) with points pt 7 ps 0.6 lc rgb "#d95f02" title "drag: shown vs full trace", \
      dir."/settle_fps.csv" using 1:($16 > 0 ? $16 : NaN) with points pt 9 ps 0.6 lc rgb "#1b9e77" title "after the drop", \
      38 with lines dt 3 lc rgb "#1b9e77" title "mean aim 38 dB", \
