@@ -77,6 +77,7 @@ struct RenderSettings {
   bool shadows = true;               // trace shadow rays to the point light
   bool caustics = false;             // light focused through the slime onto the floor (photons, render/caustics/)
   int photons = 10000;               // photons shot per frame while the slime or the light moves
+  bool checkerboard = true;          // viewer, while moving: half the slime's footprint traced, the rest filled in
 };
 
 struct SimSettings {
