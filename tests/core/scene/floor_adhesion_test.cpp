@@ -118,13 +118,17 @@ SidePull sidePull(double adhesion) {
   return {centroid(simulation).x - before.x, simulation.metrics().width};
 }
 
-TEST(FloorAdhesion, TheStickyDefaultStretchesBeforeItSlides) {
+// 6,000 Pa: the strength chosen by the pull (docs/physics.md); not the default yet, because a
+// floor that strong holds a slime pressed or yanked flat (the torture runs' rest shape does not come back).
+constexpr double kStickyFloor = 6000.0;
+
+TEST(FloorAdhesion, AStickyFloorStretchesTheSlimeBeforeItSlides) {
   const SidePull slippery = sidePull(0.0);
-  const SidePull sticky = sidePull(defaultSettings().slime.adhesion);
+  const SidePull sticky = sidePull(kStickyFloor);
   std::printf("side pull 12 cm / 1.5 s: centroid %.2f cm, width %.2f cm (adhesion 0); centroid %.2f cm, width "
-              "%.2f cm (default %.0f Pa)\n",
+              "%.2f cm (%.0f Pa)\n",
               slippery.centroidMove * 100, slippery.width * 100, sticky.centroidMove * 100, sticky.width * 100,
-              defaultSettings().slime.adhesion);
+              kStickyFloor);
   EXPECT_GT(slippery.centroidMove, 0.09);  // today's: the whole slime slides
   EXPECT_LT(sticky.centroidMove, 0.5 * slippery.centroidMove);
   EXPECT_GT(sticky.width, slippery.width + 0.03);
