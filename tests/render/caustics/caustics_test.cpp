@@ -131,6 +131,8 @@ void expectPeakAtTheParaxialFocus(const glm::dvec3& direction) {
   CausticMap map;
   map.build(landings, tally.emitted, cone.solidAngle, shadowRegion(cone, ball.geometry.boundCenter, ball.geometry.boundRadius));
   const glm::dvec2 peak = peakOf(map, {lens.focus.x, lens.focus.y}, 0.01, 2e-5);
+  std::printf("peak %.4f mm from the paraxial focus, cell %.4f mm\n", 1e3 * glm::length(peak - glm::dvec2(lens.focus.x, lens.focus.y)),
+              1e3 * map.cellSize());
   // Within one cell of the map (its kernel's half width) of the paraxial focus.
   EXPECT_LT(glm::length(peak - glm::dvec2(lens.focus.x, lens.focus.y)), map.cellSize())
       << "peak (" << peak.x << ", " << peak.y << "), focus (" << lens.focus.x << ", " << lens.focus.y << "), cell "
