@@ -47,6 +47,9 @@ Viewer::Viewer(ViewerBackend& backend, const Settings& settings, ViewerOptions o
       refinement_(options_.refineSamples),
       check_(options_.checkEvery) {
   if (options_.scenario) scenario_.emplace(*options_.scenario);
+  // Caustics gathered over the frames as the image refines (a bounded budget while anything moves);
+  // without refinement (snapshot --ui) the finished map at once, as `snapshot` draws it.
+  renderer_.setProgressiveCaustics(options_.refineSamples > 1);
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;  // the same layout every run: tests click known places

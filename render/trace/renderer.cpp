@@ -86,6 +86,7 @@ struct Renderer::Impl {
   tbb::enumerable_thread_specific<TraceCounters> counters;
   double refitMs = 0.0;
   Caustics caustics;  // the photons and the floor's caustic map, kept while nothing moves
+  bool progressiveCaustics = false;  // setProgressiveCaustics
   // Per pixel, the FloorShading its primary ray saw (one sample per pixel only). The floor does not
   // move: while the camera, the image size and the floor's lighting stay, only the shadow ray and the
   // slime are traced again there; the entries are recomputed whenever floorCacheKey changes.
@@ -389,6 +390,8 @@ Renderer::Renderer(const Settings& settings) : impl_(std::make_unique<Impl>(sett
 
 Renderer::~Renderer() = default;
 
+void Renderer::setProgressiveCaustics(bool progressive) { impl_->progressiveCaustics = progressive; }
+
 void Renderer::updateSlime(const std::vector<glm::dvec3>& positions, const std::vector<Triangle>& triangles) {
   const auto start = std::chrono::steady_clock::now();
   const bool topologyChanged = impl_->geometry.update(positions, triangles);
@@ -417,7 +420,8 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
   const SlimeIntersector& intersector = brute ? static_cast<const SlimeIntersector&>(impl.brute) : impl.embree;
   WhittedTracer tracer(impl.geometry, intersector, impl.floor, parameters);
   const auto causticsStart = std::chrono::steady_clock::now();
-  tracer.setCaustics(impl.caustics.update(settings, parameters, impl.geometry, intersector, brute ? nullptr : impl.arena.get()));
+  tracer.setCaustics(impl.caustics.update(settings, parameters, impl.geometry, intersector, brute ? nullptr : impl.arena.get(),
+                                              impl.progressiveCaustics));
   stats.causticsMs = millisecondsSince(causticsStart);
   stats.causticPhotons = impl.caustics.photons();
 

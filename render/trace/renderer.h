@@ -81,6 +81,13 @@ class Renderer {
   RenderStats render(const Settings& settings, Image& image, std::vector<std::uint8_t>* srgba = nullptr,
                      bool buffersKept = false, glm::vec2 pixelOffset = {0.5f, 0.5f});
 
+  // Caustics (render.caustics) gathered progressively: each render() while the slime, the light and the
+  // optics stay adds one budget of photons (render.photons) to the map, up to its finished count, and
+  // any change starts again from one budget: the interactive viewer's frames. Off (the default: a
+  // snapshot, a benchmark, a test), every render() uses the finished map, so its image depends on the
+  // scene alone and not on the frames rendered before (render/caustics/caustics.h).
+  void setProgressiveCaustics(bool progressive);
+
   // The point where the ray through image point (u, v) in [0,1]² first hits the slime, if it does.
   std::optional<glm::dvec3> pick(const Settings& settings, double u, double v) const;
 
