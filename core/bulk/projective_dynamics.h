@@ -25,8 +25,9 @@
 // One step h: the seed's edge dampers exactly (dampEdges, a contraction), the mouse spring
 // implicitly node by node (with the hand's force limit), the inertial prediction y = x + h v + h² g,
 // then `iterations` local steps (targets p_e, vectorised over kTetLanes tetrahedra) and global
-// solves A x = M y/h² + Σ w_e D_eᵀ p_e; the floor puts the nodes that went below it on it and undoes
-// their sliding up to μ times the depth (as xpbd.h); v = (x − x_start)/h.
+// solves A x = M y/h² + Σ w_e D_eᵀ p_e with the floor z ≥ 0 a constraint of each solve (an active
+// set; holdOnFloor in the .cpp), then Coulomb friction on the held nodes' slide up to μ × the floor's
+// reaction; v = (x − x_start)/h.
 // Each iteration lowers the step's objective, so no step length makes it blow up; what a long step
 // costs is numerical damping (backward Euler's ζ ≈ hω/2 for a mode ω; see docs/physics.md).
 #pragma once
