@@ -25,8 +25,9 @@
 // One step h: the seed's edge dampers exactly (dampEdges, a contraction), the mouse spring
 // implicitly node by node (with the hand's force limit), the inertial prediction y = x + h v + h² g,
 // then `iterations` local steps (targets p_e, vectorised over kTetLanes tetrahedra) and global
-// solves A x = M y/h² + Σ w_e D_eᵀ p_e; the floor puts the nodes that went below it on it and undoes
-// their sliding up to μ times the depth (as xpbd.h); v = (x − x_start)/h.
+// solves A x = M y/h² + Σ w_e D_eᵀ p_e with the floor z ≥ 0 a constraint of each solve (an active
+// set; holdOnFloor in the .cpp), then Coulomb friction on the held nodes' slide up to μ × the floor's
+// reaction; v = (x − x_start)/h.
 // Each iteration lowers the step's objective, so no step length makes it blow up; what a long step
 // costs is numerical damping (backward Euler's ζ ≈ hω/2 for a mode ω; see docs/physics.md).
 #pragma once
@@ -34,6 +35,7 @@
 #include "core/bulk/bulk_body.h"
 #include "core/scene/grab.h"
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -75,6 +77,9 @@ class ProjectiveSolver {
 
  private:
   void factor(const BulkBody& body, double h);
+  // The floor inside the global solve: z of solved_ with the active set of floor nodes held at 0.
+  void holdOnFloor(const std::vector<double>& inverseMasses);
+  const std::vector<double>* column(std::uint32_t node);
   void localStep(const BulkBody& body, double h, bool flow);
   template <bool Flows>
   void localPass(const BulkBody& body, double decay);
@@ -90,6 +95,14 @@ class ProjectiveSolver {
   std::vector<double> masses_;             // m_i/h² on the diagonal (pinned: a huge mass)
   std::vector<glm::dvec3> start_, predicted_, targets_;  // x at the step's start, y, Σ w Dᵀp per node
   std::vector<glm::dvec3> solved_;
+  // Floor contact in the solve (holdOnFloor): columns A⁻¹e_i of the nodes that touched the floor
+  // since the last factorisation, the active set, its reactions (N) and the factor of (A⁻¹)_CC.
+  std::vector<int> columnOf_;                 // node → index into columns_, −1 none
+  std::vector<std::vector<double>> columns_;
+  std::vector<std::uint32_t> contact_, factoredContact_;
+  std::vector<double> reaction_, freeZ_, heldZ_;
+  struct Contact;  // the dense Cholesky factor of (A⁻¹)_CC (Eigen)
+  std::unique_ptr<Contact> contactFactor_;
 };
 
 }  // namespace slime
