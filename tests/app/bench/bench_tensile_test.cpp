@@ -4,7 +4,8 @@
 //  - the limits that closed form has: a purely elastic material (no Maxwell branch) at any rate is
 //    E∞ε, and a rate far above 1/τ is the instantaneous modulus 2(μ∞ + μ₁)(1 + ν)·ε;
 //  - the bar's sides are free (the lateral stress is zero), so its lateral stretch is 1 − νε at small strain;
-//  - the slime pulled by two hands: a faster pull needs more force, nothing diverges, the volume holds.
+//  - the slime pulled by two hands: a faster pull needs more force, nothing diverges, the volume holds
+//    (BenchTensileLong: seconds of physics).
 #include "app/bench/bench_tensile.h"
 #include "core/settings/settings_io.h"
 
@@ -27,7 +28,7 @@ TEST(BenchTensile, BarFollowsTheStandardLinearSolidAtSmallStrainAtThreeRates) {
   for (double rate : {0.05, 0.5, 5.0}) {
     const BarRun run = stretchBar(materialOf(slime), rate, 0.05, 500);
     ASSERT_EQ(run.strains.size(), 501u);
-    EXPECT_DOUBLE_EQ(run.stresses.front(), 0.0 * run.stresses.front());  // free of stress at rest
+    EXPECT_NEAR(run.stresses.front(), 0.0, 1e-9);  // free of stress at rest
     for (std::size_t k = 50; k < run.strains.size(); k += 50) {
       const double oracle = standardLinearSolid(slime, run.strains[k], rate);
       EXPECT_NEAR(run.stresses[k], oracle, 0.05 * oracle) << "rate " << rate << " strain " << run.strains[k];
@@ -53,14 +54,16 @@ TEST(BenchTensile, BarLimitsAreTheElasticAndTheInstantaneousModuli) {
   EXPECT_NEAR(slow.stresses.back(), longTerm * 0.01, 0.05 * longTerm * 0.01);
 }
 
-TEST(BenchTensile, FasterPullsOfTheSlimeNeedMoreForce) {
+// 0.5-2.5 s in release on the shared machine (1.5 s of physics at resolution 2), 10-20× that under the
+// sanitizers: Long, so they leave it out.
+TEST(BenchTensileLong, FasterPullsOfTheSlimeNeedMoreForce) {
   Settings settings = defaultSettings();
   TensileOptions options;
   options.strainRates = {0.5};
   options.barSteps = 100;
   options.pullSpeeds = {0.05, 0.2};
-  options.pullExtension = 0.02;
-  options.settleSeconds = 0.3;
+  options.pullExtension = 0.04;
+  options.settleSeconds = 0.5;
   CsvTable bar{{"a", "b", "c", "d", "e"}, {}}, pull{{"a", "b", "c"}, {}};
   const nlohmann::json report = runTensileBench(settings, options, bar, pull);
   ASSERT_EQ(report["pulls"].size(), 2u);
@@ -72,8 +75,11 @@ TEST(BenchTensile, FasterPullsOfTheSlimeNeedMoreForce) {
     EXPECT_GT(run["volume_ratio"]["min"].get<double>(), 0.98);
     EXPECT_LT(run["volume_ratio"]["max"].get<double>(), 1.02);
   }
-  EXPECT_GT(slow["force_at_common_extension_n"].get<double>(), 0.0);
+  // The body rings and slips while it is pulled (docs/material.md), so compare where the pulls are
+  // well under way: at half the shorter extension, and at the end.
+  EXPECT_GT(slow["force_at_common_extension_n"].get<double>(), 0.5);
   EXPECT_GT(fast["force_at_common_extension_n"].get<double>(), 1.1 * slow["force_at_common_extension_n"].get<double>());
+  EXPECT_GT(fast["final_force_n"].get<double>(), 1.1 * slow["final_force_n"].get<double>());
   EXPECT_GT(pull.rows.size(), 20u);
 }
 
