@@ -2,6 +2,7 @@
 // Lamb's (1882) free vibrations of an elastic sphere, energy conservation — and against what a person
 // recognises as a slime: it sags to a bun, jiggles after landing, droops and keeps stretching when
 // held up by a pinch, keeps a dent after a press, and comes back to a ball.
+#include "simulation_fixture.h"
 #include "core/bulk/lamb_sphere.h"
 #include "core/settings/settings_io.h"
 #include "core/scene/simulation.h"
@@ -18,21 +19,9 @@
 namespace slime {
 namespace {
 
-void runFor(Simulation& simulation, double seconds) {
-  const double end = simulation.time() + seconds - 1e-9;
-  while (simulation.time() < end) simulation.step();
-}
-
-double lowestDrawnZ(const Simulation& simulation) {
-  double lowest = 1e9;
-  for (const glm::dvec3& p : simulation.positions()) lowest = std::min(lowest, p.z);
-  return lowest;
-}
-
-glm::dvec3 topOf(const Simulation& simulation) {
-  const std::vector<glm::dvec3>& x = simulation.positions();
-  return *std::max_element(x.begin(), x.end(), [](const auto& a, const auto& b) { return a.z < b.z; });
-}
+using testing::lowestDrawnZ;
+using testing::runFor;
+using testing::topOf;
 
 // The default drop: lands, jiggles (the height swings by millimetres, several times), settles to a
 // bun of aspect 0.6–0.85 with its volume within 1 % throughout and no drawn vertex under the floor.

@@ -1,6 +1,7 @@
 // sim.integrator=projective (core/bulk/projective_dynamics.h) on the bulk body: the torture the
 // explicit integrators need the divergence guard for runs with the guard never firing, the same
 // inputs give the same bytes, and the guard itself still catches a state that is broken.
+#include "simulation_fixture.h"
 #include "core/settings/settings_io.h"
 #include "core/scene/simulation.h"
 
@@ -16,26 +17,14 @@
 namespace slime {
 namespace {
 
+using testing::lowestDrawnZ;
+using testing::runFor;
+using testing::topOf;
+
 Settings projectiveSettings() {
   Settings settings = defaultSettings();
   settings.sim.integrator = "projective";
   return settings;
-}
-
-void runFor(Simulation& simulation, double seconds) {
-  const double end = simulation.time() + seconds - 1e-9;
-  while (simulation.time() < end) simulation.step();
-}
-
-glm::dvec3 topOf(const Simulation& simulation) {
-  const std::vector<glm::dvec3>& x = simulation.positions();
-  return *std::max_element(x.begin(), x.end(), [](const auto& a, const auto& b) { return a.z < b.z; });
-}
-
-double lowestDrawnZ(const Simulation& simulation) {
-  double lowest = std::numeric_limits<double>::infinity();
-  for (const glm::dvec3& p : simulation.positions()) lowest = std::min(lowest, p.z);
-  return lowest;
 }
 
 void expectSound(const Simulation& simulation) {

@@ -1,4 +1,5 @@
 // Two hands: each holds its own nodes with its own target and force; scenarios name the hand.
+#include "simulation_fixture.h"
 #include "core/scene/scenario.h"
 #include "core/settings/settings_io.h"
 #include "core/scene/simulation.h"
@@ -14,11 +15,7 @@ namespace slime {
 namespace {
 
 using nlohmann::json;
-
-void runFor(Simulation& simulation, double seconds) {
-  const double end = simulation.time() + seconds;
-  while (simulation.time() < end - 1e-9) simulation.step();
-}
+using testing::runFor;
 
 glm::dvec3 centre(const Simulation& simulation) {
   glm::dvec3 sum(0.0);
@@ -96,7 +93,7 @@ TEST(Hands, OnlyHandsZeroAndOne) {
   EXPECT_THROW((void)simulation.handForce(2), std::invalid_argument);
 }
 
-void expectError(const std::string& text, const std::string& expected) {
+void expectHandRefused(const std::string& text, const std::string& expected) {
   try {
     parseScenario(json::parse(text), "hands.json");
     FAIL() << "accepted: " << text;
@@ -121,10 +118,10 @@ TEST(Hands, ScenarioEventsNameTheirHand) {
   EXPECT_EQ(scenario.events[2].hand, 1);
   EXPECT_EQ(scenario.events[3].hand, 0);
   EXPECT_EQ(scenario.events[4].hand, 1);
-  expectError(R"({"events":[{"t":1,"hand":2,"release":{}}]})", "hand must be 0 or 1, got 2");
-  expectError(R"({"events":[{"t":1,"hand":"1","release":{}}]})", "hand must be 0 or 1, got \"1\"");
-  expectError(R"({"events":[{"t":1,"hand":0.5,"release":{}}]})", "hand must be 0 or 1");
-  expectError(R"({"events":[{"t":1,"hand":1,"set":{"slime.stiffness":50}}]})", "not allowed with set");
+  expectHandRefused(R"({"events":[{"t":1,"hand":2,"release":{}}]})", "hand must be 0 or 1, got 2");
+  expectHandRefused(R"({"events":[{"t":1,"hand":"1","release":{}}]})", "hand must be 0 or 1, got \"1\"");
+  expectHandRefused(R"({"events":[{"t":1,"hand":0.5,"release":{}}]})", "hand must be 0 or 1");
+  expectHandRefused(R"({"events":[{"t":1,"hand":1,"set":{"slime.stiffness":50}}]})", "not allowed with set");
 }
 
 // Replayed, hand 1's drag moves hand 1 only, and hand 0's release leaves hand 1 holding.
