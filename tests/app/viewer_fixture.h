@@ -7,7 +7,7 @@
 
 #include <vector>
 
-namespace slime::testing {
+namespace slime::fixture {
 
 // The default scene in a 320×240 window with a level-2 slime: cheap to trace, still the whole viewer.
 inline Settings smallViewerScene() {
@@ -45,4 +45,4 @@ class SteppingHeadlessGl final : public ViewerBackend {
   double secondsPerFrame_;
 };
 
-}  // namespace slime::testing
+}  // namespace slime::fixture

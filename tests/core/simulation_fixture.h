@@ -9,7 +9,7 @@
 #include <limits>
 #include <vector>
 
-namespace slime::testing {
+namespace slime::fixture {
 
 // Steps the simulation until `seconds` more of simulated time have passed (a whole number of steps).
 inline void runFor(Simulation& simulation, double seconds) {
@@ -30,4 +30,4 @@ inline glm::dvec3 topOf(const Simulation& simulation) {
   return *std::max_element(x.begin(), x.end(), [](const auto& a, const auto& b) { return a.z < b.z; });
 }
 
-}  // namespace slime::testing
+}  // namespace slime::fixture

@@ -21,7 +21,7 @@ nlohmann::json runAndReport(const Settings& settings, int frames, int every, con
   options.checkEvery = every;
   options.maxFrames = frames;
   options.reportPath = report.string();
-  testing::SteppingHeadlessGl backend(320, 240, 1.0 / 30.0);
+  fixture::SteppingHeadlessGl backend(320, 240, 1.0 / 30.0);
   Viewer viewer(backend, settings, options);
   EXPECT_EQ(viewer.run(), 0);
   std::ifstream file(report);
@@ -31,7 +31,7 @@ nlohmann::json runAndReport(const Settings& settings, int frames, int every, con
 // The falling, landing slime: every frame traces anew, reusing the floor's pixels outside the slime's
 // footprint; each checked frame must match the full trace.
 TEST(ViewerCheck, TheFallingSlimeShowsTheFullTracesImage) {
-  const nlohmann::json check = runAndReport(testing::smallViewerScene(), 12, 3, "viewer_check_falling.json")["check"];
+  const nlohmann::json check = runAndReport(fixture::smallViewerScene(), 12, 3, "viewer_check_falling.json")["check"];
   EXPECT_EQ(check["every"], 3);
   EXPECT_EQ(check["frames"], 4);  // frames 0, 3, 6 and 9 of 0..11
   EXPECT_GE(check["psnr_db"]["mean"].get<double>(), 38.0);
@@ -42,7 +42,7 @@ TEST(ViewerCheck, TheFallingSlimeShowsTheFullTracesImage) {
 // A still slime: the first frame's one-sample image is checked against the one-sample trace, the
 // refining frames are skipped, and the fully refined image against the 16-sample trace (render.spp = 16).
 TEST(ViewerCheck, AStillImageRefinesToTheSixteenSampleTrace) {
-  Settings settings = testing::smallViewerScene();
+  Settings settings = fixture::smallViewerScene();
   settings.sim.gravity = 0.0;  // nothing moves
   const nlohmann::json check = runAndReport(settings, 30, 1, "viewer_check_still.json")["check"];
   EXPECT_GT(check["skipped_refining_frames"].get<int>(), 5);

@@ -20,7 +20,7 @@
 namespace slime {
 namespace {
 
-using testing::SteppingHeadlessGl;
+using fixture::SteppingHeadlessGl;
 
 nlohmann::json readJson(const std::filesystem::path& path) {
   std::ifstream file(path);
@@ -29,7 +29,7 @@ nlohmann::json readJson(const std::filesystem::path& path) {
 
 TEST(HeadlessViewer, RunsFramesWithoutAdvancingThePhysicsClock) {
   HeadlessGl backend(320, 240);
-  Viewer viewer(backend, testing::smallViewerScene(), ViewerOptions{});
+  Viewer viewer(backend, fixture::smallViewerScene(), ViewerOptions{});
   for (int frame = 0; frame < 3; ++frame) EXPECT_TRUE(viewer.frame());
   EXPECT_EQ(viewer.stats().frames, 3);
   EXPECT_EQ(viewer.simulation().stepCount(), 0);  // headless time stands still: a snapshot is reproducible
@@ -43,7 +43,7 @@ TEST(HeadlessViewer, StopsAfterTheRequestedNumberOfFrames) {
   HeadlessGl backend(64, 48);
   ViewerOptions options;
   options.maxFrames = 2;
-  Viewer viewer(backend, testing::smallViewerScene(), options);
+  Viewer viewer(backend, fixture::smallViewerScene(), options);
   EXPECT_TRUE(viewer.frame());
   EXPECT_FALSE(viewer.frame());
 }
@@ -52,7 +52,7 @@ TEST(HeadlessViewer, StopsAfterTheRequestedNumberOfFrames) {
 // pixel at full resolution, and a change (here the slime moved) starts it again from one sample.
 TEST(HeadlessViewer, AStillImageRefinesToSixteenSamplesAndAChangeResetsIt) {
   HeadlessGl backend(320, 240);  // room for the image beside the panel column
-  Settings settings = testing::smallViewerScene();
+  Settings settings = fixture::smallViewerScene();
   Viewer viewer(backend, settings, ViewerOptions{});
   ASSERT_TRUE(viewer.frame());
   EXPECT_EQ(viewer.stats().samplesPerPixel, 1);
@@ -70,7 +70,7 @@ TEST(HeadlessViewer, AStillImageRefinesToSixteenSamplesAndAChangeResetsIt) {
 // nothing new to trace and waits for input up to the idle frame time (the rest of 1/60 s after its
 // own work), so a still window does not spin a core.
 TEST(HeadlessViewer, FramesWithNothingNewToTraceWaitForInput) {
-  Settings settings = testing::smallViewerScene();
+  Settings settings = fixture::smallViewerScene();
   settings.sim.gravity = 0.0;  // the slime floats where it starts: nothing moves
   SteppingHeadlessGl backend(320, 240, 1.0 / 30.0);
   ViewerOptions options;
@@ -114,7 +114,7 @@ TEST(HeadlessViewer, AScenarioGrabTakesHoldAndTheReportCountsIt) {
   // clock then drops what it cannot step), and the checks below need only half a second past the grab.
   options.maxFrames = static_cast<int>(std::ceil(1.5 * (grab->time + 0.5) / kSecondsPerFrame));
   SteppingHeadlessGl backend(320, 240, kSecondsPerFrame);
-  Viewer viewer(backend, testing::smallViewerScene(), options);
+  Viewer viewer(backend, fixture::smallViewerScene(), options);
   ASSERT_EQ(viewer.run(), 0);
   ASSERT_GT(viewer.simulation().time(), grab->time + 0.3) << "the physics fell behind the frames";
 
@@ -160,7 +160,7 @@ TEST(HeadlessViewer, FramesOverTheTargetWhileTheSlimeMovesAreTracedSmaller) {
       std::filesystem::path(SLIME_TEST_OUTPUT_DIR) / "viewer_adaptive_report.json";
   options.reportPath = report.string();
   SteppingHeadlessGl backend(320, 240, 1.0 / 30.0);
-  Settings settings = testing::smallViewerScene();
+  Settings settings = fixture::smallViewerScene();
   settings.render.targetFps = 240.0;  // a scene file's or --set's, as --target-fps sets it
   Viewer viewer(backend, settings, options);
   const int fullWidth = 320 - static_cast<int>(std::lround(panelColumnWidth(320.0f)));
@@ -183,7 +183,7 @@ TEST(HeadlessViewer, AScenarioSetEventIsAppliedAndDrawnAtOnce) {
   ViewerOptions options;
   const char* kSetColour = R"({"events": [{"t": 1.0, "set": {"slime.color": [0.9, 0.2, 0.2]}}]})";
   options.scenario = parseScenario(nlohmann::json::parse(kSetColour), "inline");
-  Settings settings = testing::smallViewerScene();
+  Settings settings = fixture::smallViewerScene();
   settings.sim.gravity = 0.0;
   SteppingHeadlessGl backend(320, 240, 1.0 / 60.0);
   Viewer viewer(backend, settings, options);
@@ -200,7 +200,7 @@ TEST(UiSnapshot, WritesTheWindowWithItsPanelsAtTheCameraSize) {
   const std::filesystem::path path = std::filesystem::path(SLIME_TEST_OUTPUT_DIR) / "ui_snapshot_test.png";
   std::filesystem::remove(path);
   int settleCalls = 0;
-  writeUiSnapshot(testing::smallViewerScene(), path.string(), [&](Simulation& simulation) {
+  writeUiSnapshot(fixture::smallViewerScene(), path.string(), [&](Simulation& simulation) {
     ++settleCalls;
     for (int step = 0; step < 100; ++step) simulation.step();
   });

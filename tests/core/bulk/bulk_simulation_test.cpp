@@ -19,9 +19,9 @@
 namespace slime {
 namespace {
 
-using testing::lowestDrawnZ;
-using testing::runFor;
-using testing::topOf;
+using fixture::lowestDrawnZ;
+using fixture::runFor;
+using fixture::topOf;
 
 // The default drop: lands, jiggles (the height swings by millimetres, several times), settles to a
 // bun of aspect 0.6–0.85 with its volume within 1 % throughout and no drawn vertex under the floor.

@@ -17,9 +17,9 @@
 namespace slime {
 namespace {
 
-using testing::lowestDrawnZ;
-using testing::runFor;
-using testing::topOf;
+using fixture::lowestDrawnZ;
+using fixture::runFor;
+using fixture::topOf;
 
 Settings projectiveSettings() {
   Settings settings = defaultSettings();

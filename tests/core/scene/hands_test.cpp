@@ -15,7 +15,7 @@ namespace slime {
 namespace {
 
 using nlohmann::json;
-using testing::runFor;
+using fixture::runFor;
 
 glm::dvec3 centre(const Simulation& simulation) {
   glm::dvec3 sum(0.0);
