@@ -336,12 +336,7 @@ TEST(Caustics, ProgressiveMapEndsAtThePlainRendersFinishedMap) {
 // straight line, so its "shadow" is no shadow at all, even at the outline where the kernel straddles it
 // (Invariant.InvisibleSlimeLeavesTheImageUnchanged with caustics on).
 TEST(Caustics, InvisibleSlimeCastsNoShadowWithCaustics) {
-  Settings settings = smallScene(96, 72);
-  settings.slime.ior = 1.0;
-  settings.slime.transmission = 1.0;
-  settings.slime.absorption = 0.0;
-  settings.slime.specular = settings.slime.diffuse = settings.slime.ambient = 0.0;
-  settings.floor.specular = 0.0;
+  Settings settings = invisibleSlimeScene();
   settings.render.caustics = true;
   settings.render.photons = 1000;
   RenderStats stats;
