@@ -49,7 +49,7 @@ struct PanelView {
   // What is on screen (the slime as built, the floor as applied): settings that do nothing to it are
   // left out (inactiveReason, panel_fields.h). Null: judged from the draft.
   const Settings* shown = nullptr;
-  std::vector<HandView> hands;  // hand 0 (left-drag) and hand 1 (Ctrl+left-drag)
+  std::vector<HandView> hands{};  // hand 0 (left-drag) and hand 1 (Ctrl+left-drag)
 };
 
 // Width of the column for a display of this width, in window pixels.
