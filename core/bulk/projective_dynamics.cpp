@@ -417,13 +417,14 @@ void ProjectiveSolver::holdOnFloor(const std::vector<double>& inverseMasses) {
     std::vector<std::uint32_t> next;
     next.reserve(k);
     bool changed = false;
+    inContact_.assign(n, 0);
     for (std::size_t b = 0; b < k; ++b) {
+      inContact_[contact_[b]] = 1;
       if (lambda(static_cast<Eigen::Index>(b)) > 0.0) next.push_back(contact_[b]);
       else changed = true;
     }
     for (std::size_t i = 0; i < n; ++i) {
-      if (inverseMasses[i] <= 0.0 || heldZ_[i] >= -1e-12) continue;
-      if (std::find(contact_.begin(), contact_.end(), static_cast<std::uint32_t>(i)) != contact_.end()) continue;
+      if (inverseMasses[i] <= 0.0 || heldZ_[i] >= -1e-12 || inContact_[i]) continue;
       if (column(static_cast<std::uint32_t>(i)) == nullptr) continue;
       next.push_back(static_cast<std::uint32_t>(i));
       changed = true;

@@ -101,6 +101,7 @@ class ProjectiveSolver {
   std::vector<std::vector<double>> columns_;
   std::vector<std::uint32_t> contact_, factoredContact_;
   std::vector<double> reaction_, freeZ_, heldZ_;
+  std::vector<char> inContact_;  // per node, whether it is in this round's active set
   struct Contact;  // the dense Cholesky factor of (A⁻¹)_CC (Eigen)
   std::unique_ptr<Contact> contactFactor_;
 };

@@ -95,6 +95,10 @@ void CausticMap::build(const std::vector<PhotonLanding>& landings, double emitte
   std::vector<glm::dvec3> weights(tableSize, glm::dvec3(0.0));
   std::vector<double> counts(tableSize, 0.0);
   add(landings, false, weights, counts);
+  // The ratio's "arrived" tables start from the same photons through the slime (see below).
+  std::vector<glm::dvec3> arrived;
+  std::vector<double> arrivedCounts;
+  if (straight) arrived = weights, arrivedCounts = counts;
   integrate(weights, counts);
   const auto box = [&](const auto& table, int x0, int y0, int x1, int y1) {  // nodes [x0, x1] × [y0, y1]
     x0 = std::max(x0, 0), y0 = std::max(y0, 0), x1 = std::min(x1, columns_ - 1), y1 = std::min(y1, rows_ - 1);
@@ -143,9 +147,8 @@ void CausticMap::build(const std::vector<PhotonLanding>& landings, double emitte
   if (!straight) return;
   // The ratio (see the header): the arrived photons (through the slime, and the direct ones) against
   // the straight ones, each in the smallest box holding K of its own.
-  std::vector<glm::dvec3> arrived(tableSize, glm::dvec3(0.0)), reference(tableSize, glm::dvec3(0.0));
-  std::vector<double> arrivedCounts(tableSize, 0.0), referenceCounts(tableSize, 0.0);
-  add(landings, false, arrived, arrivedCounts);
+  std::vector<glm::dvec3> reference(tableSize, glm::dvec3(0.0));
+  std::vector<double> referenceCounts(tableSize, 0.0);
   add(*straight, true, arrived, arrivedCounts);
   add(*straight, false, reference, referenceCounts);
   integrate(arrived, arrivedCounts);
