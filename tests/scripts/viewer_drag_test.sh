@@ -6,11 +6,7 @@ source "$(dirname "$0")/viewer_lib.sh"
 start_viewer --size 730x360 --set slime.position=0,0,0.04
 sleep 3
 screenshot 1
-xdotool mousemove --window "$WINDOW" 512 120 mousedown 1
-for y in 110 100 90 80 70 60 50 40; do
-  xdotool mousemove --window "$WINDOW" 512 "$y"
-  sleep 0.15
-done
+press_and_move 512 120 0.15 512,110 512,100 512,90 512,80 512,70 512,60 512,50 512,40
 sleep 3.5
 screenshot 2
 quit_viewer  # while still holding the button: the report shows the slime stretched

@@ -39,6 +39,19 @@ click_at() {
   xdotool mouseup 1
 }
 
+# press_and_move X Y PAUSE "x,y"...: presses the left button at window point (X, Y), then moves the
+# pointer through the given points, PAUSE seconds at each (so a frame sees every step); the button
+# stays down — the caller lets go with `xdotool mouseup 1`.
+press_and_move() {
+  local pause="$3"
+  xdotool mousemove --window "$WINDOW" "$1" "$2" mousedown 1
+  shift 3
+  for point in "$@"; do
+    xdotool mousemove --window "$WINDOW" "${point%,*}" "${point#*,}"
+    sleep "$pause"
+  done
+}
+
 # differing_pixels A B: how many pixels differ by more than 3 % between two PNGs.
 differing_pixels() {
   compare -metric AE -fuzz 3% "$1" "$2" null: 2>&1 | cut -d' ' -f1

@@ -19,11 +19,7 @@ done
 xdotool mouseup 1 keyup ctrl
 sleep 0.5
 # The first hand, on the right side, pulled right and held.
-xdotool mousemove --window "$WINDOW" 552 165 mousedown 1
-for x in 562 572 582 592 602 612 622 632 642; do
-  xdotool mousemove --window "$WINDOW" "$x" 165
-  sleep 0.12
-done
+press_and_move 552 165 0.12 562,165 572,165 582,165 592,165 602,165 612,165 622,165 632,165 642,165
 sleep 2.5
 screenshot 2
 quit_viewer  # while still holding the button: the report shows both hands holding
