@@ -137,6 +137,7 @@ class Simulation {
   void placeGrabbedPoints();
   void saveGoodState();
   void rollBack(const std::string& what);
+  int bulkTravelSubsteps() const;  // substeps so that no node crosses kTravelPerSubstep of an edge
 
   Settings settings_;
   bool bulk_ = false;
@@ -169,6 +170,8 @@ class Simulation {
   double time_ = 0.0;
   std::int64_t stepCount_ = 0;
   int refinement_ = 1;  // extra substeps the divergence guard asked for
+  int travelSubsteps_ = 1;  // bulk, explicit: what the fastest node's speed asks for this step
+  double shortestEdge_ = 0.0;  // bulk: the tetrahedra's shortest rest edge, m
   int cleanSteps_ = 0;  // steps since the last rollback or coarsening
   int lastSolverIterations_ = 0;
   std::vector<DivergenceEvent> divergences_;
