@@ -1,5 +1,7 @@
 #include "app/bench/bench_material.h"
 
+#include "app/bench/bench_damping.h"
+#include "app/bench/bench_modes.h"
 #include "app/bench/bench_report.h"
 #include "app/bench/bench_timing.h"
 #include "core/bulk/lamb_sphere.h"
@@ -36,84 +38,6 @@ struct VolumeRange {
   }
   json toJson() const { return {{"min", low}, {"max", high}}; }
 };
-
-// A free, undamped, weightless ball: the elastic limit Lamb's oracle is about (longTerm = 1, no
-// viscosity, no gravity) at `resolution`, its centre at least a diameter above the floor.
-Settings elasticBall(const Settings& base, int resolution) {
-  Settings settings = base;
-  settings.slime.model = "bulk";
-  settings.slime.resolution = resolution;
-  settings.slime.level = std::max(resolution, 2);  // the drawn surface costs nothing here
-  settings.slime.longTerm = 1.0;
-  settings.slime.viscosity = 0.0;
-  settings.sim.gravity = 0.0;
-  settings.slime.position.z = std::max(settings.slime.position.z, 2.0 * settings.slime.radius);
-  return settings;
-}
-
-// Takes the rigid motion out of per-node vectors (as velocities, or as forces per unit mass):
-// afterwards Σ m u = 0 and Σ m (X − c) × u = 0, so a mode shape starts no drift or spin and a load
-// pushes and turns the body as a whole by nothing.
-void removeRigidMotion(const std::vector<double>& masses, const std::vector<glm::dvec3>& rest,
-                       std::vector<glm::dvec3>& vectors) {
-  double mass = 0.0;
-  glm::dvec3 centre(0.0), momentum(0.0);
-  for (std::size_t i = 0; i < rest.size(); ++i) {
-    mass += masses[i];
-    centre += masses[i] * rest[i];
-    momentum += masses[i] * vectors[i];
-  }
-  centre /= mass;
-  for (glm::dvec3& u : vectors) u -= momentum / mass;
-  glm::dvec3 angular(0.0);
-  glm::dmat3 inertia(0.0);
-  for (std::size_t i = 0; i < rest.size(); ++i) {
-    const glm::dvec3 r = rest[i] - centre;
-    angular += masses[i] * glm::cross(r, vectors[i]);
-    inertia += masses[i] * (glm::dot(r, r) * glm::dmat3(1.0) - glm::outerProduct(r, r));
-  }
-  const glm::dvec3 spin = glm::inverse(inertia) * angular;
-  for (std::size_t i = 0; i < rest.size(); ++i) vectors[i] -= glm::cross(spin, rest[i] - centre);
-}
-
-// Lamb's n = 2 mode shape (axis z) at the body's rest nodes, its largest value 1, rigid motion removed.
-std::vector<glm::dvec3> modeShape(const Simulation& simulation, bool spheroidal, double eta) {
-  const Settings& settings = simulation.settings();
-  const std::vector<glm::dvec3>& rest = simulation.bulkBody().mesh.positions;
-  std::vector<glm::dvec3> shape(rest.size());
-  double largest = 0.0;
-  for (std::size_t i = 0; i < rest.size(); ++i) {
-    const glm::dvec3 x = rest[i] - settings.slime.position;
-    shape[i] = spheroidal ? spheroidalModeShape(x, settings.slime.radius, eta, settings.slime.poisson)
-                          : torsionalModeShape(x, settings.slime.radius, eta);
-    largest = std::max(largest, glm::length(shape[i]));
-  }
-  for (glm::dvec3& s : shape) s /= largest;
-  std::vector<double> masses(rest.size());
-  for (std::size_t i = 0; i < rest.size(); ++i) masses[i] = 1.0 / simulation.bulkBody().freeInverseMasses[i];
-  removeRigidMotion(masses, rest, shape);
-  return shape;
-}
-
-// The mode's amplitude in the current state: the least-squares a of x − X ≈ a ψ in the mass norm,
-// Σ m (x − X)·ψ / Σ m ψ·ψ (m; with ψ's largest value 1, the displacement where the mode moves most).
-double modalAmplitude(const Simulation& simulation, const std::vector<glm::dvec3>& shape) {
-  const std::vector<glm::dvec3>& rest = simulation.bulkBody().mesh.positions;
-  const std::vector<glm::dvec3>& x = simulation.state().positions;
-  const std::vector<double>& w = simulation.bulkBody().freeInverseMasses;
-  double projection = 0.0, norm = 0.0;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    projection += glm::dot(x[i] - rest[i], shape[i]) / w[i];
-    norm += glm::dot(shape[i], shape[i]) / w[i];
-  }
-  return projection / norm;
-}
-
-double lambTheoryHz(const Simulation& simulation, double eta) {
-  const SlimeSettings& slime = simulation.settings().slime;
-  const double density = slime.mass / simulation.bulkBody().restVolume;
-  return eta * std::sqrt(slime.modulus / density) / (2.0 * std::numbers::pi * slime.radius);
-}
 
 json lambRun(const Settings& base, int resolution, bool spheroidal, const MaterialBenchOptions& options) {
   Simulation simulation(elasticBall(base, resolution));
@@ -418,6 +342,10 @@ MaterialBenchOptions MaterialBenchOptions::quick() {
   options.energySeconds = 1.0;
   options.tensile.barSteps = 1000;
   options.tensile.settleSeconds = 0.5;
+  options.damping.resolution = 1;
+  options.damping.steps = {0.001, 0.004};
+  options.damping.projectiveIterations = {1, 3, 10};
+  options.damping.periods = 3.0;
   return options;
 }
 
@@ -509,6 +437,8 @@ json runMaterialBench(const Settings& settings, const MaterialBenchOptions& opti
   CsvTable barTable{{"strain_rate", "strain", "stress_pa", "closed_form_pa", "lateral_stretch"}, {}};
   CsvTable pullTable{{"speed_m_s", "extension_m", "force_n"}, {}};
   const json tensile = runTensileBench(settings, options.tensile, barTable, pullTable);
+  CsvTable dampingTable;
+  const json damping = runDampingBench(settings, options.damping, dampingTable);
 
   const SlimeSettings& slime = settings.slime;
   json report = {{"machine", machineJson()},
@@ -526,6 +456,7 @@ json runMaterialBench(const Settings& settings, const MaterialBenchOptions& opti
                  {"recovery", creep["recovery"]},
                  {"energy_drift", energy},
                  {"tensile", tensile},
+                 {"numerical_damping", damping},
                  {"wall_s", watch.milliseconds() * 1e-3}};
   if (!options.jsonFile.empty()) writeJsonFile(report, options.jsonFile);
   if (!options.csvFile.empty()) {
@@ -533,6 +464,7 @@ json runMaterialBench(const Settings& settings, const MaterialBenchOptions& opti
     writeCsvFile(creepTable, siblingCsvPath(options.csvFile, "creep"));
     writeCsvFile(barTable, siblingCsvPath(options.csvFile, "tensile"));
     writeCsvFile(pullTable, siblingCsvPath(options.csvFile, "pull"));
+    writeCsvFile(dampingTable, siblingCsvPath(options.csvFile, "damping"));
   }
   return report;
 }

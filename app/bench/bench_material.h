@@ -10,8 +10,10 @@
 //  - The range of volume / rest volume over each run.
 //  - The tensile test (bench_tensile.h): a bar at three strain rates against the standard linear
 //    solid's closed form, and the slime pulled apart by two hands at three speeds.
+//  - The integrators' numerical damping of Lamb's modes against the step (bench_damping.h).
 #pragma once
 
+#include "app/bench/bench_damping.h"
 #include "app/bench/bench_tensile.h"
 #include "core/settings/settings.h"
 
@@ -34,9 +36,11 @@ struct MaterialBenchOptions {
   double energySeconds = 10.0;
   double energySpeed = 0.1;               // m/s, the largest initial speed of the energy run (20× Lamb's)
   TensileOptions tensile;
+  DampingOptions damping;
   std::string jsonFile;
   // FILE: the Lamb table; FILE_creep: the creep and recovery series; FILE_tensile: the bar's stress
-  // against strain; FILE_pull: the two hands' force against extension.
+  // against strain; FILE_pull: the two hands' force against extension; FILE_damping: the integrators'
+  // numerical damping of Lamb's modes against the step.
   std::string csvFile;
 
   static MaterialBenchOptions quick();  // resolutions 1–2 and short runs (CI)
