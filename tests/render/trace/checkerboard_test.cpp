@@ -95,9 +95,10 @@ void expectMovingFramesCloseToTheFullTrace(bool quarter) {
     EXPECT_EQ(differingOutside, 0) << what;
     EXPECT_GE(2 * stats.filledPixels + 2 * stats.tracedFillPixels + 4 * image.width, static_cast<std::uint64_t>(footprintPixels))
         << what << ": about half the footprint is left to the fill";
-    if (quarter)  // three quarters of it, less a row of the image at each span's ends
+    if (quarter) {  // three quarters of it, less a row of the image at each span's ends
       EXPECT_GE(4 * (stats.filledPixels + stats.tracedFillPixels) + 8 * image.width, 3u * static_cast<std::uint64_t>(footprintPixels))
           << what << ": about three quarters of the footprint are left to the fill";
+    }
   }
   // Still again, traced in full: the very image of a fresh renderer.
   settings.render.checkerboard = false;
