@@ -78,6 +78,7 @@ struct RenderSettings {
   bool caustics = false;             // light focused through the slime onto the floor (photons, render/caustics/)
   int photons = 10000;               // photons shot per frame while the slime or the light moves
   bool checkerboard = true;          // viewer, while moving: half the slime's footprint traced, the rest filled in
+  bool checkerboardQuarter = true;   // with checkerboard: a quarter traced, the rest filled in two passes
 };
 
 struct SimSettings {

@@ -137,6 +137,9 @@ void forEachField(S& s, Visitor&& visitor) {
   visit("render.checkerboard", s.render.checkerboard, Choices{},
         "viewer, while things move: trace every other pixel of the slime's footprint, fill in the rest from "
         "their neighbours (tracing those where they disagree)");
+  visit("render.checkerboardQuarter", s.render.checkerboardQuarter, Choices{},
+        "with render.checkerboard: trace every other row of the checkerboard's colour only (a quarter of the "
+        "footprint), fill the colour's other rows from their diagonal neighbours, then the rest as before");
   visit("render.targetFps", s.render.targetFps, Limits{0.0, 240.0, "frames per second"},
         "viewer: trace the image smaller while moving frames miss this rate (0: always full resolution)");
   // Simulation

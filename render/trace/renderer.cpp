@@ -115,8 +115,10 @@ struct Renderer::Impl {
   bool imageInPlace = false, bytesInPlace = false;
   // Checkerboard tracing this frame (render/trace/checkerboard.h): the parity of the pixels traced,
   // and per pixel, 1 where a tile left it to be filled in (cleared as it is filled).
-  bool halved = false;
-  int parity = 0;
+  // With the quarter (render.checkerboardQuarter) also the phase of the rows traced; the two flip
+  // in turn, so four frames in a row trace each pixel once.
+  bool halved = false, quartered = false;
+  int parity = 0, phase = 0;
   std::vector<std::uint8_t> skipped;
 
   explicit Impl(const Settings& settings)
@@ -226,8 +228,9 @@ struct Renderer::Impl {
               glm::vec3 pickedColors[kRunPixels];
               for (int i = 0; i < count; ++i) {
                 const int x = x0 + i;
-                if (footprint->contains(x, y) && !checkerboardTraced(x, y, parity)) {
-                  skipped[first + i] = 1;
+                const CheckerboardPass pass = checkerboardPass(x, y, parity, quartered, phase);
+                if (pass != CheckerboardPass::Traced && footprint->contains(x, y)) {
+                  skipped[first + i] = static_cast<std::uint8_t>(pass);
                   colors[i] = glm::vec3(0.0f);
                   continue;
                 }
@@ -329,12 +332,13 @@ struct Renderer::Impl {
       for (int j = 0; j < count; ++j) floorShadings[row + columns[j]] = shadings[j];
   }
 
-  // After the tiles: each pixel a tile skipped (checkerboard) in rows [rowBegin, rowEnd) is filled in
-  // from its four neighbours, or traced where they disagree (render/trace/checkerboard.h). Its
-  // neighbours are all of the other colour, final: rows may be filled in parallel.
+  // After the tiles: each pixel a tile skipped (checkerboard) for `pass` in rows [rowBegin, rowEnd)
+  // is filled in from its four neighbours (beside it, or diagonal for the quarter's first fill), or
+  // traced where they disagree (render/trace/checkerboard.h). Those neighbours are all final before
+  // this pass starts and none is written by it: rows may be filled in parallel.
   void fillSkipped(const WhittedTracer& tracer, const SlimeIntersector& intersector, const Camera& camera,
-                   glm::vec2 pixelOffset, int rowBegin, int rowEnd, Image& image, std::uint8_t* srgba,
-                   FloorShading* floorShadings, TraceCounters& counts) {
+                   glm::vec2 pixelOffset, CheckerboardPass pass, int rowBegin, int rowEnd, Image& image,
+                   std::uint8_t* srgba, FloorShading* floorShadings, TraceCounters& counts) {
     FlushDenormals flush;
     const auto start = std::chrono::steady_clock::now();
     const glm::vec3 eye(camera.position);
@@ -359,12 +363,18 @@ struct Renderer::Impl {
         pending = 0;
       };
       for (int x = std::max(0, span.x0); x < std::min(width, span.x1); ++x) {
-        if (!skipped[row + x]) continue;
+        if (skipped[row + x] != static_cast<std::uint8_t>(pass)) continue;
         skipped[row + x] = 0;
-        const glm::vec3* neighbours[4] = {x > 0 ? &image.pixels[row + x - 1] : nullptr,
-                                          x + 1 < width ? &image.pixels[row + x + 1] : nullptr,
-                                          y > 0 ? &image.pixels[row - width + x] : nullptr,
-                                          y + 1 < height ? &image.pixels[row + width + x] : nullptr};
+        const bool left = x > 0, right = x + 1 < width, up = y > 0, down = y + 1 < height;
+        const glm::vec3* p = &image.pixels[row + x];
+        const glm::vec3* neighbours[4] = {left ? p - 1 : nullptr, right ? p + 1 : nullptr, up ? p - width : nullptr,
+                                          down ? p + width : nullptr};
+        if (pass == CheckerboardPass::FromDiagonals) {  // two opposite pairs: up-left/down-right, up-right/down-left
+          neighbours[0] = left && up ? p - width - 1 : nullptr;
+          neighbours[1] = right && down ? p + width + 1 : nullptr;
+          neighbours[2] = right && up ? p - width + 1 : nullptr;
+          neighbours[3] = left && down ? p + width - 1 : nullptr;
+        }
         glm::vec3 color;
         if (fillFromNeighbours(neighbours, color)) {
           image.pixels[row + x] = color;
@@ -490,8 +500,10 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
   // Only where the last frame's pixels stand (the camera still, a window's buffers): a first frame or
   // a turning camera is traced whole.
   impl.halved = settings.render.checkerboard && impl.imageInPlace && !brute;
+  impl.quartered = impl.halved && settings.render.checkerboardQuarter;
   if (impl.halved) {
     impl.parity ^= 1;  // the other colour from the last halved frame
+    if (impl.parity == 0) impl.phase ^= 1;  // and every other time, the other rows of the quarter
     if (impl.skipped.size() != image.pixels.size()) impl.skipped.assign(image.pixels.size(), 0);
   }
   for (TraceCounters& counts : impl.counters) counts = TraceCounters{};
@@ -513,12 +525,16 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
                           handOff(&impl);  // the tile's pixels and counters, back to the caller
                         });
       if (!impl.halved) return;
-      tbb::parallel_for(tbb::blocked_range<int>(0, image.height, kTileRows), [&](const tbb::blocked_range<int>& rows) {
-        takeOver(&impl);
-        impl.fillSkipped(tracer, intersector, camera, pixelOffset, rows.begin(), rows.end(), image, bytes,
-                         floorShadings, impl.counters.local());
-        handOff(&impl);
-      });
+      const auto fill = [&](CheckerboardPass pass) {
+        tbb::parallel_for(tbb::blocked_range<int>(0, image.height, kTileRows), [&](const tbb::blocked_range<int>& rows) {
+          takeOver(&impl);
+          impl.fillSkipped(tracer, intersector, camera, pixelOffset, pass, rows.begin(), rows.end(), image, bytes,
+                           floorShadings, impl.counters.local());
+          handOff(&impl);
+        });
+      };
+      if (impl.quartered) fill(CheckerboardPass::FromDiagonals);  // the traced colour's other rows first
+      fill(CheckerboardPass::FromBeside);
     });
     takeOver(&impl);
   }

@@ -52,11 +52,13 @@ double psnrDb(const Image& a, const Image& b) {
   return mse == 0.0 ? 100.0 : 10.0 * std::log10(255.0 * 255.0 / mse);
 }
 
-// A window's frames while the slime moves: half the footprint's pixels or fewer traced, the image
-// within the check's aims of the full trace, and nothing of the fill left behind once it stops.
-TEST(Checkerboard, MovingFramesStayCloseToTheFullTrace) {
+// A window's frames while the slime moves: half the footprint's pixels or fewer traced (a quarter with
+// render.checkerboardQuarter), the image within the check's aims of the full trace, and nothing of the
+// fill left behind once it stops.
+void expectMovingFramesCloseToTheFullTrace(bool quarter) {
   Settings settings = smallScene(320, 240);
   settings.slime.level = 3;
+  settings.render.checkerboardQuarter = quarter;
   const TriangleMesh resting = restingMesh(settings);
   Renderer renderer(settings);
   Image image;
@@ -93,6 +95,10 @@ TEST(Checkerboard, MovingFramesStayCloseToTheFullTrace) {
     EXPECT_EQ(differingOutside, 0) << what;
     EXPECT_GE(2 * stats.filledPixels + 2 * stats.tracedFillPixels + 4 * image.width, static_cast<std::uint64_t>(footprintPixels))
         << what << ": about half the footprint is left to the fill";
+    if (quarter) {  // three quarters of it, less a row of the image at each span's ends
+      EXPECT_GE(4 * (stats.filledPixels + stats.tracedFillPixels) + 8 * image.width, 3u * static_cast<std::uint64_t>(footprintPixels))
+          << what << ": about three quarters of the footprint are left to the fill";
+    }
   }
   // Still again, traced in full: the very image of a fresh renderer.
   settings.render.checkerboard = false;
@@ -105,6 +111,10 @@ TEST(Checkerboard, MovingFramesStayCloseToTheFullTrace) {
   for (std::size_t i = 0; i < image.pixels.size(); ++i) differing += image.pixels[i] != full.pixels[i];
   EXPECT_EQ(differing, 0u) << "a filled-in pixel outlived the checkerboard";
 }
+
+TEST(Checkerboard, MovingFramesStayCloseToTheFullTrace) { expectMovingFramesCloseToTheFullTrace(false); }
+
+TEST(Checkerboard, QuarterTracedFramesStayCloseToTheFullTrace) { expectMovingFramesCloseToTheFullTrace(true); }
 
 // Without the window's promise (a snapshot, the check's reference) nothing is filled in.
 TEST(Checkerboard, OnlyAWindowsFramesAreHalved) {
