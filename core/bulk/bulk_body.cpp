@@ -102,6 +102,13 @@ BulkBody buildBulkBody(const SlimeSettings& slime) {
     body.embedding.nodes.resize(count);
     body.embedding.weights.assign(count, glm::dvec4(1.0, 0.0, 0.0, 0.0));
     for (std::size_t i = 0; i < count; ++i) body.embedding.nodes[i] = Tetrahedron(static_cast<std::uint32_t>(i));
+    body.embedding.smoothStart.resize(count + 1);  // and the smooth map is the same: x_i = x_body[i]
+    body.embedding.smoothTerms.resize(count);
+    for (std::uint32_t i = 0; i < count; ++i) {
+      body.embedding.smoothStart[i] = i;
+      body.embedding.smoothTerms[i] = {1.0, i};
+    }
+    body.embedding.smoothStart[count] = static_cast<std::uint32_t>(count);
     // Each drawn vertex in one body surface triangle that has it as a corner (for the floor contact).
     body.embedding.verticesOfSurfaceTriangle.assign(mesh.surface.size(), {});
     std::vector<bool> placed(count, false);
@@ -268,28 +275,34 @@ std::size_t resolveDrawnFloorContact(BulkBody& body, double friction) {
   std::size_t touched = 0;
   for (std::size_t s = 0; s < body.mesh.surface.size(); ++s) {
     const Triangle& triangle = body.mesh.surface[s];
-    // lowest > span/2, in squares (no square roots): a triangle well above the floor.
+    // lowest > span, in squares (no square roots): a triangle well above the floor (the smooth map's
+    // surface stays within a fraction of the body triangle's size of it).
     const double lowest = std::min({x[triangle.x].z, x[triangle.y].z, x[triangle.z].z});
     const glm::dvec3 a = x[triangle.y] - x[triangle.x], b = x[triangle.z] - x[triangle.y], c = x[triangle.x] - x[triangle.z];
     const double spanSquared = std::max({glm::dot(a, a), glm::dot(b, b), glm::dot(c, c)});
-    if (lowest > 0.0 && lowest * lowest > 0.25 * spanSquared) continue;
+    if (lowest > 0.0 && lowest * lowest > spanSquared) continue;
     for (std::uint32_t vertex : embedding.verticesOfSurfaceTriangle[s]) {
-      const Tetrahedron& t = embedding.nodes[vertex];
-      const glm::dvec4& w = embedding.weights[vertex];
-      const double z = w.x * x[t.x].z + w.y * x[t.y].z + w.z * x[t.z].z + w.w * x[t.w].z;
+      const SmoothTerm* first = embedding.smoothTerms.data() + embedding.smoothStart[vertex];
+      const SmoothTerm* last = embedding.smoothTerms.data() + embedding.smoothStart[vertex + 1];
+      double z = 0.0;
+      for (const SmoothTerm* term = first; term != last; ++term) z += term->weight * x[term->node].z;
       if (z >= 0.0) continue;
-      // Only the nodes with positive weights lift the vertex (a node the affine map extrapolates
-      // with a negative weight would be pushed down); lifted nodes lose their downward speed.
-      double stiffness = 0.0;  // Σ w_j² / m_j over those nodes
-      for (int j = 0; j < 4; ++j)
-        if (w[j] > 0.0) stiffness += w[j] * w[j] * state.inverseMasses[t[j]];
+      // Only the nodes with positive weights lift the vertex (a node the map extrapolates with a
+      // negative weight would be pushed down), node j by Δz_j = λ φ_j² / m_j with λ such that
+      // Σ φ_j Δz_j = −z: the lift goes mostly to the few nodes that carry the vertex most, as the
+      // element map's did (spread over all ~30 nodes of the smooth map in proportion to φ_j, the lifts
+      // sweep several times the volume and squeezed the landing body by over 1 %). Lifted nodes lose
+      // their downward speed.
+      double stiffness = 0.0;  // Σ φ_j³ / m_j over those nodes
+      for (const SmoothTerm* term = first; term != last; ++term)
+        if (term->weight > 0.0) stiffness += term->weight * term->weight * term->weight * state.inverseMasses[term->node];
       if (stiffness <= 0.0) continue;
       ++touched;
       const double lift = -z / stiffness;
-      for (int j = 0; j < 4; ++j) {
-        if (w[j] <= 0.0 || state.inverseMasses[t[j]] == 0.0) continue;
-        state.positions[t[j]].z += lift * w[j] * state.inverseMasses[t[j]];
-        stopFallWithFriction(state.velocities[t[j]], friction);
+      for (const SmoothTerm* term = first; term != last; ++term) {
+        if (term->weight <= 0.0 || state.inverseMasses[term->node] == 0.0) continue;
+        state.positions[term->node].z += lift * term->weight * term->weight * state.inverseMasses[term->node];
+        stopFallWithFriction(state.velocities[term->node], friction);
       }
     }
   }

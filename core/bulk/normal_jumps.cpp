@@ -28,6 +28,8 @@ NormalJumps normalJumps(const std::vector<glm::dvec3>& x, const std::vector<Tria
     }
   std::sort(sides.begin(), sides.end());
   std::vector<double> angles;
+  double largest = -1.0;
+  glm::dvec3 largestAt(0.0);
   angles.reserve(sides.size() / 2);
   for (std::size_t s = 0; s + 1 < sides.size();) {
     std::size_t end = s + 1;
@@ -36,6 +38,10 @@ NormalJumps normalJumps(const std::vector<glm::dvec3>& x, const std::vector<Tria
       const glm::dvec3 cross = glm::cross(unit[sides[s][2]], unit[sides[s + 1][2]]);
       // atan2(|n1 × n2|, n1·n2): accurate for small and large angles alike.
       angles.push_back(std::atan2(glm::length(cross), glm::dot(unit[sides[s][2]], unit[sides[s + 1][2]])));
+      if (angles.back() > largest) {
+        largest = angles.back();
+        largestAt = 0.5 * (x[sides[s][0]] + x[sides[s][1]]);
+      }
     }
     s = end;
   }
@@ -44,6 +50,7 @@ NormalJumps normalJumps(const std::vector<glm::dvec3>& x, const std::vector<Tria
   if (angles.empty()) return jumps;
   std::sort(angles.begin(), angles.end());
   jumps.largest = angles.back();
+  jumps.largestAt = largestAt;
   jumps.percentile99 = angles[std::min(angles.size() - 1, static_cast<std::size_t>(0.99 * angles.size()))];
   jumps.median = angles[angles.size() / 2];
   return jumps;

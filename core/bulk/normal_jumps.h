@@ -19,6 +19,7 @@ struct NormalJumps {
   double percentile99 = 0.0;  // rad
   double median = 0.0;        // rad
   std::size_t edges = 0;      // edges shared by two triangles
+  glm::dvec3 largestAt{0.0};  // the midpoint of the edge with the largest jump
 };
 
 // Over the edges shared by exactly two triangles (collapsed triangles are skipped).
