@@ -25,7 +25,7 @@ if [ -z "${SLIME_BENCH_BUILD:-}" ] || [ ! -f "$bin/CMakeCache.txt" ]; then
 fi
 cmake --build "$bin" -j2 --target slime micro_bench
 # The Bullet side-by-side exists only where Debian's libbullet-dev is installed.
-cmake --build "$bin" -j2 --target bullet_ball >/dev/null 2>&1 || echo "bench: no Bullet, skipping bullet_ball"
+cmake --build "$bin" -j2 --target bullet_ball bullet_tets >/dev/null 2>&1 || echo "bench: no Bullet, skipping bullet_ball and bullet_tets"
 slime=$bin/app/slime
 
 if [ "$quick" = 1 ]; then
@@ -38,7 +38,7 @@ if [ "$quick" = 1 ]; then
   # The frame-size chart reads the sizes run's headline table; the quick run's one size stands in for it.
   cp "$out/render_headline.csv" "$out/render_sizes_headline.csv"
   "$slime" bench physics --levels 2 --integrators symplectic_euler,implicit_euler --seconds 0.05 --stability-level 2 \
-    --stiffnesses 40 --accuracy-level 2 --steps 1e-3,5e-3 --settle 0.1 --json "$out/physics.json" --csv "$out/physics.csv"
+    --stiffnesses 40 --accuracy-level 2 --steps 1e-3,5e-3 --settle 0.1 --bullet-tets-seconds 0.05 --json "$out/physics.json" --csv "$out/physics.csv"
   "$slime" bench accuracy --levels 1,2 --depths 1,2 --frames 1 --size 160x120 --json "$out/accuracy.json" --csv "$out/accuracy.csv"
   "$slime" bench material --quick --json "$out/material.json" --csv "$out/material.csv"
   "$slime" bench caustics --photons 1000,2000 --frames 1 --csv "$out/caustics.csv"

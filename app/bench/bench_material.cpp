@@ -416,6 +416,8 @@ MaterialBenchOptions MaterialBenchOptions::quick() {
   options.settleSeconds = 0.5;
   options.creepSeconds = 2.0;
   options.energySeconds = 1.0;
+  options.tensile.barSteps = 1000;
+  options.tensile.settleSeconds = 0.5;
   return options;
 }
 
@@ -504,6 +506,10 @@ json runMaterialBench(const Settings& settings, const MaterialBenchOptions& opti
               100.0 * energy["max_deviation_stored"].get<double>(), energy["volume_ratio"]["min"].get<double>(),
               energy["volume_ratio"]["max"].get<double>());
 
+  CsvTable barTable{{"strain_rate", "strain", "stress_pa", "closed_form_pa", "lateral_stretch"}, {}};
+  CsvTable pullTable{{"speed_m_s", "extension_m", "force_n"}, {}};
+  const json tensile = runTensileBench(settings, options.tensile, barTable, pullTable);
+
   const SlimeSettings& slime = settings.slime;
   json report = {{"machine", machineJson()},
                  {"material",
@@ -519,11 +525,14 @@ json runMaterialBench(const Settings& settings, const MaterialBenchOptions& opti
                  {"creep", creep["creep"]},
                  {"recovery", creep["recovery"]},
                  {"energy_drift", energy},
+                 {"tensile", tensile},
                  {"wall_s", watch.milliseconds() * 1e-3}};
   if (!options.jsonFile.empty()) writeJsonFile(report, options.jsonFile);
   if (!options.csvFile.empty()) {
     writeCsvFile(lambTable, options.csvFile);
     writeCsvFile(creepTable, siblingCsvPath(options.csvFile, "creep"));
+    writeCsvFile(barTable, siblingCsvPath(options.csvFile, "tensile"));
+    writeCsvFile(pullTable, siblingCsvPath(options.csvFile, "pull"));
   }
   return report;
 }

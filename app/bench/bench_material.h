@@ -8,8 +8,11 @@
 //    closed form holds for the whole body): the time constant against τ_c = τ (μ∞ + μ1)/μ∞.
 //  - Energy drift of a free body in a large spheroidal oscillation with every dissipation off.
 //  - The range of volume / rest volume over each run.
+//  - The tensile test (bench_tensile.h): a bar at three strain rates against the standard linear
+//    solid's closed form, and the slime pulled apart by two hands at three speeds.
 #pragma once
 
+#include "app/bench/bench_tensile.h"
 #include "core/settings/settings.h"
 
 #include <glm/vec3.hpp>
@@ -30,8 +33,11 @@ struct MaterialBenchOptions {
   double creepSeconds = 8.0;              // under load, then as long again unloaded
   double energySeconds = 10.0;
   double energySpeed = 0.1;               // m/s, the largest initial speed of the energy run (20× Lamb's)
+  TensileOptions tensile;
   std::string jsonFile;
-  std::string csvFile;  // FILE: the Lamb table; FILE_creep: the creep and recovery series
+  // FILE: the Lamb table; FILE_creep: the creep and recovery series; FILE_tensile: the bar's stress
+  // against strain; FILE_pull: the two hands' force against extension.
+  std::string csvFile;
 
   static MaterialBenchOptions quick();  // resolutions 1–2 and short runs (CI)
 };

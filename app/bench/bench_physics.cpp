@@ -1,5 +1,6 @@
 #include "app/bench/bench_physics.h"
 
+#include "app/bench/bench_peers.h"
 #include "app/bench/bench_progress.h"
 #include "app/bench/bench_report.h"
 #include "app/bench/bench_stability.h"
@@ -11,23 +12,15 @@
 
 #include <glm/geometric.hpp>
 
-#include <spawn.h>
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <map>
 #include <thread>
 #include <tuple>
-
-extern char** environ;
 
 namespace slime {
 namespace {
@@ -50,6 +43,15 @@ struct QuotedFigure {
 };
 constexpr QuotedFigure kJolt[] = {{3, 642, 0.027, 0.027}, {4, 2562, 0.214, 0.214}, {5, 10242, 1.72, 1.72},
                                   {6, 40962, 12.2, 13.5}};
+
+// Jolt Physics on the bulk body's own tetrahedra (one edge and one volume constraint per element, 60 Hz
+// steps, the fewest iterations that keep it stable and uninverted), one thread, on an AMD EPYC family 23:
+// ms per 1 ms simulated, as issue 27 quotes them (measured 2026-11-26, not by this bench).
+struct JoltTetFigure {
+  int resolution, nodes, iterations;
+  double msPerMs;
+};
+constexpr JoltTetFigure kJoltTets[] = {{1, 85, 4, 0.006}, {2, 487, 8, 0.066}, {3, 3211, 26, 1.51}, {4, 23059, 62, 28.0}};
 
 // ---- Cost -------------------------------------------------------------------------------------------
 
@@ -82,45 +84,6 @@ CostFigure measureCost(const Settings& settings, double seconds) {
   figure.cpuMsPerSecond = summarize(cpu);
   figure.wallMsPerSecond = summarize(wall).median;
   return figure;
-}
-
-// Where peers/bullet_ball is built: next to this program, in bench/.
-std::string findBulletProgram(const std::string& configured) {
-  if (!configured.empty()) return configured;
-  std::error_code error;
-  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", error);
-  if (error) return "";
-  const std::filesystem::path candidate = self.parent_path() / "bench" / "bullet_ball";
-  return access(candidate.c_str(), X_OK) == 0 ? candidate.string() : "";
-}
-
-// Runs peers/bullet_ball for one level (the ball dropped 2 cm, fixed 1 ms steps, no grab: Bullet has
-// no mouse spring here) and charges it the CPU time of its whole process, set-up included.
-json runBullet(const std::string& program, int level, double seconds) {
-  const std::string jsonPath = (std::filesystem::temp_directory_path() /
-                                ("slime_bench_bullet_" + std::to_string(getpid()) + ".json")).string();
-  const std::string levelText = std::to_string(level), secondsText = std::to_string(seconds);
-  std::vector<const char*> argv{program.c_str(), "--levels", levelText.c_str(), "--seconds", secondsText.c_str(),
-                                "--json", jsonPath.c_str(), nullptr};
-  std::fflush(stdout);
-  pid_t child = 0;
-  if (posix_spawn(&child, program.c_str(), nullptr, nullptr, const_cast<char* const*>(argv.data()), environ) != 0)
-    return nullptr;
-  int status = 0;
-  rusage usage{};
-  if (wait4(child, &status, 0, &usage) != child || !WIFEXITED(status) || WEXITSTATUS(status) != 0) return nullptr;
-  std::ifstream file(jsonPath);
-  json report = json::parse(file, nullptr, false);
-  std::filesystem::remove(jsonPath);
-  if (!report.is_array() || report.empty()) return nullptr;
-  json ball = report[0];
-  const double cpu = usage.ru_utime.tv_sec + 1e-6 * usage.ru_utime.tv_usec + usage.ru_stime.tv_sec +
-                     1e-6 * usage.ru_stime.tv_usec;
-  const double simulated = ball["seconds"].get<double>();
-  ball["cpu_seconds"] = cpu;
-  ball["cpu_ms_per_simulated_s"] = simulated > 0.0 ? 1e3 * cpu / simulated : 0.0;
-  ball["wall_ms_per_simulated_s"] = 1e3 * ball["ms_per_step"].get<double>();  // 1 ms steps
-  return ball;
 }
 
 // ---- Accuracy ---------------------------------------------------------------------------------------
@@ -334,12 +297,13 @@ json runPhysicsBench(const Settings& base, const PhysicsBenchOptions& options) {
   std::vector<std::string> membrane;  // projective is the bulk body's only
   for (const std::string& name : integrators)
     if (name != "projective") membrane.push_back(name);
-  const std::string bullet = findBulletProgram(options.bulletProgram);
+  const std::string bullet = findPeerProgram(options.bulletProgram, "bullet_ball");
+  const std::string bulletTets = options.bulletTetsSeconds > 0.0 ? findPeerProgram("", "bullet_tets") : "";
   const bool stability = options.stabilityLevel >= 0, accuracy = options.accuracyLevel >= 0;
   const double perIntegrator = options.steps.size() + 1.0;
   const double units =
       2.0 * options.levels.size() + options.resolutions.size() + bulk.size() +
-      (bullet.empty() ? 0.0 : options.levels.size()) +
+      (bullet.empty() ? 0.0 : options.levels.size()) + (bulletTets.empty() ? 0.0 : options.resolutions.size()) +
       (stability ? 13.0 * (bulk.size() * options.moduli.size() + (options.membrane ? membrane.size() * options.stiffnesses.size() : 0)) : 0.0) +
       (accuracy ? 5.0 + bulk.size() * perIntegrator + (options.membrane ? 5.0 + membrane.size() * perIntegrator : 0.0) : 0.0) + 1.0;
   BenchProgress progress("bench physics", units);
@@ -397,7 +361,7 @@ json runPhysicsBench(const Settings& base, const PhysicsBenchOptions& options) {
   for (int level : options.levels) costRow("membrane", "membrane", "symplectic_euler", level, 0);
   if (!bullet.empty()) {
     for (int level : options.levels) {
-      const json ball = runBullet(bullet, level, kScenarioSeconds);
+      const json ball = runBulletBall(bullet, level, kScenarioSeconds);
       progress.advance(1.0, "bullet level " + std::to_string(level));
       if (ball.is_null()) continue;
       const double cpu = ball["cpu_ms_per_simulated_s"];
@@ -411,6 +375,35 @@ json runPhysicsBench(const Settings& base, const PhysicsBenchOptions& options) {
       std::printf("cost      bullet   btSoftBody        level %d        %6d points          1 ms steps  %9.1f CPU ms "
                   "per simulated s\n", level, ball["vertices"].get<int>(), cpu);
     }
+  }
+  for (int resolution : bulletTets.empty() ? std::vector<int>{} : options.resolutions) {
+    const json body = runBulletTets(bulletTets, resolution, options.bulletTetsSeconds);
+    progress.advance(1.0, "bullet tetrahedra resolution " + std::to_string(resolution));
+    if (body.is_null()) continue;
+    const double cpu = body["cpu_ms_per_simulated_s"];
+    cost.push_back({{"series", "bullet_tets"}, {"source", "measured: peers/bullet_tets (its CPU time, set-up "
+                                                            "excluded; a drop, no grab)"},
+                    {"model", "bullet FEM"}, {"resolution", resolution}, {"simulated_points", body["nodes"]},
+                    {"cpu_ms_per_simulated_s", {{"median", cpu}, {"min", cpu}, {"max", cpu}, {"samples", 1}}},
+                    {"grab", false}, {"run", body}});
+    costTable.add({"bullet_tets", "measured", "bullet", "FEM neo-Hookean explicit", json(), resolution, body["nodes"],
+                   json(), json(), cpu, cpu, cpu, json(), 1});
+    std::printf("cost      bullet   FEM on our tets   res %d          %6d points  %.3g ms steps  %9.1f CPU ms per "
+                "simulated s  aspect %.3f  volume %.3f  inverted %d\n", resolution, body["nodes"].get<int>(),
+                1e3 * body["step"].get<double>(), cpu, body["aspect"].get<double>(), body["volume_ratio"].get<double>(),
+                body["inverted"].get<int>());
+  }
+  if (bulletTets.empty() && options.bulletTetsSeconds > 0.0)
+    report["bullet_tets"] = "not measured: peers/bullet_tets is not built (Debian's libbullet-dev)";
+  for (const JoltTetFigure& jolt : kJoltTets) {
+    cost.push_back({{"series", "jolt_tets"}, {"source", "quoted: issue 27, Jolt (3b47ec39) on the same tetrahedra, "
+                                                         "AMD EPYC family 23, one thread, not by this bench"},
+                    {"model", "jolt tetrahedral soft body"}, {"resolution", jolt.resolution},
+                    {"simulated_points", jolt.nodes}, {"iterations", jolt.iterations},
+                    {"cpu_ms_per_simulated_s", {{"median", 1e3 * jolt.msPerMs}, {"min", 1e3 * jolt.msPerMs},
+                                                {"max", 1e3 * jolt.msPerMs}, {"samples", 0}}}});
+    costTable.add({"jolt_tets", "quoted", "jolt", "tetrahedral soft body", json(), jolt.resolution, jolt.nodes, json(),
+                   json(), 1e3 * jolt.msPerMs, 1e3 * jolt.msPerMs, 1e3 * jolt.msPerMs, json(), 0});
   }
   for (const QuotedFigure& jolt : kJolt) {
     const double low = 1e3 * jolt.low, high = 1e3 * jolt.high, middle = 0.5 * (low + high);

@@ -36,6 +36,7 @@ struct PhysicsBenchOptions {
   std::vector<double> steps{5e-5, 1e-4, 2e-4, 5e-4, 1e-3, 2e-3, 5e-3};  // substeps h of the accuracy runs, s
   double settleSeconds = 2.0;                      // roundness at rest after this long (none if <= 0)
   std::string bulletProgram;                       // peers/bullet_ball; empty: next to this program, if built
+  double bulletTetsSeconds = 2.0;                  // simulated seconds of peers/bullet_tets a resolution (0: skip)
   std::string jsonFile;
   std::string csvFile;
 };

@@ -150,6 +150,8 @@ json frameJson(const FrameTiming& timing, const char* what) {
           {"ms", toJson(timing.ms)},
           {"reused_pixels", timing.stats.reusedPixels},
           {"cached_floor_pixels", timing.stats.cachedFloorPixels},
+          {"filled_pixels", timing.stats.filledPixels},
+          {"traced_fill_pixels", timing.stats.tracedFillPixels},
           {"rays", raysJson(timing.stats)},
           {"all_mrays_per_s", rate(r.total())},
           {"all_mrays_per_s_by_kind",
@@ -297,9 +299,11 @@ json measureHeadline(const Settings& base, int width, int height, int threads, c
                                {"note", "refit + render; camera turned and slime reshaped every frame: every pixel traced"}}},
           {"handled_frame_ms", handled.ms.median},
           {"handled_frame", {{"ms", toJson(handled.ms)}, {"refit_ms", handled.refitMs}, {"reused_pixels", handled.stats.reusedPixels},
+                             {"filled_pixels", handled.stats.filledPixels}, {"traced_fill_pixels", handled.stats.tracedFillPixels},
                              {"rays", raysJson(handled.stats)},
                              {"note", "refit + render as the viewer does it: camera still, the slime pulled 1/60 s further "
-                                      "each frame, pixels outside its footprint kept from the last frame"}}},
+                                      "each frame, pixels outside its footprint kept from the last frame, inside it a checkerboard "
+                                      "traced (render.checkerboard)"}}},
           {"handled_over_deforming", ms > 0.0 ? handled.ms.median / ms : 0.0},
           {"deforming_replay_ms", limit.median},
           {"deforming_replay", {{"ms", toJson(limit)},

@@ -100,6 +100,7 @@ struct PhysicsCommand {
   SceneOptions scene;
   PhysicsBenchOptions bench;
   std::string levels = "3-6";
+  std::string resolutions = "1-3";
 };
 
 void registerPhysics(CLI::App& bench, int& exitCode) {
@@ -117,6 +118,11 @@ void registerPhysics(CLI::App& bench, int& exitCode) {
   command->add_option("--accuracy-level", b.accuracyLevel, "Level of the accuracy run (-1: skip)")->check(CLI::Range(-1, 7))->capture_default_str();
   command->add_option("--steps", b.steps, "Time steps of the accuracy run, s (each must divide 10 ms)")->delimiter(',')
       ->check(CLI::Range(1e-6, 0.01));
+  command->add_option("--resolutions", options->resolutions, "Bulk resolutions of the cost table and Bullet's FEM peer, e.g. 1-3")
+      ->capture_default_str();
+  command->add_option("--bullet-tets-seconds", b.bulletTetsSeconds,
+                      "Simulated seconds of Bullet's FEM on the body's tetrahedra, each resolution (0: skip)")
+      ->check(CLI::Range(0.0, 60.0))->capture_default_str();
   command->add_option("--settle", b.settleSeconds, "Seconds to settle for the roundness at rest (0: skip)")
       ->check(CLI::Range(0.0, 60.0))->capture_default_str();
   command->add_option("--json", b.jsonFile, "Write every figure as JSON");
@@ -125,6 +131,7 @@ void registerPhysics(CLI::App& bench, int& exitCode) {
   command->callback([options, &exitCode] {
     PhysicsBenchOptions bench = options->bench;
     bench.levels = parseList("--levels", options->levels, 0, 7);
+    bench.resolutions = parseList("--resolutions", options->resolutions, kMinBodyResolution, kMaxBodyResolution);
     runPhysicsBench(loadSettings(options->scene), bench);
     exitCode = 0;
   });
@@ -168,11 +175,11 @@ struct MaterialCommand {
 
 void registerMaterial(CLI::App& bench, int& exitCode) {
   auto options = std::make_shared<MaterialCommand>();
-  auto* command = bench.add_subcommand("material", "The bulk body against Lamb's frequencies, the material's creep time, energy drift");
+  auto* command = bench.add_subcommand("material", "The bulk body against Lamb's frequencies, the material's creep time, energy drift, a tensile test");
   command->add_flag("--quick", options->quick, "Resolutions 1-2 and short runs (CI)");
   command->add_option("--resolutions", options->resolutions, "Resolutions of the Lamb runs, e.g. 1-3 (default 1-3; --quick 1-2)");
   command->add_option("--json", options->jsonFile, "Write every figure as JSON");
-  command->add_option("--csv", options->csvFile, "Write the Lamb table as CSV (and FILE_creep, the creep and recovery series)");
+  command->add_option("--csv", options->csvFile, "Write the Lamb table as CSV (and FILE_creep, the creep and recovery series; FILE_tensile, the bar's stress-strain; FILE_pull, the two hands' force-extension)");
   addSceneOptions(*command, options->scene);
   command->callback([options, &exitCode] {
     MaterialBenchOptions bench = options->quick ? MaterialBenchOptions::quick() : MaterialBenchOptions{};

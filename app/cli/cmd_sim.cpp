@@ -59,19 +59,41 @@ double threadSeconds() {
 
 // One point of the report's series: kept as plain numbers (32 bytes) while the run goes, turned into
 // JSON once at the end, so a long run's memory grows by its data and not by JSON nodes.
-struct SeriesSample {
-  double t, volumeRatio, height, kineticEnergy;
+// Each hand: whether it holds, where its part of the surface is (m) and its force on the body (N).
+struct HandSample {
+  bool holding = false;
+  glm::dvec3 position{0.0}, force{0.0};
 };
 
-SeriesSample metricsSample(double t, const SlimeMetrics& metrics) {
-  return {t, metrics.volumeRatio, metrics.height, metrics.kineticEnergy};
+struct SeriesSample {
+  double t, volumeRatio, height, width, kineticEnergy;
+  HandSample hands[kHands];
+};
+
+SeriesSample metricsSample(double t, const SlimeMetrics& metrics, const Simulation& simulation) {
+  SeriesSample sample{t, metrics.volumeRatio, metrics.height, metrics.width, metrics.kineticEnergy, {}};
+  for (int hand = 0; hand < kHands; ++hand)
+    if (simulation.grabbing(hand))
+      sample.hands[hand] = {true, simulation.grabbedPoint(hand), simulation.handForce(hand)};
+  return sample;
 }
 
 json seriesJson(const std::vector<SeriesSample>& series) {
   json samples = json::array();
-  for (const SeriesSample& s : series)
-    samples.push_back({{"t", s.t}, {"volume_ratio", s.volumeRatio}, {"height", s.height},
-                       {"kinetic_energy", s.kineticEnergy}});
+  for (const SeriesSample& s : series) {
+    json hands = json::array();
+    for (const HandSample& hand : s.hands) {
+      if (!hand.holding) {
+        hands.push_back({{"holding", false}});
+        continue;
+      }
+      hands.push_back({{"holding", true},
+                       {"position", {hand.position.x, hand.position.y, hand.position.z}},
+                       {"force", {hand.force.x, hand.force.y, hand.force.z}}});
+    }
+    samples.push_back({{"t", s.t}, {"volume_ratio", s.volumeRatio}, {"height", s.height}, {"width", s.width},
+                       {"kinetic_energy", s.kineticEnergy}, {"hands", hands}});
+  }
   return samples;
 }
 
@@ -103,7 +125,7 @@ int runSim(const SimOptions& options) {
   double minZ = metrics.minZ, maxSpeed = metrics.maxSpeed;
   std::vector<SeriesSample> series;
   series.reserve(static_cast<std::size_t>(totalSteps / sampleEvery) + 2);
-  series.push_back(metricsSample(0.0, metrics));
+  series.push_back(metricsSample(0.0, metrics, simulation));
   std::int64_t stepsRun = 0;
   double stepSeconds = 0.0;  // thread CPU time inside step()
   const auto wallStart = std::chrono::steady_clock::now();
@@ -120,7 +142,7 @@ int runSim(const SimOptions& options) {
     minZ = std::min(minZ, metrics.minZ);
     maxSpeed = std::max(maxSpeed, metrics.maxSpeed);
     if (simulation.stepCount() % sampleEvery == 0)
-      series.push_back(metricsSample(static_cast<double>(simulation.stepCount()) * dt, metrics));
+      series.push_back(metricsSample(static_cast<double>(simulation.stepCount()) * dt, metrics, simulation));
   }
   const double wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
   if (exporter) {

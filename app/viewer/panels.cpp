@@ -4,6 +4,8 @@
 #include <imgui_internal.h>  // TempInputIsActive: a slider in its Ctrl+click text mode
 #include <imgui_stdlib.h>
 
+#include <glm/geometric.hpp>
+
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
@@ -243,6 +245,29 @@ void resolutionRows(const FrameStats& stats, PanelRequests& requests) {
                       "0 = off (always full resolution; render.scale still applies).");
 }
 
+// Each hand: holding or free, where its part of the surface is, its pull on the body, and a release
+// button. Hand 0 is the left-drag's (it lets go with the button); hand 1 the Ctrl+left-drag's, which
+// keeps holding where the drag left it.
+void handsSection(const PanelView& view, PanelRequests& requests) {
+  static constexpr const char* kNames[] = {"hand 0 (left)", "hand 1 (Ctrl+left)"};
+  for (std::size_t hand = 0; hand < view.hands.size() && hand < 2; ++hand) {
+    const HandView& h = view.hands[hand];
+    ImGui::PushID(static_cast<int>(hand));
+    if (!h.holding) {
+      ImGui::TextDisabled("%s: free", kNames[hand]);
+      ImGui::PopID();
+      continue;
+    }
+    ImGui::Text("%s", kNames[hand]);
+    ImGui::SameLine();
+    if (ImGui::SmallButton("release")) requests.releaseHand = static_cast<int>(hand);
+    ImGui::Text("  at %+.1f %+.1f %+.1f cm", 100.0 * h.position.x, 100.0 * h.position.y, 100.0 * h.position.z);
+    ImGui::Text("  force %.2f N (%+.1f %+.1f %+.1f)", glm::length(h.force), h.force.x, h.force.y, h.force.z);
+    ImGui::PopID();
+  }
+  ImGui::Text("width %.1f mm", view.metrics.width * 1000.0);
+}
+
 void statsWindow(const PanelView& view, PanelRequests& requests) {
   const FrameStats& stats = view.stats;
   const ImVec2 display = ImGui::GetIO().DisplaySize;
@@ -303,6 +328,9 @@ PanelRequests drawPanels(Settings& draft, std::string& scenePath, const PanelVie
       if (group.name == "sim") simulationExtras(draft, view, requests);
       ImGui::PopID();
     }
+    // Last, so that it moves none of the sections above when it grows.
+    ImGui::SetNextItemOpen(true, ImGuiCond_Once);
+    if (ImGui::CollapsingHeader("Hands")) handsSection(view, requests);
     ImGui::PopItemWidth();
   }
   ImGui::End();
@@ -312,7 +340,9 @@ PanelRequests drawPanels(Settings& draft, std::string& scenePath, const PanelVie
 
 void drawHelpOverlay(float columnWidth) {
   static constexpr const char* kControls[][2] = {
-      {"left drag", "grab and stretch the slime"},
+      {"left drag", "grab and stretch the slime (hand 0; lets go on release)"},
+      {"Ctrl + left drag", "second hand (1): grab, drag, and it keeps holding"},
+      {"Ctrl + click off the slime", "let the second hand go (or Hands > release)"},
       {"Shift + drag, or wheel, while grabbing", "press the grab point into the body"},
       {"right drag", "orbit around the slime"},
       {"middle drag", "pan"},

@@ -13,6 +13,8 @@
 #include "core/settings/settings.h"
 #include "core/scene/simulation.h"
 
+#include <glm/vec3.hpp>
+
 namespace slime {
 
 // What the user asked for this frame.
@@ -24,6 +26,15 @@ struct PanelRequests {
   bool load = false;         // "Load": read the scene at the path field
   float columnWidth = 0.0f;  // window pixels the column covers at the left (0 when collapsed)
   int targetFps = -1;        // the Stats window set the adaptive resolution's target (0: off); -1: it did not
+  int releaseHand = -1;      // the Hands section's "release" button of this hand; -1: none pressed
+};
+
+// One hand as the Hands section shows it.
+struct HandView {
+  bool holding = false;
+  glm::dvec3 position{0.0};  // where the hand's part of the surface is now, m
+  glm::dvec3 target{0.0};    // where the hand pulls it, m
+  glm::dvec3 force{0.0};     // the hand's force on the body, N (bulk)
 };
 
 // Read-only facts the panels display.
@@ -38,6 +49,7 @@ struct PanelView {
   // What is on screen (the slime as built, the floor as applied): settings that do nothing to it are
   // left out (inactiveReason, panel_fields.h). Null: judged from the draft.
   const Settings* shown = nullptr;
+  std::vector<HandView> hands{};  // hand 0 (left-drag) and hand 1 (Ctrl+left-drag)
 };
 
 // Width of the column for a display of this width, in window pixels.

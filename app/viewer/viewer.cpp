@@ -47,6 +47,9 @@ Viewer::Viewer(ViewerBackend& backend, const Settings& settings, ViewerOptions o
       refinement_(options_.refineSamples),
       check_(options_.checkEvery) {
   if (options_.scenario) scenario_.emplace(*options_.scenario);
+  // Caustics gathered over the frames as the image refines (a bounded budget while anything moves);
+  // without refinement (snapshot --ui) the finished map at once, as `snapshot` draws it.
+  renderer_.setProgressiveCaustics(options_.refineSamples > 1);
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;  // the same layout every run: tests click known places
@@ -187,7 +190,9 @@ void Viewer::handleButton(const MouseButtonEvent& event, const FrameInput& input
   if (!event.pressed) {  // a release always ends what its press started, over a panel or not
     if (event.button == MouseButton::Left && grab_.active()) {
       grab_.end();
-      simulation_.release();
+      // The second hand stays where the drag left it, holding, until Ctrl+click off the slime or
+      // the Hands section's release button lets it go.
+      if (cursorHand_ == 0) simulation_.release(0);
     }
     cameraController_.handleButton(event);
     return;
@@ -197,18 +202,26 @@ void Viewer::handleButton(const MouseButtonEvent& event, const FrameInput& input
     cameraController_.handleButton(event);
     return;
   }
+  if (grab_.active()) return;  // one cursor moves one hand at a time
   // Grab: the surface point under the cursor, through the same camera the image is traced with.
+  // Left: hand 0; Ctrl+left: hand 1, which keeps holding after the button is released.
+  const int hand = event.control ? 1 : 0;
   const glm::ivec2 size = input.windowSize;
   if (size.x <= 0 || size.y <= 0) return;
   const std::optional<glm::dvec3> hit =
       renderer_.pick(frameSettings(size), event.position.x / size.x, event.position.y / size.y);
-  if (!hit) return;
+  if (!hit) {
+    if (hand == 1) simulation_.release(1);  // Ctrl+click off the slime lets the second hand go
+    return;
+  }
   const double radius = GrabInteraction::kRadiusFraction * settings_.slime.radius;
-  if (!simulation_.grab(*hit, radius)) return;
+  if (!simulation_.grab(*hit, radius, hand)) return;
+  cursorHand_ = hand;
   grab_.begin(*hit, makeCamera(settings_.camera, size.x, size.y), event.position);
-  grabTargetDrawn_ = *hit;
+  grabTargetDrawn_[hand] = *hit;
   ++grabCount_;
   heightAtGrab_ = metrics_.height;
+  if (widthBeforeGrabs_ < 0.0) widthBeforeGrabs_ = metrics_.width;
   lastInteraction_ = wallClock_;
 }
 
@@ -222,7 +235,7 @@ void Viewer::simulationAdvanced() {
 glm::dvec3 Viewer::grabTargetFor() const {
   const glm::ivec2 size = viewSize();
   return grab_.active() && size.x > 0 && size.y > 0 ? grab_.target(makeCamera(settings_.camera, size.x, size.y), size)
-                                                    : grabTargetDrawn_;
+                                                    : grabTargetDrawn_[cursorHand_];
 }
 
 Viewer::PhysicsOutcome Viewer::stepPhysics(double wallSeconds, const glm::dvec3& target) {
@@ -243,7 +256,8 @@ Viewer::PhysicsOutcome Viewer::stepPhysics(double wallSeconds, const glm::dvec3&
   for (; done < steps; ++done) {
     if (grab_.active()) {
       const double progress = static_cast<double>(done + 1) / steps;
-      simulation_.dragTo(grabTargetDrawn_ + (target - grabTargetDrawn_) * progress);
+      const glm::dvec3& from = grabTargetDrawn_[cursorHand_];
+      simulation_.dragTo(from + (target - from) * progress, cursorHand_);
     }
     if (scenario_ && !scenario_->finished()) playScenarioAt(simulation_.time(), outcome);
     simulation_.step();
@@ -254,9 +268,10 @@ Viewer::PhysicsOutcome Viewer::stepPhysics(double wallSeconds, const glm::dvec3&
     }
   }
   outcome.steps = done;
-  if (grab_.active() && done > 0) grabTargetDrawn_ = target;
+  if (grab_.active() && done > 0) grabTargetDrawn_[cursorHand_] = target;
   if (done > 0) outcome.metrics = simulation_.metrics();
-  outcome.grabbing = simulation_.grabbing();
+  outcome.grabbing = simulation_.anyGrabbing();
+  outcome.twoHands = simulation_.grabbing(0) && simulation_.grabbing(1);
   outcome.milliseconds = physicsTime.milliseconds();
   return outcome;
 }
@@ -272,7 +287,7 @@ void Viewer::playScenarioAt(double time, PhysicsOutcome& outcome) {
     if (event.time > time + kScenarioTimeTolerance) break;
     const ScenarioEvent::Kind kind = event.kind;
     if (kind == ScenarioEvent::Kind::Set) outcome.settingsEdited = true;
-    if ((kind == ScenarioEvent::Kind::Grab || kind == ScenarioEvent::Kind::Press) && simulation_.grabbing()) {
+    if ((kind == ScenarioEvent::Kind::Grab || kind == ScenarioEvent::Kind::Press) && simulation_.anyGrabbing()) {
       ++outcome.scenarioGrabs;
       outcome.heightAtGrab = simulation_.metrics().height;
     }
@@ -291,8 +306,10 @@ void Viewer::applyPhysicsOutcome(const PhysicsOutcome& outcome) {
     slimeMoved_ = true;
     metrics_ = outcome.metrics;
     if (outcome.grabbing) peakHeightWhileGrabbing_ = std::max(peakHeightWhileGrabbing_, metrics_.height);
+    if (outcome.twoHands) peakWidthWhileTwoHands_ = std::max(peakWidthWhileTwoHands_, metrics_.width);
   }
   if (outcome.scenarioGrabs > 0) {
+    if (widthBeforeGrabs_ < 0.0) widthBeforeGrabs_ = metrics_.width;
     grabCount_ += outcome.scenarioGrabs;
     heightAtGrab_ = outcome.heightAtGrab;
   }
@@ -399,7 +416,7 @@ void Viewer::keepCheckState() {
   if (!checkStateKept_) return;
   checkPositions_ = simulation_.positions();
   checkTriangles_ = simulation_.triangles();
-  checkHandled_ = simulation_.grabbing();
+  checkHandled_ = simulation_.anyGrabbing();
 }
 
 double Viewer::checkImage() {
@@ -430,67 +447,6 @@ void Viewer::uploadImage() {
   stats_.stages.upload = uploadTime.milliseconds();
 }
 
-// --- panels ----------------------------------------------------------------------------------------
-
-Viewer::GrabMarks Viewer::grabMarks() const {
-  GrabMarks marks;
-  const glm::ivec2 size = viewSize();
-  if (grab_.active() && size.x > 0 && size.y > 0)
-    marks.target = grab_.target(makeCamera(settings_.camera, size.x, size.y), size);
-  else if (simulation_.grabbing())  // a scenario's grab
-    marks.target = simulation_.grabTarget();
-  if (marks.target) marks.held = grabbedCentre();
-  return marks;
-}
-
-PanelRequests Viewer::drawPanelsAndOverlay(const GrabMarks& marks) {
-  const Stopwatch uiTime;
-  // The panels edit a draft of what is in force. A refused edit is not kept in it: its field shows
-  // the value in force, red, with the message naming what was refused; every other field can still
-  // be edited (a kept invalid value made every later edit fail on it).
-  draft_ = settings_;
-  copyReloadFields(wanted_, draft_);
-  const PanelView view{stats_,       metrics_, editError_, errorGroup_, differingReloadFields(draft_, built_),
-                       fileMessage_, fileFailed_, &settings_};
-  const PanelRequests requests = drawPanels(draft_, scenePath_, view);
-  if (showHelp_) drawHelpOverlay(requests.columnWidth);
-
-  // The grab spot: a ring at the grab target, a line from where the grabbed points are.
-  const glm::ivec2 size = viewSize();
-  if (marks.target && size.x > 0 && size.y > 0) {
-    const Camera camera = makeCamera(settings_.camera, size.x, size.y);
-    ImDrawList* overlay = ImGui::GetForegroundDrawList();
-    const auto target = projectToWindow(camera, *marks.target, size);
-    const auto held = projectToWindow(camera, marks.held, size);
-    const float left = columnWidth_;
-    if (target && held)
-      overlay->AddLine(ImVec2(left + float(held->x), float(held->y)), ImVec2(left + float(target->x), float(target->y)),
-                       IM_COL32(255, 255, 255, 160), 1.5f);
-    if (target) {
-      const ImVec2 centre(left + float(target->x), float(target->y));
-      overlay->AddCircle(centre, 9.0f, IM_COL32(255, 230, 80, 255), 24, 2.0f);
-      overlay->AddCircleFilled(centre, 2.5f, IM_COL32(255, 230, 80, 255));
-    }
-  }
-  ImGui::Render();
-  stats_.stages.ui = uiTime.milliseconds();
-  return requests;
-}
-
-void Viewer::applyPanelRequests(const PanelRequests& requests) {
-  if (!requests.editedGroup.empty()) applyEdit(requests.editedGroup);
-  if (requests.reloadSlime) reloadSlime();
-  if (requests.singleStep) singleStepPending_ = true;
-  if (requests.save) saveScene();
-  if (requests.load) loadScene();
-  if (requests.columnWidth != columnWidth_) {  // the column opened or closed: the image takes the rest
-    columnWidth_ = requests.columnWidth;
-    sceneChanged_ = true;
-  }
-  if (requests.targetFps >= 0) settings_.render.targetFps = requests.targetFps;
-  followTargetFps();  // the Stats window's field, the Render panel's, or a loaded scene's
-}
-
 void Viewer::followTargetFps() {
   if (settings_.render.targetFps == resolution_.targetFps()) return;
   resolution_.setTargetFps(settings_.render.targetFps);
@@ -512,42 +468,10 @@ void Viewer::finishFrame(double frameMs) {
   record.imageWidth = image_.width;
   record.imageHeight = image_.height;
   record.scale = stats_.renderScale;
-  record.grabbed = simulation_.grabbing();
+  record.grabbed = simulation_.anyGrabbing();
   record.simulatedSeconds = simulation_.time();
   record.checkPsnrDb = framePsnrDb_;
   frameRecords_.push_back(record);
-}
-
-// A valid edit applies at once, except the rebuild-type settings (level, radius, ...): they wait in
-// wanted_ for Reload, so dragging the level slider does not rebuild the slime every frame.
-void Viewer::applyEdit(const std::string& group) {
-  try {
-    checkSettings(draft_, settings_);
-  } catch (const SettingsError& error) {
-    editError_ = error.what();  // shown in the panel; the settings keep their last valid value
-    editErrors_.push_back(editError_);
-    errorGroup_ = group;
-    return;
-  }
-  editError_.clear();
-  errorGroup_.clear();
-  wanted_ = draft_;
-  settings_ = draft_;
-  copyReloadFields(built_, settings_);
-  simulation_.applySettings(settings_);
-  sceneChanged_ = true;
-}
-
-void Viewer::reloadSlime() {
-  if (grab_.active()) grab_.end();
-  copyReloadFields(wanted_, settings_);
-  built_ = settings_;
-  simulation_.reload(settings_);
-  sceneChanged_ = true;
-  clock_.reset();
-  slimeMoved_ = true;
-  drawnPositions_.clear();  // a new mesh: draw it whatever it moved
-  metrics_ = simulation_.metrics();
 }
 
 // --- present ---------------------------------------------------------------------------------------
@@ -594,7 +518,7 @@ Settings Viewer::frameSettings(glm::ivec2 imageSize) const {
   return frame;
 }
 
-glm::dvec3 Viewer::grabbedCentre() const { return simulation_.grabbedPoint(); }
+glm::dvec3 Viewer::grabbedCentre() const { return simulation_.grabbedPoint(cursorHand_); }
 
 glm::dvec3 Viewer::slimeCentre() const {
   const std::vector<glm::dvec3>& positions = simulation_.positions();

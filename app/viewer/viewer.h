@@ -86,7 +86,8 @@ class Viewer {
   // The frame's steps, in order.
   FrameInput readInput();
   void handleInput(const FrameInput& input);
-  // The grab target for this frame's steps, read from the window on the main thread.
+  // The grab target of the hand the cursor moves (cursorHand_) for this frame's steps, read from the
+  // window on the main thread.
   glm::dvec3 grabTargetFor() const;
   // What a frame's steps did, handed back from the physics thread and applied after it joined.
   struct PhysicsOutcome {
@@ -95,6 +96,7 @@ class Viewer {
     double wallSeconds = 0.0;     // the frame time the steps were for
     SlimeMetrics metrics;         // after the steps, if there were any
     bool grabbing = false;        // the slime is held (by the mouse or the scenario) after the steps
+    bool twoHands = false;        // ... by both hands
     int scenarioGrabs = 0;        // the scenario's grabs and presses that took hold during the steps
     double heightAtGrab = 0.0;    // the slime's height when the last of them took hold
     bool settingsEdited = false;  // a scenario "set" event fired
@@ -117,12 +119,20 @@ class Viewer {
   void keepCheckState();
   // Whether this frame's steps start with the trace (they outlasted the panels last frame) or after it.
   bool physicsBesideTrace() const;
-  // Where the grab ring and its line go: the target and the grabbed surface, whoever holds the slime.
-  struct GrabMarks {
-    std::optional<glm::dvec3> target;  // empty when nothing is held
+  // Where each hand's grab ring and its line go: the target and the grabbed surface, whoever holds
+  // the slime (the mouse or the scenario).
+  struct GrabMark {
+    std::optional<glm::dvec3> target;  // empty when the hand holds nothing
     glm::dvec3 held{0.0};
   };
+  // Read before the physics thread starts, with what the Hands section shows: the panels are drawn
+  // while the steps run and must not read the simulation.
+  struct GrabMarks {
+    GrabMark hands[kHands];
+    std::vector<HandView> views;
+  };
   GrabMarks grabMarks() const;
+  std::vector<HandView> handViews() const;  // what the Hands section shows
   PanelRequests drawPanelsAndOverlay(const GrabMarks& marks);  // reads, never edits, the slime
   void applyPanelRequests(const PanelRequests& requests);
   void followTargetFps();  // the adaptive resolution's target from render.targetFps
@@ -168,7 +178,8 @@ class Viewer {
   PixelRect imageChanged_;                // the pixels of imageBytes_ the last trace wrote
   FrameCompositor compositor_;
   CameraController cameraController_;
-  GrabInteraction grab_;
+  GrabInteraction grab_;           // the hand the cursor moves while the left button is down
+  int cursorHand_ = 0;             // ... which one: 0 (left-drag) or 1 (Ctrl+left-drag, kept on release)
   PhysicsClock clock_;
   FrameStats stats_;
   AdaptiveResolution resolution_;
@@ -193,12 +204,14 @@ class Viewer {
   bool newImageTraced_ = false;    // ... a new one: the view changed
   bool tracedAtFullSize_ = false;  // ... at the full size of the view
   bool rendered_ = false;          // this frame ran the renderer (a new image or a sample of one)
-  glm::dvec3 grabTargetDrawn_{0.0};  // the target the grabbed points were last pulled to
+  glm::dvec3 grabTargetDrawn_[kHands]{};  // per hand, the target its grabbed points were last pulled to
   double wallClock_ = 0.0;
   double lastInteraction_ = -1e9;
   int grabCount_ = 0;
   double heightAtGrab_ = 0.0;       // the slime's height when the last grab began
   double peakHeightWhileGrabbing_ = 0.0;
+  double widthBeforeGrabs_ = -1.0;      // the slime's width when the session's first grab began (< 0: none yet)
+  double peakWidthWhileTwoHands_ = 0.0; // the widest the slime was while both hands held it
   int screenshotCount_ = 0;
   std::vector<std::string> screenshotPaths_;
   std::vector<std::string> screenshotsWritten_;

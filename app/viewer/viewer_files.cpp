@@ -96,6 +96,18 @@ nlohmann::json psnrJson(const PsnrFigures& figures) {
   return {{"frames", figures.frames}, {"psnr_db", {{"mean", figures.meanDb()}, {"min", figures.minimumDb()}}}};
 }
 
+nlohmann::json vectorJson(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
+
+nlohmann::json handsJson(const std::vector<HandView>& hands) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const HandView& hand : hands)
+    list.push_back({{"holding", hand.holding},
+                    {"position", vectorJson(hand.position)},
+                    {"target", vectorJson(hand.target)},
+                    {"force", vectorJson(hand.force)}});
+  return list;
+}
+
 }  // namespace
 
 void Viewer::writeReport() const {
@@ -123,6 +135,11 @@ void Viewer::writeReport() const {
       {"grabbing", simulation_.grabbing()},
       {"height_at_grab", heightAtGrab_},
       {"peak_height_while_grabbing", peakHeightWhileGrabbing_},
+      // Two hands: the width when the session's first grab began (-1: no grab), the widest while both
+      // held, and each hand now (position: its part of the surface; force on the body, N).
+      {"width_before_grabs", widthBeforeGrabs_},
+      {"peak_width_while_two_hands", peakWidthWhileTwoHands_},
+      {"hands", handsJson(handViews())},
       {"metrics",
        {{"volume_ratio", metrics_.volumeRatio}, {"height", metrics_.height}, {"width", metrics_.width},
         {"aspect", metrics_.aspect}, {"min_z", metrics_.minZ}}},

@@ -62,6 +62,8 @@ Window::Window(const std::string& title, int width, int height, bool presentChan
   glfwSwapInterval(0);  // the ray tracer sets the pace; waiting for vsync would only add latency
   glfwSetWindowUserPointer(window_, this);
   // Our callbacks first: ImGui's back-end, installed later, chains to them.
+  glfwGetCursorPos(window_, &eventCursor_.x, &eventCursor_.y);
+  glfwSetCursorPosCallback(window_, onCursorPos);
   glfwSetMouseButtonCallback(window_, onMouseButton);
   glfwSetScrollCallback(window_, onScroll);
   glfwSetKeyCallback(window_, onKey);
@@ -86,11 +88,13 @@ void Window::onMouseButton(GLFWwindow* window, int button, int action, int mods)
   else if (button == GLFW_MOUSE_BUTTON_MIDDLE) event.button = MouseButton::Middle;
   else return;
   event.pressed = action == GLFW_PRESS;
-  glfwGetCursorPos(window, &event.position.x, &event.position.y);
+  event.position = owner(window).eventCursor_;
   event.shift = (mods & GLFW_MOD_SHIFT) != 0;
   event.control = (mods & GLFW_MOD_CONTROL) != 0;
   owner(window).pending_.buttons.push_back(event);
 }
+
+void Window::onCursorPos(GLFWwindow* window, double x, double y) { owner(window).eventCursor_ = {x, y}; }
 
 void Window::onScroll(GLFWwindow* window, double, double y) { owner(window).pending_.wheel += y; }
 

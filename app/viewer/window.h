@@ -34,6 +34,7 @@ class Window final : public ViewerBackend {
 
  private:
   static void onMouseButton(GLFWwindow* window, int button, int action, int mods);
+  static void onCursorPos(GLFWwindow* window, double x, double y);
   static void onScroll(GLFWwindow* window, double x, double y);
   static void onKey(GLFWwindow* window, int key, int scancode, int action, int mods);
   static void onRefresh(GLFWwindow* window);
@@ -41,6 +42,10 @@ class Window final : public ViewerBackend {
   GLFWwindow* window_ = nullptr;
   double lastTime_ = 0.0;
   FrameInput pending_;  // events gathered by the callbacks since the last pollInput
+  // The cursor where the events read so far put it. A press takes its position from here, not from
+  // glfwGetCursorPos: on X11 that asks the server where the pointer is now, so a press read late (a
+  // slow frame) would land where the pointer has moved since.
+  glm::dvec2 eventCursor_{0.0, 0.0};
   // When presenting changes: glXCopySubBufferMESA (as GLFW hands it out), the X display and the GLX
   // window it copies to; the whole back buffer is shown again after the window was exposed.
   void (*copySubBuffer_)() = nullptr;

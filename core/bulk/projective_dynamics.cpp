@@ -1,6 +1,8 @@
 #include "core/bulk/projective_dynamics.h"
 
 
+#include <Eigen/Cholesky>
+#include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
@@ -15,6 +17,10 @@ namespace {
 
 constexpr int kPolarIterations = 2;        // Müller et al. 2016 sweeps per local step (warm-started)
 constexpr double kPinnedMassFactor = 1e6;  // a pinned node's mass in the matrix, × the body's mass
+constexpr int kContactRounds = 4;          // active-set rounds of the floor per global solve
+// Columns A⁻¹e_i kept for floor nodes, at most this many doubles in all (64 MB): resolution 3 keeps
+// every node's, resolution 4 about 350; a node past the budget is put on the floor after the solve.
+constexpr std::size_t kColumnBudget = std::size_t{8} << 20;
 
 // x^(1/3) for x > 0 near 1 (volume ratios): three Newton steps from 1 + (x − 1)/3, within 1e-6
 // for x in [0.3, 4], and still positive and monotone outside. Only arithmetic (bit tricks need
@@ -78,16 +84,41 @@ struct ProjectiveSolver::Factor {
     x.resize(n);
     for (std::size_t i = 0; i < n; ++i) x[i] = work[static_cast<std::size_t>(permutation[i])];
   }
+
+  // x = A⁻¹ e_i (one column of the inverse, for the floor's active set).
+  void column(std::size_t node, std::vector<double>& x) const {
+    const std::size_t n = work.size();
+    std::vector<double> v(n, 0.0);
+    v[static_cast<std::size_t>(permutation[node])] = 1.0;
+    for (std::size_t j = 0; j < n; ++j) {
+      const double xj = v[j];
+      if (xj == 0.0) continue;
+      for (int p = columnStart[j]; p < columnStart[j + 1]; ++p) v[static_cast<std::size_t>(rows[p])] -= values[p] * xj;
+    }
+    for (std::size_t j = 0; j < n; ++j) v[j] *= inverseDiagonal[j];
+    for (std::size_t j = n; j-- > 0;) {
+      double sum = v[j];
+      for (int p = columnStart[j]; p < columnStart[j + 1]; ++p) sum -= values[p] * v[static_cast<std::size_t>(rows[p])];
+      v[j] = sum;
+    }
+    x.resize(n);
+    for (std::size_t i = 0; i < n; ++i) x[i] = v[static_cast<std::size_t>(permutation[i])];
+  }
 };
 
-ProjectiveSolver::ProjectiveSolver() : factor_(std::make_unique<Factor>()) {}
+struct ProjectiveSolver::Contact {
+  Eigen::LLT<Eigen::MatrixXd> llt;
+};
+
+ProjectiveSolver::ProjectiveSolver() : factor_(std::make_unique<Factor>()), contactFactor_(std::make_unique<Contact>()) {}
 ProjectiveSolver::~ProjectiveSolver() = default;
 ProjectiveSolver::ProjectiveSolver(const ProjectiveSolver& other)
-    : blocks_(other.blocks_), factor_(std::make_unique<Factor>()) {}
+    : blocks_(other.blocks_), factor_(std::make_unique<Factor>()), contactFactor_(std::make_unique<Contact>()) {}
 ProjectiveSolver& ProjectiveSolver::operator=(const ProjectiveSolver& other) {
   if (this != &other) {
     blocks_ = other.blocks_;
     factor_ = std::make_unique<Factor>();
+    contactFactor_ = std::make_unique<Contact>();
     factoredStep_ = -1.0;
   }
   return *this;
@@ -174,6 +205,9 @@ void ProjectiveSolver::factor(const BulkBody& body, double h) {
   matrix.setFromTriplets(triplets.begin(), triplets.end());
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(matrix);
   factor_->take(ldlt);
+  columnOf_.assign(n, -1);
+  columns_.clear();
+  factoredContact_.clear();
   factoredStep_ = h;
   factoredShear_ = mu;
   factoredLambda_ = lambda;
@@ -278,19 +312,35 @@ void ProjectiveSolver::localPass(const BulkBody& body, double decay) {
           state.maxwellStretch[k][lane] = u[k];
         }
       }
-      // J^(1/3); an element squashed flat or inverted (J ≤ 0.01) takes 1 + (J − 1)/3, which keeps
-      // pushing it out along R.
-      const double j = f[0] * (f[4] * f[8] - f[5] * f[7]) - f[3] * (f[1] * f[8] - f[2] * f[7]) + f[6] * (f[1] * f[5] - f[2] * f[4]);
-      const double cubeRoot = j > 0.01 ? cubeRootNearOne(j) : (2.0 + j) * (1.0 / 3.0);
-      // p = (μ∞ R + μ1 R U_v + (3λ/2)(F − (J^(1/3) − 1) R)) / (μ + 3λ/2).
+      // The volume target: one Newton step from F towards det = 1 along det's gradient cof F,
+      // p_V = F + δ cof F with δ = (1 − J)/|cof F|² (at small strain F − (tr ε/3) I, the same
+      // stiffness as F J^(−1/3)); it stays at a bounded distance from F for an element squashed flat
+      // (cof F points out of its plane), where F J^(−1/3) grows without bound. R lies on det = 1 too,
+      // so no closer point is farther than R: an inverted element (J ≤ 0), or a step that would go
+      // farther, takes R.
+      double cof[9];  // cof F = columns f1×f2, f2×f0, f0×f1 (∂J/∂F)
+      cof[0] = f[4] * f[8] - f[5] * f[7], cof[1] = f[5] * f[6] - f[3] * f[8], cof[2] = f[3] * f[7] - f[4] * f[6];
+      cof[3] = f[7] * f[2] - f[8] * f[1], cof[4] = f[8] * f[0] - f[6] * f[2], cof[5] = f[6] * f[1] - f[7] * f[0];
+      cof[6] = f[1] * f[5] - f[2] * f[4], cof[7] = f[2] * f[3] - f[0] * f[5], cof[8] = f[0] * f[4] - f[1] * f[3];
+      const double j = f[0] * cof[0] + f[1] * cof[1] + f[2] * cof[2];
+      double cofSquared = 0.0, toRotation = 0.0;
+      #pragma GCC unroll 9
+      for (int k = 0; k < 9; ++k) {
+        cofSquared += cof[k] * cof[k];
+        toRotation += (f[k] - rot[k]) * (f[k] - rot[k]);
+      }
+      const double delta = (1.0 - j) / (cofSquared + 1e-300);
+      const bool newton = j > 0.0 && delta * delta * cofSquared <= toRotation;
+      const double step = newton ? delta : 0.0, keep = newton ? 1.0 : 0.0;
+      // p = (μ∞ R + μ1 R U_v + (3λ/2) p_V) / (μ + 3λ/2).
       double p[9];
       #pragma GCC unroll 9
       for (int c = 0; c < 3; ++c)
         #pragma GCC unroll 9
         for (int r = 0; r < 3; ++r) {
           const double ru = rot[r] * u[kSym[0][c]] + rot[3 + r] * u[kSym[1][c]] + rot[6 + r] * u[kSym[2][c]];
-          p[3 * c + r] = blend * (muInf * rot[3 * c + r] + muMaxwell * ru +
-                                  volumeWeight * (f[3 * c + r] - (cubeRoot - 1.0) * rot[3 * c + r]));
+          const double volumeTarget = keep * f[3 * c + r] + step * cof[3 * c + r] + (1.0 - keep) * rot[3 * c + r];
+          p[3 * c + r] = blend * (muInf * rot[3 * c + r] + muMaxwell * ru + volumeWeight * volumeTarget);
         }
       // −(2μ + 3λ) p·forceMap: the columns go to nodes 1..3.
       #pragma GCC unroll 9
@@ -313,6 +363,91 @@ void ProjectiveSolver::localPass(const BulkBody& body, double decay) {
       targets_[t.x] -= a + b + c;
     }
   }
+}
+
+const std::vector<double>* ProjectiveSolver::column(std::uint32_t node) {
+  int& index = columnOf_[node];
+  if (index < 0) {
+    if ((columns_.size() + 1) * columnOf_.size() > kColumnBudget) return nullptr;
+    index = static_cast<int>(columns_.size());
+    columns_.emplace_back();
+    factor_->column(node, columns_.back());
+  }
+  return &columns_[static_cast<std::size_t>(index)];
+}
+
+// The floor as a constraint of the global solve: minimise ½ zᵀAz − bᵀz subject to z_i ≥ 0. With z0 =
+// A⁻¹b the free solve and C the active set, z = z0 + Σ_{c∈C} λ_c A⁻¹e_c with (A⁻¹)_CC λ = −z0_C, so
+// that z_C = 0 and λ_c (N) is the floor's reaction on node c. Active-set rounds: a node with λ < 0
+// (the floor pulling) leaves C, a node still below the floor joins it. The columns A⁻¹e_c are kept
+// until the matrix changes, and the small dense factor while C does not change (a slime at rest).
+void ProjectiveSolver::holdOnFloor(const std::vector<double>& inverseMasses) {
+  const std::size_t n = solved_.size();
+  reaction_.assign(n, 0.0);
+  freeZ_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) freeZ_[i] = solved_[i].z;
+  contact_.clear();
+  for (std::size_t i = 0; i < n; ++i)
+    if (inverseMasses[i] > 0.0 && freeZ_[i] < 0.0 && column(static_cast<std::uint32_t>(i)) != nullptr)
+      contact_.push_back(static_cast<std::uint32_t>(i));
+  if (contact_.empty()) return;
+  Eigen::VectorXd lambda;
+  heldZ_ = freeZ_;
+  for (int round = 0; round < kContactRounds && !contact_.empty(); ++round) {
+    const std::size_t k = contact_.size();
+    if (contact_ != factoredContact_) {
+      Eigen::MatrixXd s(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(k));
+      for (std::size_t b = 0; b < k; ++b) {
+        const std::vector<double>& col = columns_[static_cast<std::size_t>(columnOf_[contact_[b]])];
+        for (std::size_t a = 0; a < k; ++a) s(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b)) = col[contact_[a]];
+      }
+      contactFactor_->llt.compute(s);
+      factoredContact_ = contact_;
+    }
+    Eigen::VectorXd rhs(static_cast<Eigen::Index>(k));
+    for (std::size_t a = 0; a < k; ++a) rhs(static_cast<Eigen::Index>(a)) = -freeZ_[contact_[a]];
+    lambda = contactFactor_->llt.solve(rhs);
+    heldZ_ = freeZ_;
+    for (std::size_t b = 0; b < k; ++b) {
+      const double l = lambda(static_cast<Eigen::Index>(b));
+      const std::vector<double>& col = columns_[static_cast<std::size_t>(columnOf_[contact_[b]])];
+      for (std::size_t i = 0; i < n; ++i) heldZ_[i] += l * col[i];
+    }
+    // The next active set: keep the pushed nodes, add the ones still below.
+    std::vector<std::uint32_t> next;
+    next.reserve(k);
+    bool changed = false;
+    inContact_.assign(n, 0);
+    for (std::size_t b = 0; b < k; ++b) {
+      inContact_[contact_[b]] = 1;
+      if (lambda(static_cast<Eigen::Index>(b)) > 0.0) next.push_back(contact_[b]);
+      else changed = true;
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      if (inverseMasses[i] <= 0.0 || heldZ_[i] >= -1e-12 || inContact_[i]) continue;
+      if (column(static_cast<std::uint32_t>(i)) == nullptr) continue;
+      next.push_back(static_cast<std::uint32_t>(i));
+      changed = true;
+    }
+    if (!changed) {
+      for (std::size_t b = 0; b < k; ++b) {
+        reaction_[contact_[b]] = lambda(static_cast<Eigen::Index>(b));
+        heldZ_[contact_[b]] = 0.0;
+      }
+      break;
+    }
+    std::sort(next.begin(), next.end());
+    if (round + 1 == kContactRounds || next.empty()) {
+      // Out of rounds: the last solve's pushed nodes keep their reactions; the rest is put on the
+      // floor after the solve (step()).
+      for (std::size_t b = 0; b < k; ++b)
+        if (lambda(static_cast<Eigen::Index>(b)) > 0.0) reaction_[contact_[b]] = lambda(static_cast<Eigen::Index>(b));
+      if (next.empty()) heldZ_ = freeZ_;
+      break;
+    }
+    contact_ = std::move(next);
+  }
+  for (std::size_t i = 0; i < n; ++i) solved_[i].z = heldZ_[i];
 }
 
 glm::dvec3 ProjectiveSolver::step(BulkBody& body, BulkScratch& scratch, const ProjectiveStep& options) {
@@ -358,17 +493,28 @@ glm::dvec3 ProjectiveSolver::step(BulkBody& body, BulkScratch& scratch, const Pr
     localStep(body, h, iteration == 0);
     for (std::size_t i = 0; i < n; ++i) targets_[i] += masses_[i] * predicted_[i];  // the right-hand side
     factor_->solve(targets_, solved_);
+    holdOnFloor(state.inverseMasses);
     for (std::size_t i = 0; i < n; ++i) state.positions[i] = state.inverseMasses[i] > 0.0 ? solved_[i] : predicted_[i];
   }
-  // The floor on positions (as xpbd.h): on it, and the slide across it undone up to μ × depth.
+  // Friction: a node the floor held with the reaction N has its slide across the floor undone up to
+  // the Coulomb limit μ N h²/m (the slide μ N moves the mass m in a step h); a node the solve missed
+  // (past the column budget, or the active set's last round) is put on the floor and its slide
+  // undone up to μ × depth (as xpbd.h; the same limit with N = m depth/h²).
   for (std::size_t i = 0; i < n; ++i) {
     glm::dvec3& x = state.positions[i];
-    if (x.z >= 0.0 || state.inverseMasses[i] == 0.0) continue;
-    const double depth = -x.z;
-    x.z = 0.0;
+    if (state.inverseMasses[i] == 0.0) continue;
+    double limit = 0.0;
+    if (x.z < 0.0) {
+      limit = options.friction * -x.z;
+      x.z = 0.0;
+    } else if (reaction_[i] > 0.0) {
+      limit = options.friction * reaction_[i] * h * h * state.inverseMasses[i];
+    } else {
+      continue;
+    }
     const glm::dvec2 slide(x.x - start_[i].x, x.y - start_[i].y);
     const double length = glm::length(slide);
-    const double undo = length <= options.friction * depth ? 1.0 : options.friction * depth / length;
+    const double undo = length <= limit ? 1.0 : limit / length;
     x.x -= undo * slide.x;
     x.y -= undo * slide.y;
   }

@@ -5,14 +5,18 @@
 //
 // Each tetrahedron's energy is written as a distance to a target, E_e = w_e/2 ‖F − p_e‖² with a
 // constant weight, so that the global matrix A = M/h² + Σ w_e D_eᵀD_e (D_e x = F) never changes:
-//   w_e = V0 (2μ + 3λ),   p_e = (μ∞ R + μ1 R U_v + (3λ/2) F J^(−1/3)) / (μ + 3λ/2),
+//   w_e = V0 (2μ + 3λ),   p_e = (μ∞ R + μ1 R U_v + (3λ/2) p_V) / (μ + 3λ/2),
 // R the rotation of F (F = R U, found by Müller, Bender, Chentanez & Macklin 2016, "A robust method
 // to extract the rotational part of deformations", warm-started from the last step), U_v the Maxwell
 // branch's rest stretch and μ = μ∞ + μ1. At small strain this is linear elasticity with shear
 // modulus μ and Lamé λ, the same as the explicit integrators' stable neo-Hookean material
 // (viscoelastic.h): μ∞‖F − R‖² ≈ μ∞ ε:ε, μ1‖F − R U_v‖² ≈ μ1 (ε − ε_v):(ε − ε_v), and
-// (3λ/2)‖F − F J^(−1/3)‖² ≈ λ/2 (tr ε)². Inverted elements (J ≤ 0) take R as their volume target,
-// so they are pushed back out rather than further in.
+// (3λ/2)‖F − p_V‖² ≈ λ/2 (tr ε)², with p_V the volume target: one Newton step from F onto det = 1,
+// p_V = F + (1 − J) cof F / ‖cof F‖², which stays within ‖F − R‖ of F (R lies on det = 1 too), or R
+// itself for an inverted element (J ≤ 0) or where the step would go farther. So every target stays
+// at a bounded distance from its F: the earlier p_V = F J^(−1/3) (and its extension (2 + J)/3 past
+// J = 0.01) grew without bound for an element pressed flat or inverted, and each such element was
+// pushed further in, step after step (pressed through to the floor: J = −6000, 21 rollbacks).
 // The standard linear solid is kept: the Maxwell branch's rest stretch U_v flows towards the current
 // stretch U = sym(RᵀF) every step, U_v ← U + (U_v − U) exp(−h/τ), then U_v ← U_v / det(U_v)^(1/3) (at
 // small strain ε_v' = (ε − ε_v)/τ, as the explicit integrators' metric flow). U_v² is the metric G_v
@@ -21,8 +25,9 @@
 // One step h: the seed's edge dampers exactly (dampEdges, a contraction), the mouse spring
 // implicitly node by node (with the hand's force limit), the inertial prediction y = x + h v + h² g,
 // then `iterations` local steps (targets p_e, vectorised over kTetLanes tetrahedra) and global
-// solves A x = M y/h² + Σ w_e D_eᵀ p_e; the floor puts the nodes that went below it on it and undoes
-// their sliding up to μ times the depth (as xpbd.h); v = (x − x_start)/h.
+// solves A x = M y/h² + Σ w_e D_eᵀ p_e with the floor z ≥ 0 a constraint of each solve (an active
+// set; holdOnFloor in the .cpp), then Coulomb friction on the held nodes' slide up to μ × the floor's
+// reaction; v = (x − x_start)/h.
 // Each iteration lowers the step's objective, so no step length makes it blow up; what a long step
 // costs is numerical damping (backward Euler's ζ ≈ hω/2 for a mode ω; see docs/physics.md).
 #pragma once
@@ -30,6 +35,7 @@
 #include "core/bulk/bulk_body.h"
 #include "core/scene/grab.h"
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -71,6 +77,9 @@ class ProjectiveSolver {
 
  private:
   void factor(const BulkBody& body, double h);
+  // The floor inside the global solve: z of solved_ with the active set of floor nodes held at 0.
+  void holdOnFloor(const std::vector<double>& inverseMasses);
+  const std::vector<double>* column(std::uint32_t node);
   void localStep(const BulkBody& body, double h, bool flow);
   template <bool Flows>
   void localPass(const BulkBody& body, double decay);
@@ -86,6 +95,15 @@ class ProjectiveSolver {
   std::vector<double> masses_;             // m_i/h² on the diagonal (pinned: a huge mass)
   std::vector<glm::dvec3> start_, predicted_, targets_;  // x at the step's start, y, Σ w Dᵀp per node
   std::vector<glm::dvec3> solved_;
+  // Floor contact in the solve (holdOnFloor): columns A⁻¹e_i of the nodes that touched the floor
+  // since the last factorisation, the active set, its reactions (N) and the factor of (A⁻¹)_CC.
+  std::vector<int> columnOf_;                 // node → index into columns_, −1 none
+  std::vector<std::vector<double>> columns_;
+  std::vector<std::uint32_t> contact_, factoredContact_;
+  std::vector<double> reaction_, freeZ_, heldZ_;
+  std::vector<char> inContact_;  // per node, whether it is in this round's active set
+  struct Contact;  // the dense Cholesky factor of (A⁻¹)_CC (Eigen)
+  std::unique_ptr<Contact> contactFactor_;
 };
 
 }  // namespace slime

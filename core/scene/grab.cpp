@@ -81,4 +81,27 @@ glm::dvec3 addMouseSpringForces(const MouseSpring& spring, const std::vector<glm
   return scale * total;
 }
 
+glm::dvec3 applyMouseSpringImplicitly(const MouseSpring& spring, const std::vector<glm::dvec3>& positions,
+                                      const std::vector<double>& inverseMasses, double h,
+                                      std::vector<glm::dvec3>& velocities) {
+  std::vector<glm::dvec3> change(spring.nodes.size(), glm::dvec3(0.0));
+  glm::dvec3 hand(0.0);
+  for (std::size_t k = 0; k < spring.nodes.size(); ++k) {
+    const std::uint32_t i = spring.nodes[k];
+    const double w = inverseMasses[i];
+    if (w <= 0.0) continue;
+    const double mass = 1.0 / w, stiffness = spring.shares[k] * spring.stiffness, damping = spring.shares[k] * spring.damping;
+    const glm::dvec3 v = velocities[i];
+    const glm::dvec3 next =
+        (mass / h * v + stiffness * (spring.target + spring.offsets[k] - positions[i]) + damping * spring.targetVelocity) /
+        (mass / h + stiffness * h + damping);
+    change[k] = next - v;
+    hand += mass * change[k] / h;
+  }
+  const double magnitude = glm::length(hand);
+  const double scale = magnitude > spring.maxForce ? spring.maxForce / magnitude : 1.0;
+  for (std::size_t k = 0; k < spring.nodes.size(); ++k) velocities[spring.nodes[k]] += scale * change[k];
+  return scale * hand;
+}
+
 }  // namespace slime

@@ -53,6 +53,13 @@ struct MouseSpring {
 glm::dvec3 addMouseSpringForces(const MouseSpring& spring, const std::vector<glm::dvec3>& positions,
                                 const std::vector<glm::dvec3>& velocities, std::vector<glm::dvec3>& forces);
 
+// The mouse spring by backward Euler node by node, m (v' − v)/h = s_k (k (t_k − x − h v') + c (v_t − v')),
+// the whole hand's force limited to maxForce; changes the velocities of the held nodes with w > 0.
+// Returns the hand's force, N. (The projective solver applies one hand so; this is the second hand's.)
+glm::dvec3 applyMouseSpringImplicitly(const MouseSpring& spring, const std::vector<glm::dvec3>& positions,
+                                      const std::vector<double>& inverseMasses, double h,
+                                      std::vector<glm::dvec3>& velocities);
+
 // Moves `anchor` towards `target` by at most maxStep (m).
 glm::dvec3 stepTowards(const glm::dvec3& anchor, const glm::dvec3& target, double maxStep);
 

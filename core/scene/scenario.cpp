@@ -67,12 +67,19 @@ ScenarioEvent readEvent(const json& item, const EventReader& reader) {
   int found = 0;
   for (const auto& entry : item.items()) {
     const std::string& key = entry.key();  // not a structured binding: clang 14 cannot capture those
-    if (key == "t") continue;
+    if (key == "t" || key == "hand") continue;
     if (std::none_of(std::begin(actions), std::end(actions), [&](const char* a) { return key == a; }))
       reader.fail("unknown action \"" + key + "\" (grab, drag, release, press, set)");
     ++found;
   }
   if (found != 1) reader.fail("needs exactly one action of grab, drag, release, press, set");
+  if (item.contains("hand")) {
+    if (item.contains("set")) reader.fail("\"hand\" is not allowed with set (grab, drag, release, press take it)");
+    const json& hand = item["hand"];
+    if (!hand.is_number_integer() || hand.get<std::int64_t>() < 0 || hand.get<std::int64_t>() >= kHands)
+      reader.fail("hand must be 0 or 1, got " + hand.dump());
+    event.hand = hand.get<int>();
+  }
   if (item.contains("grab")) {
     const json& grab = item["grab"];
     reader.allowOnly(grab, "grab", {"point", "radius"});
@@ -147,27 +154,30 @@ Scenario loadScenario(const std::string& path) {
 
 ScenarioPlayer::ScenarioPlayer(Scenario scenario) : scenario_(std::move(scenario)) {}
 
-bool ScenarioPlayer::finished() const { return next_ >= scenario_.events.size() && !motion_.active; }
+bool ScenarioPlayer::finished() const {
+  return next_ >= scenario_.events.size() && !motion_[0].active && !motion_[1].active;
+}
 
 void ScenarioPlayer::fire(const ScenarioEvent& event, Simulation& simulation, Settings& settings) {
+  Motion& motion = motion_[event.hand];
   switch (event.kind) {
     case ScenarioEvent::Kind::Grab:
-      motion_.active = false;
-      simulation.grab(event.point, event.radius);
+      motion.active = false;
+      simulation.grab(event.point, event.radius, event.hand);
       break;
     case ScenarioEvent::Kind::Drag:
-      if (!simulation.grabbing()) break;
-      motion_ = Motion{true, false, event.time, event.duration, simulation.grabTarget(), event.to};
+      if (!simulation.grabbing(event.hand)) break;
+      motion = Motion{true, false, event.time, event.duration, simulation.grabTarget(event.hand), event.to};
       break;
     case ScenarioEvent::Kind::Release:
-      motion_.active = false;
-      simulation.release();
+      motion.active = false;
+      simulation.release(event.hand);
       break;
     case ScenarioEvent::Kind::Press:
-      motion_.active = false;
-      if (!simulation.grab(event.point, event.radius)) break;
-      motion_ = Motion{true, true, event.time, event.duration, simulation.grabTarget(),
-                       simulation.grabTarget() + event.depth * event.direction};
+      motion.active = false;
+      if (!simulation.grab(event.point, event.radius, event.hand)) break;
+      motion = Motion{true, true, event.time, event.duration, simulation.grabTarget(event.hand),
+                      simulation.grabTarget(event.hand) + event.depth * event.direction};
       break;
     case ScenarioEvent::Kind::Set:
       for (const auto& [key, value] : event.values.items()) setSetting(settings, key, value);
@@ -180,13 +190,16 @@ void ScenarioPlayer::fire(const ScenarioEvent& event, Simulation& simulation, Se
 void ScenarioPlayer::advanceTo(double t, Simulation& simulation, Settings& settings) {
   while (next_ < scenario_.events.size() && scenario_.events[next_].time <= t + kTimeTolerance)
     fire(scenario_.events[next_++], simulation, settings);
-  if (!motion_.active) return;
-  const double progress =
-      motion_.duration > 0.0 ? std::clamp((t - motion_.start) / motion_.duration, 0.0, 1.0) : 1.0;
-  simulation.dragTo(motion_.from + progress * (motion_.to - motion_.from));
-  if (progress >= 1.0) {
-    motion_.active = false;
-    if (motion_.releaseAtEnd) simulation.release();
+  for (int hand = 0; hand < kHands; ++hand) {
+    Motion& motion = motion_[hand];
+    if (!motion.active) continue;
+    const double progress =
+        motion.duration > 0.0 ? std::clamp((t - motion.start) / motion.duration, 0.0, 1.0) : 1.0;
+    simulation.dragTo(motion.from + progress * (motion.to - motion.from), hand);
+    if (progress >= 1.0) {
+      motion.active = false;
+      if (motion.releaseAtEnd) simulation.release(hand);
+    }
   }
 }
 

@@ -5,6 +5,8 @@
 //              {"t":1.2,"release":{}},
 //              {"t":1.5,"press":{"point":[x,y,z],"direction":[0,0,-1],"depth":0.02,"duration":0.3}},
 //              {"t":2.0,"set":{"slime.stiffness":60}}]}
+// Grab, drag, release and press take an optional "hand": 0 or 1 beside "t" (default 0), which of the
+// two hands acts: {"t":4.0,"hand":1,"grab":{...}}; each hand has its own drag or press in progress.
 // `point` means the surface point nearest to it. A press grabs the region within `radius` (default
 // 0.015 m) of that point, pushes it `depth` along `direction` over `duration`, then lets go.
 // A bad file is a SettingsError that names the file, the event and what is wrong.
@@ -35,6 +37,7 @@ struct ScenarioEvent {
   double depth = 0.0;       // press: m
   double duration = 0.0;    // drag, press: s (0 = at once)
   nlohmann::json values;    // set: {"dotted.key": value, ...}
+  int hand = 0;             // grab, drag, release, press: which hand (0 or 1)
 };
 
 struct Scenario {
@@ -65,7 +68,7 @@ class ScenarioPlayer {
 
   Scenario scenario_;
   std::size_t next_ = 0;
-  Motion motion_;
+  Motion motion_[2];  // per hand
 };
 
 }  // namespace slime

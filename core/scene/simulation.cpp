@@ -54,8 +54,8 @@ void Simulation::reload(const Settings& settings) {
 }
 
 void Simulation::start() {
-  mouse_ = MouseSpring{};
-  handForce_ = glm::dvec3(0.0);
+  for (Hand& hand : hands_) hand = Hand{};
+  adhesion_.reset(bulkBody_.mesh.surface, bulk_ ? bulkBody_.mesh.surfaceNodes : 0);
   drawnStale_ = true;
   cleanSteps_ = 0;
   time_ = 0.0;
@@ -63,9 +63,6 @@ void Simulation::start() {
   refinement_ = 1;
   divergences_.clear();
   projectiveActive_ = false;  // a new body: its metrics are the live Maxwell state
-  grabbing_ = false;
-  grabbed_.clear();
-  grabOffsets_.clear();
   rebuildModels();
   saveGoodState();
 }
@@ -192,9 +189,12 @@ int Simulation::substepsPerStep() const {
 void Simulation::step() {
   const int substeps = substepsPerStep();
   const double h = settings_.sim.dt / substeps;
-  if (bulk_) {  // the mouse target moves to where dragTo put it over this step
-    mouse_.targetVelocity = (pendingTarget_ - mouse_.target) / settings_.sim.dt;
-    mouse_.target = pendingTarget_;
+  if (bulk_) {  // each mouse target moves to where dragTo put it over this step
+    for (Hand& hand : hands_) {
+      if (!hand.holding) continue;
+      hand.spring.targetVelocity = (hand.pendingTarget - hand.spring.target) / settings_.sim.dt;
+      hand.spring.target = hand.pendingTarget;
+    }
   }
   for (int s = 0; s < substeps; ++s) substep(h);
   time_ += settings_.sim.dt;
@@ -233,7 +233,7 @@ void Simulation::substep(double h) {
     bulkSubstep(h);
     return;
   }
-  if (grabbing_) driveGrabbedPoints(h);
+  if (anyGrabbing()) driveGrabbedPoints(h);
   ParticleState& state = body_.state;
   if (integrator_ == Integrator::SymplecticEuler) {
     // The default, fused (damped_symplectic_euler.h): kick, implicit damper, drift and floor contact
@@ -265,7 +265,8 @@ void Simulation::substep(double h) {
 void Simulation::bulkAccelerations(const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v,
                                    std::vector<glm::dvec3>& a) {
   bulkInternalForces(bulkBody_, x, v, a);
-  if (grabbing_) handForce_ = addMouseSpringForces(mouse_, x, v, a);
+  for (Hand& hand : hands_)
+    if (hand.holding) hand.force = addMouseSpringForces(hand.spring, x, v, a);
   const glm::dvec3 gravity{0.0, 0.0, -settings_.sim.gravity};
   const std::vector<double>& w = bulkBody_.state.inverseMasses;
   for (std::size_t i = 0; i < a.size(); ++i) a[i] = w[i] > 0.0 ? a[i] * w[i] + gravity : glm::dvec3(0.0);
@@ -277,6 +278,11 @@ void Simulation::bulkAccelerations(const std::vector<glm::dvec3>& x, const std::
 // surface's own contact follows once per step).
 void Simulation::bulkSubstep(double h) {
   ParticleState& state = bulkBody_.state;
+  // The sticky floor reads a stuck node's pull from the kick-drift step's Δx = h²F/m; the projective
+  // solver's implicit step is not that, and holding its nodes back made it roll back (21 times in a
+  // two-hand pull at 6000 Pa), so it has no adhesion yet.
+  const double adhesion = integrator_ == Integrator::Projective ? 0.0 : settings_.slime.adhesion;
+  if (adhesion > 0.0) adhesion_.beginSubstep(state);
   switch (integrator_) {
     case Integrator::ExplicitEuler: explicitEulerStep(state, h, accelerationField_, integratorScratch_); break;
     case Integrator::Rk4: rk4Step(state, h, accelerationField_, integratorScratch_); break;
@@ -286,15 +292,28 @@ void Simulation::bulkSubstep(double h) {
       options.iterations = settings_.sim.iterations;
       options.gravity = glm::dvec3(0.0, 0.0, -settings_.sim.gravity);
       options.friction = settings_.slime.friction;
-      options.mouse = grabbing_ ? &mouse_ : nullptr;
-      handForce_ = projective_.step(bulkBody_, bulkScratch_, options);
+      // The first holding hand goes through the solver (as with one hand); a second one is applied
+      // the same way just before it.
+      Hand* first = nullptr;
+      for (Hand& hand : hands_) {
+        if (!hand.holding) continue;
+        if (first == nullptr) {
+          first = &hand;
+          continue;
+        }
+        hand.force = applyMouseSpringImplicitly(hand.spring, state.positions, state.inverseMasses, h, state.velocities);
+      }
+      options.mouse = first != nullptr ? &first->spring : nullptr;
+      const glm::dvec3 force = projective_.step(bulkBody_, bulkScratch_, options);
+      if (first != nullptr) first->force = force;
       break;
     }
     default: {
       // Kick with every force but the dampers, the dampers exactly (dampEdges), then drift.
       std::vector<glm::dvec3>& a = bulkScratch_.forces;
       bulkInternalForces(bulkBody_, state.positions, state.velocities, a, false);
-      if (grabbing_) handForce_ = addMouseSpringForces(mouse_, state.positions, state.velocities, a);
+      for (Hand& hand : hands_)
+        if (hand.holding) hand.force = addMouseSpringForces(hand.spring, state.positions, state.velocities, a);
       const glm::dvec3 gravity{0.0, 0.0, -settings_.sim.gravity};
       for (std::size_t i = 0; i < state.size(); ++i) {
         const double w = state.inverseMasses[i];
@@ -310,27 +329,33 @@ void Simulation::bulkSubstep(double h) {
   for (std::size_t i = 0; i < state.size(); ++i)
     if (state.inverseMasses[i] > 0.0) resolveFloorContactAt(state.positions[i], state.velocities[i], friction);
   projectBulkVolume(bulkBody_, h, bulkScratch_, state);
+  if (adhesion > 0.0) adhesion_.endSubstep(state, bulkBody_.mesh.surface, bulkBody_.freeInverseMasses, adhesion, h);
 }
 
 // Grabbed points land exactly where they are driven (the integrators moved them by v h).
 void Simulation::placeGrabbedPoints() {
   ParticleState& state = body_.state;
-  for (std::size_t k = 0; k < grabbed_.size(); ++k) {
-    glm::dvec3 target = grabAnchor_ + grabOffsets_[k];
-    target.z = std::max(target.z, 0.0);
-    state.positions[grabbed_[k]] = target;
+  for (const Hand& hand : hands_) {
+    for (std::size_t k = 0; k < hand.nodes.size(); ++k) {
+      glm::dvec3 target = hand.anchor + hand.offsets[k];
+      target.z = std::max(target.z, 0.0);
+      state.positions[hand.nodes[k]] = target;
+    }
   }
 }
 
 void Simulation::driveGrabbedPoints(double h) {
-  const glm::dvec3 next = stepTowards(grabAnchor_, grabTarget_, kGrabSpeed * h);
   ParticleState& state = body_.state;
-  for (std::size_t k = 0; k < grabbed_.size(); ++k) {
-    glm::dvec3 target = next + grabOffsets_[k];
-    target.z = std::max(target.z, 0.0);
-    state.velocities[grabbed_[k]] = (target - state.positions[grabbed_[k]]) / h;
+  for (Hand& hand : hands_) {
+    if (!hand.holding) continue;
+    const glm::dvec3 next = stepTowards(hand.anchor, hand.target, kGrabSpeed * h);
+    for (std::size_t k = 0; k < hand.nodes.size(); ++k) {
+      glm::dvec3 target = next + hand.offsets[k];
+      target.z = std::max(target.z, 0.0);
+      state.velocities[hand.nodes[k]] = (target - state.positions[hand.nodes[k]]) / h;
+    }
+    hand.anchor = next;
   }
-  grabAnchor_ = next;
 }
 
 void Simulation::saveGoodState() {
@@ -417,8 +442,16 @@ SlimeMetrics Simulation::metrics() const {
   return metrics;
 }
 
-bool Simulation::grab(const glm::dvec3& point, double radius) {
-  release();
+std::size_t Simulation::checkedHand(int hand) {
+  if (hand < 0 || hand >= kHands)
+    throw std::invalid_argument("hand " + std::to_string(hand) + " does not exist; hands are 0 and 1");
+  return static_cast<std::size_t>(hand);
+}
+
+bool Simulation::grab(const glm::dvec3& point, double radius, int which) {
+  const std::size_t index = checkedHand(which);
+  release(which);
+  Hand& hand = hands_[index];
   if (bulk_) {
     // The drawn surface point nearest to `point`, and the body's nodes within `radius` of it (or,
     // when none is that close, the nodes that carry the nearest drawn vertex).
@@ -435,70 +468,88 @@ bool Simulation::grab(const glm::dvec3& point, double radius) {
       std::sort(nodes.begin(), nodes.end());
       nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
     }
-    mouse_ = MouseSpring{};
+    MouseSpring& spring = hand.spring;
+    spring = MouseSpring{};
     double mass = 0.0;
     for (std::uint32_t i : nodes) {
-      mouse_.offsets.push_back(state.positions[i] - surface);
-      mouse_.shares.push_back(1.0 / static_cast<double>(nodes.size()));
+      spring.offsets.push_back(state.positions[i] - surface);
+      spring.shares.push_back(1.0 / static_cast<double>(nodes.size()));
       mass += 1.0 / bulkBody_.freeInverseMasses[i];
     }
-    mouse_.nodes = nodes;
-    mouse_.target = surface;
-    mouse_.damping = kMouseDampingRatio * 2.0 * std::sqrt(mouse_.stiffness * mass);
-    pendingTarget_ = surface;
-    grabbing_ = true;
-    grabbed_ = std::move(nodes);
-    grabTarget_ = surface;
+    spring.nodes = nodes;
+    spring.target = surface;
+    spring.damping = kMouseDampingRatio * 2.0 * std::sqrt(spring.stiffness * mass);
+    hand.pendingTarget = surface;
+    hand.holding = true;
+    hand.nodes = std::move(nodes);
+    hand.target = surface;
+    hand.radius = radius;
     return true;
   }
   const glm::dvec3 surface = nearestSurfacePoint(body_.state.positions, body_.triangles, point);
   std::vector<std::uint32_t> indices = pointsWithinRadius(body_.state.positions, surface, radius);
+  // Points the other hand holds stay with it (a point has one kinematic driver).
+  const Hand& other = hands_[1 - index];
+  indices.erase(std::remove_if(indices.begin(), indices.end(),
+                               [&](std::uint32_t i) {
+                                 return std::binary_search(other.nodes.begin(), other.nodes.end(), i);
+                               }),
+                indices.end());
   if (indices.empty()) return false;
-  grabbing_ = true;
-  grabbed_ = std::move(indices);
-  grabTarget_ = surface;
-  grabAnchor_ = surface;
-  grabOffsets_.clear();
+  hand.holding = true;
+  hand.nodes = std::move(indices);
+  hand.target = surface;
+  hand.anchor = surface;
+  hand.radius = radius;
+  hand.offsets.clear();
   dampingDecayStep_ = -1.0;
-  for (std::uint32_t i : grabbed_) {
-    grabOffsets_.push_back(body_.state.positions[i] - surface);
+  for (std::uint32_t i : hand.nodes) {
+    hand.offsets.push_back(body_.state.positions[i] - surface);
     body_.state.inverseMasses[i] = 0.0;
   }
   return true;
 }
 
-void Simulation::dragTo(const glm::dvec3& target) {
-  if (!grabbing_) return;
-  grabTarget_ = target;
-  pendingTarget_ = target;
+void Simulation::dragTo(const glm::dvec3& target, int which) {
+  Hand& hand = hands_[checkedHand(which)];
+  if (!hand.holding) return;
+  hand.target = target;
+  hand.pendingTarget = target;
 }
 
-glm::dvec3 Simulation::grabbedPoint() const {
-  if (!grabbing_) return grabTarget_;
+glm::dvec3 Simulation::grabbedPoint(int which) const {
+  const Hand& hand = hands_[checkedHand(which)];
+  if (!hand.holding) return hand.target;
   glm::dvec3 sum(0.0);
   const std::vector<glm::dvec3>& x = state().positions;
-  for (std::size_t k = 0; k < grabbed_.size(); ++k)
-    sum += x[grabbed_[k]] - (bulk_ ? mouse_.offsets[k] : grabOffsets_[k]);
-  return sum / static_cast<double>(grabbed_.size());
+  for (std::size_t k = 0; k < hand.nodes.size(); ++k)
+    sum += x[hand.nodes[k]] - (bulk_ ? hand.spring.offsets[k] : hand.offsets[k]);
+  return sum / static_cast<double>(hand.nodes.size());
 }
 
-void Simulation::release() {
-  if (bulk_) {
-    mouse_ = MouseSpring{};
-    handForce_ = glm::dvec3(0.0);
-    grabbing_ = false;
-    grabbed_.clear();
-    return;
+void Simulation::release(int which) {
+  Hand& hand = hands_[checkedHand(which)];
+  if (!bulk_) {
+    for (std::uint32_t i : hand.nodes) body_.state.inverseMasses[i] = body_.freeInverseMasses[i];
+    if (!hand.nodes.empty()) dampingDecayStep_ = -1.0;
   }
-  for (std::uint32_t i : grabbed_) body_.state.inverseMasses[i] = body_.freeInverseMasses[i];
-  if (!grabbed_.empty()) dampingDecayStep_ = -1.0;
-  grabbing_ = false;
-  grabbed_.clear();
-  grabOffsets_.clear();
+  const glm::dvec3 target = hand.target;
+  hand = Hand{};
+  hand.target = target;  // grabTarget() still says where it let go
 }
 
-bool Simulation::grabbing() const { return grabbing_; }
-glm::dvec3 Simulation::grabTarget() const { return grabTarget_; }
-const std::vector<std::uint32_t>& Simulation::grabbedIndices() const { return grabbed_; }
+void Simulation::releaseAll() {
+  for (int i = 0; i < kHands; ++i) release(i);
+}
+
+bool Simulation::grabbing(int which) const { return hands_[checkedHand(which)].holding; }
+bool Simulation::anyGrabbing() const {
+  return std::any_of(std::begin(hands_), std::end(hands_), [](const Hand& hand) { return hand.holding; });
+}
+glm::dvec3 Simulation::grabTarget(int which) const { return hands_[checkedHand(which)].target; }
+glm::dvec3 Simulation::handForce(int which) const { return hands_[checkedHand(which)].force; }
+const std::vector<std::uint32_t>& Simulation::grabbedIndices(int which) const {
+  return hands_[checkedHand(which)].nodes;
+}
 
 }  // namespace slime

@@ -7,12 +7,15 @@
 // CONTRACT used by render/ and app/ (keep these signatures; add whatever else physics needs):
 //   Simulation(const Settings&), reload, applySettings, step, time, stepCount, positions, triangles,
 //   metrics, divergences, grab, dragTo, release, grabbing, grabTarget, grabbedIndices.
+// Two hands (kHands): each grab/drag/release names its hand, 0 (the default) or 1; each hand holds its
+// own nodes with its own target, radius and force limit, and the two act on the body together.
 #pragma once
 
 #include "core/bulk/bulk_body.h"
 #include "core/bulk/projective_dynamics.h"
 #include "core/integrators/damped_symplectic_euler.h"
 #include "core/membrane/force_model.h"
+#include "core/scene/floor_adhesion.h"
 #include "core/scene/grab.h"
 #include "core/scene/icosphere.h"
 #include "core/integrators/implicit_euler.h"
@@ -49,6 +52,22 @@ struct DivergenceEvent {
   std::string what;  // e.g. "NaN position at vertex 17", "speed 3.2e4 m/s at vertex 5"
 };
 
+constexpr int kHands = 2;  // hands that can hold the slime at once (0 and 1)
+
+// One hand: the nodes it holds and where it pulls them. Bulk: a mouse spring (grab.h); membrane: the
+// held points are kinematic and follow `anchor`, rate-limited towards `target`.
+struct Hand {
+  bool holding = false;
+  std::vector<std::uint32_t> nodes;  // ascending
+  std::vector<glm::dvec3> offsets;   // membrane: node − grab point at the grab
+  glm::dvec3 target{0.0};            // where dragTo put it
+  glm::dvec3 anchor{0.0};            // membrane: where the held points are now
+  glm::dvec3 pendingTarget{0.0};     // bulk: the spring's target reaches it over a step
+  glm::dvec3 force{0.0};             // bulk: the spring's force on the body, N
+  double radius = 0.0;               // m, as grabbed
+  MouseSpring spring;                // bulk
+};
+
 class Simulation {
  public:
   explicit Simulation(const Settings& settings);  // builds the slime at slime.position, at rest
@@ -68,16 +87,21 @@ class Simulation {
   SlimeMetrics metrics() const;
   const std::vector<DivergenceEvent>& divergences() const;
 
-  // Grab the mass points within `radius` of the surface point nearest to `point`; false if none.
-  bool grab(const glm::dvec3& point, double radius);
-  void dragTo(const glm::dvec3& target);          // move the grab target (the grabbed points follow)
-  void release();
-  bool grabbing() const;
-  glm::dvec3 grabTarget() const;
-  glm::dvec3 grabbedPoint() const;                // where the grabbed part of the surface is now
-  glm::dvec3 handForce() const { return handForce_; }  // bulk: the mouse spring's force, N
-  // The simulated points that are grabbed (indices into state().positions).
-  const std::vector<std::uint32_t>& grabbedIndices() const;
+  // Grab the mass points within `radius` of the surface point nearest to `point` with hand `hand`
+  // (0 or 1; a hand already holding lets go first); false if none. Membrane: points the other hand
+  // holds are left to it.
+  bool grab(const glm::dvec3& point, double radius, int hand = 0);
+  void dragTo(const glm::dvec3& target, int hand = 0);  // move the hand's target (its points follow)
+  void release(int hand = 0);
+  void releaseAll();
+  bool grabbing(int hand = 0) const;
+  bool anyGrabbing() const;
+  glm::dvec3 grabTarget(int hand = 0) const;
+  glm::dvec3 grabbedPoint(int hand = 0) const;     // where the hand's part of the surface is now
+  glm::dvec3 handForce(int hand = 0) const;        // bulk: the hand's spring force on the body, N
+  // The simulated points the hand holds (indices into state().positions).
+  const std::vector<std::uint32_t>& grabbedIndices(int hand = 0) const;
+  const Hand& hand(int hand) const { return hands_[checkedHand(hand)]; }
 
   // More for tests, reports and tools.
   bool bulk() const { return bulk_; }
@@ -97,6 +121,7 @@ class Simulation {
   // (stability.h); off: exactly sim.substeps, so tests and benchmarks can watch a method blow up.
   void setAutomaticSubsteps(bool automatic);
   double highestFrequency() const { return highestFrequency_; }  // ω_max, rad/s
+  const FloorAdhesion& adhesion() const { return adhesion_; }   // bulk: which nodes stick to the floor
   double largestStableStep() const;                              // for the current integrator, s
 
  private:
@@ -107,6 +132,7 @@ class Simulation {
   void bulkAccelerations(const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v,
                          std::vector<glm::dvec3>& a);
   ParticleState& activeState() { return bulk_ ? bulkBody_.state : body_.state; }
+  static std::size_t checkedHand(int hand);
   void driveGrabbedPoints(double h);
   void placeGrabbedPoints();
   void saveGoodState();
@@ -117,9 +143,8 @@ class Simulation {
   SlimeBody body_;
   BulkBody bulkBody_;
   BulkScratch bulkScratch_;
-  MouseSpring mouse_;
-  glm::dvec3 pendingTarget_{0.0};  // where dragTo put the target; the mouse spring reaches it over a step
-  glm::dvec3 handForce_{0.0};
+  Hand hands_[kHands];
+  FloorAdhesion adhesion_;  // bulk: the sticky floor (slime.adhesion)
   mutable std::vector<glm::dvec3> drawnPositions_;  // bulk: placed from the body when first asked for
   mutable bool drawnStale_ = true;
   Integrator integrator_ = Integrator::SymplecticEuler;
@@ -153,12 +178,6 @@ class Simulation {
   std::vector<MaxwellBlock> goodMaxwell_;  // the bulk's B_v and G_v then
   double goodTime_ = 0.0;
   std::int64_t goodStep_ = 0;
-
-  bool grabbing_ = false;
-  glm::dvec3 grabTarget_{0.0};
-  glm::dvec3 grabAnchor_{0.0};  // where the grabbed points are now (rate-limited towards the target)
-  std::vector<std::uint32_t> grabbed_;
-  std::vector<glm::dvec3> grabOffsets_;
 };
 
 }  // namespace slime

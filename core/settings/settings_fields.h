@@ -89,6 +89,8 @@ void forEachField(S& s, Visitor&& visitor) {
         "Coulomb friction coefficient against the floor");
   visit("slime.rolling", s.slime.rolling, Limits{0.0, 1000.0, "1/s"},
         "membrane: rate at which the slime's rolling decays on the floor");
+  visit("slime.adhesion", s.slime.adhesion, Limits{0.0, 1.0e4, "Pa"},
+        "bulk: tension the floor contact holds before it peels (a sticky table; 0 = none)");
   // The bulk material: moduli from a soft jelly to a stiff rubber; τ from a fast to a near-solid gel.
   visit("slime.modulus", s.slime.modulus, Limits{50.0, 1.0e5, "Pa"},
         "bulk: instantaneous shear modulus G (the seed's stiffness slider)");
@@ -132,6 +134,9 @@ void forEachField(S& s, Visitor&& visitor) {
         "caustics: light focused through the slime onto the floor, traced as photons from the light");
   visit("render.photons", s.render.photons, Limits{1000, 10000000, "photons per frame"},
         "caustic photons shot per frame while the slime or the light moves (16 times as many gathered while still)");
+  visit("render.checkerboard", s.render.checkerboard, Choices{},
+        "viewer, while things move: trace every other pixel of the slime's footprint, fill in the rest from "
+        "their neighbours (tracing those where they disagree)");
   visit("render.targetFps", s.render.targetFps, Limits{0.0, 240.0, "frames per second"},
         "viewer: trace the image smaller while moving frames miss this rate (0: always full resolution)");
   // Simulation

@@ -45,8 +45,10 @@ FloorRegion shadowRegion(const PhotonCone& cone, const glm::vec3& center, float 
   return region;
 }
 
-void CausticMap::build(const std::vector<PhotonLanding>& landings, double emitted, double solidAngle, const FloorRegion& region) {
+void CausticMap::build(const std::vector<PhotonLanding>& landings, double emitted, double solidAngle, const FloorRegion& region,
+                       const std::vector<PhotonLanding>* straight) {
   nodes_.clear();
+  ratios_.clear();
   if (landings.empty() || !(emitted > 0.0)) return;
   const glm::vec2 low = region.low, high = region.high;
   std::size_t inside = 0;
@@ -66,22 +68,38 @@ void CausticMap::build(const std::vector<PhotonLanding>& landings, double emitte
   const std::size_t size = static_cast<std::size_t>(columns_) * rows_;
   // Summed-area tables of the photons' weights and counts, each photon in its nearest node's cell.
   const int w = columns_ + 1;
-  std::vector<glm::dvec3> weights(static_cast<std::size_t>(w) * (rows_ + 1), glm::dvec3(0.0));
-  std::vector<double> counts(weights.size(), 0.0);
-  for (const PhotonLanding& l : landings) {
-    if (!(l.x >= low.x && l.x <= high.x && l.y >= low.y && l.y <= high.y)) continue;
+  const std::size_t tableSize = static_cast<std::size_t>(w) * (rows_ + 1);
+  const auto cellOf = [&](const PhotonLanding& l) {
     const int x = std::clamp(static_cast<int>(std::lround((l.x - origin_.x) / cell_)), 0, columns_ - 1);
     const int y = std::clamp(static_cast<int>(std::lround((l.y - origin_.y) / cell_)), 0, rows_ - 1);
-    const std::size_t i = static_cast<std::size_t>(y + 1) * w + (x + 1);
-    weights[i] += glm::dvec3(l.weight);
-    counts[i] += 1.0;
-  }
-  for (int y = 1; y <= rows_; ++y)
-    for (int x = 1; x <= columns_; ++x) {
-      const std::size_t i = static_cast<std::size_t>(y) * w + x;
-      weights[i] += weights[i - 1] + weights[i - w] - weights[i - w - 1];
-      counts[i] += counts[i - 1] + counts[i - w] - counts[i - w - 1];
+    return static_cast<std::size_t>(y + 1) * w + (x + 1);
+  };
+  const auto insideRegion = [&](const PhotonLanding& l) { return l.x >= low.x && l.x <= high.x && l.y >= low.y && l.y <= high.y; };
+  const auto add = [&](const std::vector<PhotonLanding>& photons, bool directOnly, std::vector<glm::dvec3>& weights,
+                       std::vector<double>& counts) {
+    for (const PhotonLanding& l : photons) {
+      if (!insideRegion(l) || (directOnly && l.weight.x <= 0.0f)) continue;
+      const std::size_t i = cellOf(l);
+      weights[i] += glm::dvec3(l.weight);
+      counts[i] += 1.0;
     }
+  };
+  const auto integrate = [&](std::vector<glm::dvec3>& weights, std::vector<double>& counts) {
+    for (int y = 1; y <= rows_; ++y)
+      for (int x = 1; x <= columns_; ++x) {
+        const std::size_t i = static_cast<std::size_t>(y) * w + x;
+        weights[i] += weights[i - 1] + weights[i - w] - weights[i - w - 1];
+        counts[i] += counts[i - 1] + counts[i - w] - counts[i - w - 1];
+      }
+  };
+  std::vector<glm::dvec3> weights(tableSize, glm::dvec3(0.0));
+  std::vector<double> counts(tableSize, 0.0);
+  add(landings, false, weights, counts);
+  // The ratio's "arrived" tables start from the same photons through the slime (see below).
+  std::vector<glm::dvec3> arrived;
+  std::vector<double> arrivedCounts;
+  if (straight) arrived = weights, arrivedCounts = counts;
+  integrate(weights, counts);
   const auto box = [&](const auto& table, int x0, int y0, int x1, int y1) {  // nodes [x0, x1] × [y0, y1]
     x0 = std::max(x0, 0), y0 = std::max(y0, 0), x1 = std::min(x1, columns_ - 1), y1 = std::min(y1, rows_ - 1);
     const std::size_t a = static_cast<std::size_t>(y0) * w + x0, b = static_cast<std::size_t>(y0) * w + x1 + 1,
@@ -116,28 +134,59 @@ void CausticMap::build(const std::vector<PhotonLanding>& landings, double emitte
     return grid[static_cast<std::size_t>(std::clamp(y, 0, rows_ - 1)) * columns_ + std::clamp(x, 0, columns_ - 1)];
   };
   std::vector<glm::vec3> smoothed(size);
+  const auto smooth = [&](std::vector<glm::vec3>& grid, std::vector<glm::vec3>& result) {
+    for (int y = 0; y < rows_; ++y)
+      for (int x = 0; x < columns_; ++x)
+        at(smoothed, x, y) = 0.25f * at(grid, x - 1, y) + 0.5f * at(grid, x, y) + 0.25f * at(grid, x + 1, y);
+    result.assign(size, glm::vec3(0.0f));
+    for (int y = 0; y < rows_; ++y)
+      for (int x = 0; x < columns_; ++x)
+        at(result, x, y) = 0.25f * at(smoothed, x, y - 1) + 0.5f * at(smoothed, x, y) + 0.25f * at(smoothed, x, y + 1);
+  };
+  smooth(estimate, nodes_);
+  if (!straight) return;
+  // The ratio (see the header): the arrived photons (through the slime, and the direct ones) against
+  // the straight ones, each in the smallest box holding K of its own.
+  std::vector<glm::dvec3> reference(tableSize, glm::dvec3(0.0));
+  std::vector<double> referenceCounts(tableSize, 0.0);
+  add(*straight, true, arrived, arrivedCounts);
+  add(*straight, false, reference, referenceCounts);
+  integrate(arrived, arrivedCounts);
+  integrate(reference, referenceCounts);
+  const auto halfWidth = [&](const std::vector<double>& table, int x, int y) {
+    int h = 0;
+    while (h < kMaxHalfWidth && box(table, x - h, y - h, x + h, y + h) < photonsPerBox) ++h;
+    return h;
+  };
+  std::vector<glm::vec3> ratio(size, glm::vec3(0.0f));
   for (int y = 0; y < rows_; ++y)
-    for (int x = 0; x < columns_; ++x)
-      at(smoothed, x, y) = 0.25f * at(estimate, x - 1, y) + 0.5f * at(estimate, x, y) + 0.25f * at(estimate, x + 1, y);
-  nodes_.assign(size, glm::vec3(0.0f));
-  for (int y = 0; y < rows_; ++y)
-    for (int x = 0; x < columns_; ++x)
-      at(nodes_, x, y) = 0.25f * at(smoothed, x, y - 1) + 0.5f * at(smoothed, x, y) + 0.25f * at(smoothed, x, y + 1);
+    for (int x = 0; x < columns_; ++x) {
+      const int big = halfWidth(referenceCounts, x, y);
+      const double expected = box(referenceCounts, x - big, y - big, x + big, y + big);
+      if (expected == 0.0) continue;  // beyond the cone's photons: no shadow of the slime reaches here
+      const int h = halfWidth(arrivedCounts, x, y);
+      const double areas = (2.0 * big + 1.0) * (2.0 * big + 1.0) / ((2.0 * h + 1.0) * (2.0 * h + 1.0));
+      ratio[static_cast<std::size_t>(y) * columns_ + x] = glm::vec3(box(arrived, x - h, y - h, x + h, y + h) * (areas / expected));
+    }
+  smooth(ratio, ratios_);
 }
 
-glm::vec3 CausticMap::irradiance(float x, float y) const {
-  if (nodes_.empty()) return glm::vec3(0.0f);
+glm::vec3 CausticMap::irradiance(float x, float y) const { return bilinear(nodes_, x, y); }
+
+glm::vec3 CausticMap::bilinear(const std::vector<glm::vec3>& grid, float x, float y) const {
+  if (grid.empty()) return glm::vec3(0.0f);
   const float gx = (x - origin_.x) / cell_, gy = (y - origin_.y) / cell_;
   if (!(gx >= 0.0f && gy >= 0.0f && gx < static_cast<float>(columns_ - 1) && gy < static_cast<float>(rows_ - 1)))
     return glm::vec3(0.0f);
   const int ix = static_cast<int>(gx), iy = static_cast<int>(gy);
   const float fx = gx - static_cast<float>(ix), fy = gy - static_cast<float>(iy);
   const std::size_t i = static_cast<std::size_t>(iy) * columns_ + ix;
-  return (1.0f - fy) * ((1.0f - fx) * nodes_[i] + fx * nodes_[i + 1]) +
-         fy * ((1.0f - fx) * nodes_[i + columns_] + fx * nodes_[i + columns_ + 1]);
+  return (1.0f - fy) * ((1.0f - fx) * grid[i] + fx * grid[i + 1]) +
+         fy * ((1.0f - fx) * grid[i + columns_] + fx * grid[i + columns_ + 1]);
 }
 
 glm::vec3 CausticMap::gain(const glm::vec3& point, const glm::vec3& light) const {
+  if (!ratios_.empty()) return bilinear(ratios_, point.x, point.y);
   const glm::vec3 toLight = light - point;
   if (!(toLight.z > 0.0f)) return glm::vec3(0.0f);
   const float r2 = glm::dot(toLight, toLight);

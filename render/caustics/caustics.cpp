@@ -16,7 +16,7 @@ constexpr std::uint64_t kChunk = 1024;  // photons per task; landings concatenat
 
 const CausticMap* Caustics::update(const Settings& settings, const ShadingParameters& parameters,
                                    const SlimeGeometry& geometry, const SlimeIntersector& intersector,
-                                   tbb::task_arena* arena) {
+                                   tbb::task_arena* arena, bool progressive) {
   const auto start = std::chrono::steady_clock::now();
   lastMs_ = 0.0;
   const bool slime = geometry.boundRadius > 0.0f || geometry.analyticSphere;
@@ -40,20 +40,22 @@ const CausticMap* Caustics::update(const Settings& settings, const ShadingParame
   if (key != key_) {
     key_ = std::move(key);
     landings_.clear();
+    straight_.clear();
     tally_ = PhotonTally{};
     traced_ = 0;
     cone_ = photonCone(geometry, parameters.lightPosition);
   } else if (converged()) {
     return map_.empty() ? nullptr : &map_;
   }
-  // The next budget of the sequence, in chunks.
+  // The next budget of the sequence (progressive), or all that the finished map still lacks, in chunks.
   const PhotonTracer tracer(geometry, intersector, parameters);
-  const std::uint64_t first = traced_, chunks = (budget_ + kChunk - 1) / kChunk;
-  std::vector<std::vector<PhotonLanding>> found(chunks);
+  const std::uint64_t first = traced_, photons = progressive ? budget_ : budget_ * kStillBudgets - traced_;
+  const std::uint64_t chunks = (photons + kChunk - 1) / kChunk;
+  std::vector<std::vector<PhotonLanding>> found(chunks), straight(chunks);
   std::vector<PhotonTally> tallies(chunks);
   const auto traceChunk = [&](std::uint64_t c) {
-    const std::uint64_t begin = c * kChunk, count = std::min(kChunk, budget_ - begin);
-    tracer.trace(cone_, first + begin, count, found[c], tallies[c]);
+    const std::uint64_t begin = c * kChunk, count = std::min(kChunk, photons - begin);
+    tracer.trace(cone_, first + begin, count, found[c], tallies[c], &straight[c]);
   };
   if (arena) {
     handOff(this);  // the inputs, to the workers (tsan_handoff.h)
@@ -70,10 +72,12 @@ const CausticMap* Caustics::update(const Settings& settings, const ShadingParame
   }
   for (std::uint64_t c = 0; c < chunks; ++c) {
     landings_.insert(landings_.end(), found[c].begin(), found[c].end());
+    straight_.insert(straight_.end(), straight[c].begin(), straight[c].end());
     tally_ += tallies[c];
   }
-  traced_ += budget_;
-  map_.build(landings_, static_cast<double>(traced_), cone_.solidAngle, shadowRegion(cone_, geometry.boundCenter, geometry.boundRadius));
+  traced_ += photons;
+  map_.build(landings_, static_cast<double>(traced_), cone_.solidAngle, shadowRegion(cone_, geometry.boundCenter, geometry.boundRadius),
+             &straight_);
   lastMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return map_.empty() ? nullptr : &map_;
 }

@@ -23,10 +23,15 @@ class Caustics {
 
   // The map for this frame, or null when caustics are off (render.caustics, render.shadows, the light
   // below the floor, no slime). `arena`: the photons in its threads; null: on this thread (the brute
-  // force, the oracle). Brings the map up to date: a new shape, light or setting starts again from
-  // render.photons photons; an unchanged one adds render.photons more until kStillBudgets of them.
+  // force, the oracle). Brings the map up to date:
+  // - not `progressive` (a snapshot, a test, any plain render): the finished map at once, photons
+  //   0 … kStillBudgets · render.photons − 1, whatever came before (kept while nothing changes), so
+  //   the image is a function of the scene alone, not of the frames this object saw;
+  // - `progressive` (the interactive viewer): a new shape, light or setting starts again from
+  //   render.photons photons; an unchanged one adds render.photons more until kStillBudgets of them,
+  //   the same photons in the same order, so it ends at the finished map.
   const CausticMap* update(const Settings& settings, const ShadingParameters& parameters, const SlimeGeometry& geometry,
-                           const SlimeIntersector& intersector, tbb::task_arena* arena);
+                           const SlimeIntersector& intersector, tbb::task_arena* arena, bool progressive = false);
 
   std::uint64_t photons() const { return traced_; }  // photons behind the current map
   const PhotonTally& tally() const { return tally_; }
@@ -35,7 +40,7 @@ class Caustics {
 
  private:
   std::vector<float> key_;  // the slime's vertices, the light, the optics and the budget of the map
-  std::vector<PhotonLanding> landings_;
+  std::vector<PhotonLanding> landings_, straight_;  // through the slime; every photon's straight line (caustic_map.h)
   PhotonTally tally_;
   CausticMap map_;
   PhotonCone cone_;

@@ -97,13 +97,27 @@ float PhotonTracer::surfaceTransmission(float cosine, bool entering, float& refl
   return (1.0f - fresnel) * (entering ? p.transmission : 1.0f);
 }
 
+namespace {
+
+// Where a photon's straight line from the light meets the floor (z = 0); `ray` heads downwards.
+glm::vec3 straightLanding(const Ray& ray) {
+  return ray.origin + (std::max(0.0f, ray.origin.z) / -ray.direction.z) * ray.direction;
+}
+
+}  // namespace
+
 void PhotonTracer::trace(const PhotonCone& cone, std::uint64_t first, std::uint64_t count,
-                         std::vector<PhotonLanding>& landings, PhotonTally& tally) const {
+                         std::vector<PhotonLanding>& landings, PhotonTally& tally, std::vector<PhotonLanding>* straight) const {
   if (cone.empty()) return;
   for (std::uint64_t i = first; i < first + count; ++i) {
     const Ray ray{cone.apex, cone.direction(i), 0.0f, kInfinity};
     tally.emitted += 1.0;
+    const double intercepted = tally.intercepted;
     tracePhoton(ray, i, landings, tally);
+    if (straight && ray.direction.z < 0.0f) {
+      const glm::vec3 point = straightLanding(ray);
+      straight->push_back(PhotonLanding{point.x, point.y, glm::vec3(tally.intercepted == intercepted ? 1.0f : 0.0f)});
+    }
   }
 }
 
@@ -117,7 +131,12 @@ void PhotonTracer::tracePhoton(const Ray& fromLight, std::uint64_t index, std::v
   int crossings = 0;
   bool first = true;
   const auto land = [&](const Ray& ray, float t, const glm::vec3& weight) {
-    const glm::vec3 point = ray.origin + t * ray.direction;
+    glm::vec3 point = ray.origin + t * ray.direction;
+    // n = 1: Snell bends nothing and nothing is reflected, the photon lands where its straight line
+    // from the light does; taken from that line, not through the crossings' offsets and rounding
+    // (so a slime of index 1 leaves the map's ratio exactly 1: caustic_map.h).
+    if (p.ior == 1.0f && fromLight.direction.z < 0.0f)
+      point = straightLanding(fromLight);
     landings.push_back(PhotonLanding{point.x, point.y, weight});
     tally.landed += glm::dvec3(weight);
   };

@@ -51,8 +51,11 @@ class PhotonTracer {
   PhotonTracer(const SlimeGeometry& geometry, const SlimeIntersector& intersector, const ShadingParameters& parameters)
       : geometry_(geometry), intersector_(intersector), parameters_(parameters) {}
   // Photons [first, first + count) of the cone's sequence: their floor landings appended to `landings`.
+  // With `straight`, each photon that would meet the floor along its straight line from the light is
+  // appended there too, at that point, with weight 1 if it missed the slime (the direct light) and 0
+  // if it met it: the caustic map's reference for its ratio (caustic_map.h).
   void trace(const PhotonCone& cone, std::uint64_t first, std::uint64_t count, std::vector<PhotonLanding>& landings,
-             PhotonTally& tally) const;
+             PhotonTally& tally, std::vector<PhotonLanding>* straight = nullptr) const;
 
  private:
   void tracePhoton(const Ray& fromLight, std::uint64_t index, std::vector<PhotonLanding>& landings, PhotonTally& tally) const;

@@ -3,6 +3,7 @@
 #include "core/scene/camera.h"
 #include "render/caustics/caustics.h"
 #include "render/trace/brute_tracer.h"
+#include "render/trace/checkerboard.h"
 #include "render/trace/embree_scene.h"
 #include "render/trace/embree_util.h"
 #include "render/floor/floor_texture.h"
@@ -14,6 +15,7 @@
 #include "render/trace/tsan_handoff.h"
 #include "render/trace/whitted_tracer.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/blocked_range2d.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -40,7 +42,8 @@ constexpr int kPacket = 8;
 // Pixels seen to lie outside the slime's footprint are shaded this many at a time (8 with AVX2, 16 with AVX-512).
 constexpr int kFloorLanes = WhittedTracer::kFloorOrSkyRays;
 constexpr int kWavefrontPixels = WhittedTracer::kMaxPrimaries;  // pixels whose Whitted trees are traced together
-constexpr int kRunPixels = std::max(kFloorLanes, kWavefrontPixels);
+// A checkerboarded run traces every other pixel of twice a wavefront's span: still a full wavefront.
+constexpr int kRunPixels = std::max(kFloorLanes, 2 * kWavefrontPixels);
 
 double millisecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -83,6 +86,7 @@ struct Renderer::Impl {
   tbb::enumerable_thread_specific<TraceCounters> counters;
   double refitMs = 0.0;
   Caustics caustics;  // the photons and the floor's caustic map, kept while nothing moves
+  bool progressiveCaustics = false;  // setProgressiveCaustics
   // Per pixel, the FloorShading its primary ray saw (one sample per pixel only). The floor does not
   // move: while the camera, the image size and the floor's lighting stay, only the shadow ray and the
   // slime are traced again there; the entries are recomputed whenever floorCacheKey changes.
@@ -109,6 +113,11 @@ struct Renderer::Impl {
   ScreenFootprint footprint, lastFootprint;  // this frame's and the last (swapped: no allocation per frame)
   bool lastKeptCaches = false;
   bool imageInPlace = false, bytesInPlace = false;
+  // Checkerboard tracing this frame (render/trace/checkerboard.h): the parity of the pixels traced,
+  // and per pixel, 1 where a tile left it to be filled in (cleared as it is filled).
+  bool halved = false;
+  int parity = 0;
+  std::vector<std::uint8_t> skipped;
 
   explicit Impl(const Settings& settings)
       : embree(settings.render.threads), floorSettings(settings.floor), floor(settings.floor) {
@@ -188,6 +197,13 @@ struct Renderer::Impl {
           if (floorShadings && cachesStale) resetCaches(first + kPacket, next);
           if (!footprint || !footprint->outside(x0 + kPacket, next, y)) count += next;
         }
+        while (halved && !outside && count % kPacket == 0 && count < 2 * kWavefrontPixels && x0 + count < columnEnd) {
+          // Checkerboarded, a run takes up to four packets: half their pixels make a full wavefront.
+          const int next = std::min(kPacket, columnEnd - x0 - count);
+          if (floorShadings && cachesStale) resetCaches(first + count, next);
+          if (footprint->outside(x0 + count, next, y)) break;
+          count += next;
+        }
         glm::vec3 sums[kRunPixels] = {};
         for (int sampleY = 0; sampleY < samplesPerAxis; ++sampleY) {
           for (int sampleX = 0; sampleX < samplesPerAxis; ++sampleX) {
@@ -202,6 +218,31 @@ struct Renderer::Impl {
             if (outside) {
               // Nothing here can meet the slime or its shadow: the floor or the sky, in lanes.
               tracer.traceFloorOrSky(eye, directionX, directionY, directionZ, count, counts, colors);
+            } else if (halved) {
+              // Checkerboard: the pixels of this frame's colour inside the footprint's span are traced,
+              // the others left to fillSkipped; those outside the span are traced (they may be kept).
+              int columns[kRunPixels], picked[kRunPixels], traced = 0;
+              float pickedX[kRunPixels], pickedY[kRunPixels], pickedZ[kRunPixels];
+              glm::vec3 pickedColors[kRunPixels];
+              for (int i = 0; i < count; ++i) {
+                const int x = x0 + i;
+                if (footprint->contains(x, y) && !checkerboardTraced(x, y, parity)) {
+                  skipped[first + i] = 1;
+                  colors[i] = glm::vec3(0.0f);
+                  continue;
+                }
+                columns[traced] = x;
+                picked[traced] = i;
+                pickedX[traced] = directionX[i];
+                pickedY[traced] = directionY[i];
+                pickedZ[traced] = directionZ[i];
+                ++traced;
+              }
+              for (int from = 0; from < traced; from += kWavefrontPixels)
+                traceColumns(tracer, intersector, eye, y, columns + from, std::min(kWavefrontPixels, traced - from),
+                             pickedX + from, pickedY + from, pickedZ + from, image.width, floorShadings, counts,
+                             pickedColors + from);
+              for (int j = 0; j < traced; ++j) colors[picked[j]] = pickedColors[j];
             } else {
               Ray rays[kWavefrontPixels];
               bool active[kWavefrontPixels] = {};
@@ -247,11 +288,109 @@ struct Renderer::Impl {
     }
     counts.busyMs += millisecondsSince(start);
   }
+
+  // Traces up to kWavefrontPixels primary rays of row y, at `columns` (any order) along the given unit
+  // directions, as tracePrimaries does for a run: colours into colors[j], each pixel's floor cache kept.
+  void traceColumns(const WhittedTracer& tracer, const SlimeIntersector& intersector, const glm::vec3& eye, int y,
+                    const int* columns, int count, const float* directionX, const float* directionY,
+                    const float* directionZ, int width, FloorShading* floorShadings, TraceCounters& counts,
+                    glm::vec3* colors) {
+    if (count <= 0) return;
+    Ray rays[kWavefrontPixels];
+    bool active[kWavefrontPixels] = {};
+    SlimeHit hits[kWavefrontPixels];
+    FloorShading shadings[kWavefrontPixels];
+    for (int from = 0; from < count; from += kPacket) {
+      const int size = std::min(kPacket, count - from);
+      int activeCount = 0;
+      for (int j = from; j < from + size; ++j) {
+        rays[j] = Ray{eye, {directionX[j], directionY[j], directionZ[j]}, 0.0f, kInfinity};
+        active[j] = geometry.mayHit(rays[j]);
+        activeCount += active[j];
+      }
+      if (activeCount == 0) continue;
+      counts.slimeQueries += static_cast<std::uint64_t>(activeCount);
+      if (visibility.ready()) {
+        for (int j = from; j < from + size; ++j) {
+          if (!active[j]) continue;
+          SlimeHit found[kPacket];  // hits8 writes a whole packet
+          visibility.hits8(columns[j], y, 1, active + j, found);
+          hits[j] = found[0];
+        }
+      } else if (!intersector.primaryHits8(rays + from, active + from, hits + from)) {
+        intersector.intersect8(rays + from, active + from, hits + from);
+      }
+    }
+    const std::size_t row = static_cast<std::size_t>(y) * width;
+    if (floorShadings)
+      for (int j = 0; j < count; ++j) shadings[j] = floorShadings[row + columns[j]];
+    tracer.tracePrimaries(rays, hits, count, counts, floorShadings ? shadings : nullptr, colors);
+    if (floorShadings)
+      for (int j = 0; j < count; ++j) floorShadings[row + columns[j]] = shadings[j];
+  }
+
+  // After the tiles: each pixel a tile skipped (checkerboard) in rows [rowBegin, rowEnd) is filled in
+  // from its four neighbours, or traced where they disagree (render/trace/checkerboard.h). Its
+  // neighbours are all of the other colour, final: rows may be filled in parallel.
+  void fillSkipped(const WhittedTracer& tracer, const SlimeIntersector& intersector, const Camera& camera,
+                   glm::vec2 pixelOffset, int rowBegin, int rowEnd, Image& image, std::uint8_t* srgba,
+                   FloorShading* floorShadings, TraceCounters& counts) {
+    FlushDenormals flush;
+    const auto start = std::chrono::steady_clock::now();
+    const glm::vec3 eye(camera.position);
+    const PrimaryView view(camera, image.width, image.height);
+    const int width = image.width, height = image.height;
+    for (int y = rowBegin; y < rowEnd; ++y) {
+      const ScreenFootprint::Span span = footprint.rows[y];
+      const std::size_t row = static_cast<std::size_t>(y) * width;
+      int columns[kWavefrontPixels], pending = 0;
+      float directionX[kWavefrontPixels], directionY[kWavefrontPixels], directionZ[kWavefrontPixels];
+      const auto tracePending = [&] {
+        glm::vec3 colors[kWavefrontPixels];
+        traceColumns(tracer, intersector, eye, y, columns, pending, directionX, directionY, directionZ, width,
+                     floorShadings, counts, colors);
+        for (int j = 0; j < pending; ++j) {
+          const bool finite = std::isfinite(colors[j].x + colors[j].y + colors[j].z);
+          counts.nonFinitePixels += !finite;
+          image.pixels[row + columns[j]] = finite ? colors[j] : glm::vec3(0.0f);
+          if (srgba) encodeSrgb8(&image.pixels[row + columns[j]], 1, 4, srgba + 4 * (row + columns[j]));
+        }
+        counts.tracedFillPixels += static_cast<std::uint64_t>(pending);
+        pending = 0;
+      };
+      for (int x = std::max(0, span.x0); x < std::min(width, span.x1); ++x) {
+        if (!skipped[row + x]) continue;
+        skipped[row + x] = 0;
+        const glm::vec3* neighbours[4] = {x > 0 ? &image.pixels[row + x - 1] : nullptr,
+                                          x + 1 < width ? &image.pixels[row + x + 1] : nullptr,
+                                          y > 0 ? &image.pixels[row - width + x] : nullptr,
+                                          y + 1 < height ? &image.pixels[row + width + x] : nullptr};
+        glm::vec3 color;
+        if (fillFromNeighbours(neighbours, color)) {
+          image.pixels[row + x] = color;
+          if (srgba) encodeSrgb8(&image.pixels[row + x], 1, 4, srgba + 4 * (row + x));
+          ++counts.filledPixels;
+          continue;
+        }
+        float x8[kPacket], y8[kPacket], z8[kPacket];  // the pixel's ray, as every pass makes it
+        primaryDirections8(view, x, pixelOffset.x, y + pixelOffset.y, x8, y8, z8);
+        columns[pending] = x;
+        directionX[pending] = x8[0];
+        directionY[pending] = y8[0];
+        directionZ[pending] = z8[0];
+        if (++pending == kWavefrontPixels) tracePending();
+      }
+      tracePending();
+    }
+    counts.busyMs += millisecondsSince(start);
+  }
 };
 
 Renderer::Renderer(const Settings& settings) : impl_(std::make_unique<Impl>(settings)) {}
 
 Renderer::~Renderer() = default;
+
+void Renderer::setProgressiveCaustics(bool progressive) { impl_->progressiveCaustics = progressive; }
 
 void Renderer::updateSlime(const std::vector<glm::dvec3>& positions, const std::vector<Triangle>& triangles) {
   const auto start = std::chrono::steady_clock::now();
@@ -281,7 +420,8 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
   const SlimeIntersector& intersector = brute ? static_cast<const SlimeIntersector&>(impl.brute) : impl.embree;
   WhittedTracer tracer(impl.geometry, intersector, impl.floor, parameters);
   const auto causticsStart = std::chrono::steady_clock::now();
-  tracer.setCaustics(impl.caustics.update(settings, parameters, impl.geometry, intersector, brute ? nullptr : impl.arena.get()));
+  tracer.setCaustics(impl.caustics.update(settings, parameters, impl.geometry, intersector, brute ? nullptr : impl.arena.get(),
+                                              impl.progressiveCaustics));
   stats.causticsMs = millisecondsSince(causticsStart);
   stats.causticPhotons = impl.caustics.photons();
 
@@ -347,6 +487,13 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
     }
   }
 
+  // Only where the last frame's pixels stand (the camera still, a window's buffers): a first frame or
+  // a turning camera is traced whole.
+  impl.halved = settings.render.checkerboard && impl.imageInPlace && !brute;
+  if (impl.halved) {
+    impl.parity ^= 1;  // the other colour from the last halved frame
+    if (impl.skipped.size() != image.pixels.size()) impl.skipped.assign(image.pixels.size(), 0);
+  }
   for (TraceCounters& counts : impl.counters) counts = TraceCounters{};
   stats.setupMs = millisecondsSince(start);
   stats.threads = brute ? 1 : impl.arena->max_concurrency();
@@ -365,6 +512,13 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
                                          floorShadings, footprint, impl.counters.local());
                           handOff(&impl);  // the tile's pixels and counters, back to the caller
                         });
+      if (!impl.halved) return;
+      tbb::parallel_for(tbb::blocked_range<int>(0, image.height, kTileRows), [&](const tbb::blocked_range<int>& rows) {
+        takeOver(&impl);
+        impl.fillSkipped(tracer, intersector, camera, pixelOffset, rows.begin(), rows.end(), image, bytes,
+                         floorShadings, impl.counters.local());
+        handOff(&impl);
+      });
     });
     takeOver(&impl);
   }
@@ -377,6 +531,8 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
     stats.nonFinitePixels += counts.nonFinitePixels;
     stats.cachedFloorPixels += counts.cachedFloorPixels;
     stats.reusedPixels += counts.reusedPixels;
+    stats.filledPixels += counts.filledPixels;
+    stats.tracedFillPixels += counts.tracedFillPixels;
     stats.busyMs += counts.busyMs;
     stats.bytesWritten = stats.bytesWritten.unitedWith(counts.bytesWritten);
   }

@@ -41,6 +41,11 @@ struct RenderStats {
   // Pixels copied from the last frame, not traced: the camera is still and the slime cannot reach them
   // (outside its footprint, render/slime/screen_footprint.h). Their rays are not in `rays`.
   std::uint64_t reusedPixels = 0;
+  // Checkerboard tracing (settings.render.checkerboard, with buffersKept and one sample a pixel:
+  // render/trace/checkerboard.h): pixels of the footprint filled in from their traced neighbours, not
+  // traced; and pixels of the skipped colour traced after all, their neighbours disagreeing.
+  std::uint64_t filledPixels = 0;
+  std::uint64_t tracedFillPixels = 0;
   RayCounts rays;        // every ray by kind, whether it met Embree or only the analytic floor/sky
   std::uint64_t slimeQueries = 0;  // rays that could reach the slime's bounds and were tested against it
   std::uint64_t nonFinitePixels = 0;  // pixels whose colour came out NaN/inf (written black); must stay 0
@@ -66,11 +71,22 @@ class Renderer {
   // `buffersKept` promises that `image` and `srgba` are the buffers of the last call, unwritten
   // since (a window's): pixels that cannot have changed, outside the slime's footprint now and in the
   // last frame, are then left as they are. Without it every pixel is written.
+  // With settings.render.checkerboard, buffersKept and one sample a pixel, while the camera stays and
+  // the last frame's pixels stand, the pixels of the slime's footprint are traced in a checkerboard and
+  // the others filled in (RenderStats::filledPixels): a window's frame while the slime moves. Without buffersKept (a snapshot, a still image's refinement, the
+  // check's reference) every pixel is traced.
   // `pixelOffset`, with one sample per pixel (render.spp = 1), is the point of each pixel its ray goes
   // through, in pixels from the pixel's top-left corner: (0.5, 0.5), the centre, unless a caller
   // accumulates frames (AccumulationBuffer). With more samples it is ignored.
   RenderStats render(const Settings& settings, Image& image, std::vector<std::uint8_t>* srgba = nullptr,
                      bool buffersKept = false, glm::vec2 pixelOffset = {0.5f, 0.5f});
+
+  // Caustics (render.caustics) gathered progressively: each render() while the slime, the light and the
+  // optics stay adds one budget of photons (render.photons) to the map, up to its finished count, and
+  // any change starts again from one budget: the interactive viewer's frames. Off (the default: a
+  // snapshot, a benchmark, a test), every render() uses the finished map, so its image depends on the
+  // scene alone and not on the frames rendered before (render/caustics/caustics.h).
+  void setProgressiveCaustics(bool progressive);
 
   // The point where the ray through image point (u, v) in [0,1]² first hits the slime, if it does.
   std::optional<glm::dvec3> pick(const Settings& settings, double u, double v) const;

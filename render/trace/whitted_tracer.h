@@ -31,6 +31,8 @@ struct TraceCounters {
   std::uint64_t nonFinitePixels = 0;
   std::uint64_t cachedFloorPixels = 0;  // primary floor hits whose FloorShading came from the cache
   std::uint64_t reusedPixels = 0;       // pixels copied from the last frame (RenderStats::reusedPixels)
+  std::uint64_t filledPixels = 0;       // checkerboard: pixels filled in from their neighbours (RenderStats)
+  std::uint64_t tracedFillPixels = 0;   // checkerboard: pixels of the skipped colour traced after all (RenderStats)
   double busyMs = 0.0;                  // wall time spent in tiles by this thread
   PixelRect bytesWritten;               // the pixels whose sRGB bytes this thread wrote (RenderStats::bytesWritten)
 };

@@ -27,6 +27,19 @@ inline Settings smallScene(int width = 96, int height = 72) {
   return settings;
 }
 
+// The small scene with a slime that bends, reflects and absorbs nothing (ior 1, transmission 1, no
+// absorption, no Phong terms) and a floor without its mirror term: a path through the slime spends two
+// of the depth-3 segments in it, so the floor seen through it could not trace its reflection.
+inline Settings invisibleSlimeScene() {
+  Settings settings = smallScene(96, 72);
+  settings.slime.ior = 1.0;
+  settings.slime.transmission = 1.0;
+  settings.slime.absorption = 0.0;
+  settings.slime.specular = settings.slime.diffuse = settings.slime.ambient = 0.0;
+  settings.floor.specular = 0.0;
+  return settings;
+}
+
 inline TriangleMesh restingMesh(const Settings& settings) {
   return makeIcosphere(settings.slime.level, settings.slime.radius, settings.slime.position);
 }

@@ -1,5 +1,6 @@
 // `slime view --check-every K` run headless (issue 28): the viewer measures what it shows against the
 // full trace of the same physics state and camera, and the exit report carries the figures.
+#include "viewer_fixture.h"
 #include "app/viewer/headless_gl.h"
 #include "app/viewer/viewer.h"
 #include "core/settings/settings_io.h"
@@ -13,37 +14,6 @@
 namespace slime {
 namespace {
 
-Settings smallScene() {
-  Settings settings = defaultSettings();
-  settings.camera.width = 320;
-  settings.camera.height = 240;
-  settings.slime.level = 2;
-  return settings;
-}
-
-// The headless back-end with a clock that runs `secondsPerFrame` a frame, whatever the machine's speed.
-class SteppingBackend final : public ViewerBackend {
- public:
-  SteppingBackend(int width, int height, double secondsPerFrame) : gl_(width, height), secondsPerFrame_(secondsPerFrame) {}
-  FrameInput pollInput() override {
-    FrameInput input = gl_.pollInput();
-    input.elapsedSeconds = secondsPerFrame_;
-    return input;
-  }
-  glm::ivec2 framebufferSize() const override { return gl_.framebufferSize(); }
-  glm::ivec2 windowSize() const override { return gl_.windowSize(); }
-  void initImGuiPlatform() override { gl_.initImGuiPlatform(); }
-  void newImGuiPlatformFrame() override { gl_.newImGuiPlatformFrame(); }
-  void shutdownImGuiPlatform() override { gl_.shutdownImGuiPlatform(); }
-  bool keepsFramebuffer() const override { return gl_.keepsFramebuffer(); }
-  void present(const std::vector<PixelRect>& changed) override { gl_.present(changed); }
-  void waitForInput(double) override {}
-
- private:
-  HeadlessGl gl_;
-  double secondsPerFrame_;
-};
-
 nlohmann::json runAndReport(const Settings& settings, int frames, int every, const std::string& name) {
   const std::filesystem::path report = std::filesystem::path(SLIME_TEST_OUTPUT_DIR) / name;
   std::filesystem::remove(report);
@@ -51,7 +21,7 @@ nlohmann::json runAndReport(const Settings& settings, int frames, int every, con
   options.checkEvery = every;
   options.maxFrames = frames;
   options.reportPath = report.string();
-  SteppingBackend backend(320, 240, 1.0 / 30.0);
+  fixture::SteppingHeadlessGl backend(320, 240, 1.0 / 30.0);
   Viewer viewer(backend, settings, options);
   EXPECT_EQ(viewer.run(), 0);
   std::ifstream file(report);
@@ -61,7 +31,7 @@ nlohmann::json runAndReport(const Settings& settings, int frames, int every, con
 // The falling, landing slime: every frame traces anew, reusing the floor's pixels outside the slime's
 // footprint; each checked frame must match the full trace.
 TEST(ViewerCheck, TheFallingSlimeShowsTheFullTracesImage) {
-  const nlohmann::json check = runAndReport(smallScene(), 12, 3, "viewer_check_falling.json")["check"];
+  const nlohmann::json check = runAndReport(fixture::smallViewerScene(), 12, 3, "viewer_check_falling.json")["check"];
   EXPECT_EQ(check["every"], 3);
   EXPECT_EQ(check["frames"], 4);  // frames 0, 3, 6 and 9 of 0..11
   EXPECT_GE(check["psnr_db"]["mean"].get<double>(), 38.0);
@@ -72,7 +42,7 @@ TEST(ViewerCheck, TheFallingSlimeShowsTheFullTracesImage) {
 // A still slime: the first frame's one-sample image is checked against the one-sample trace, the
 // refining frames are skipped, and the fully refined image against the 16-sample trace (render.spp = 16).
 TEST(ViewerCheck, AStillImageRefinesToTheSixteenSampleTrace) {
-  Settings settings = smallScene();
+  Settings settings = fixture::smallViewerScene();
   settings.sim.gravity = 0.0;  // nothing moves
   const nlohmann::json check = runAndReport(settings, 30, 1, "viewer_check_still.json")["check"];
   EXPECT_GT(check["skipped_refining_frames"].get<int>(), 5);

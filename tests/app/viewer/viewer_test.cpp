@@ -1,4 +1,5 @@
 // The viewer's frame code, run headless (EGL surfaceless, no display): the same code as the window.
+#include "viewer_fixture.h"
 #include "app/viewer/headless_gl.h"
 #include "app/viewer/panels.h"
 #include "app/viewer/ui_snapshot.h"
@@ -19,40 +20,7 @@
 namespace slime {
 namespace {
 
-Settings smallScene() {
-  Settings settings = defaultSettings();
-  settings.camera.width = 320;
-  settings.camera.height = 240;
-  settings.slime.level = 2;
-  return settings;
-}
-
-// The headless back-end with a clock that runs: every frame `secondsPerFrame` of wall time passes, so
-// the physics steps and a scenario plays, the same in every run whatever the machine's speed.
-class SteppingHeadlessGl final : public ViewerBackend {
- public:
-  SteppingHeadlessGl(int width, int height, double secondsPerFrame)
-      : gl_(width, height), secondsPerFrame_(secondsPerFrame) {}
-  FrameInput pollInput() override {
-    FrameInput input = gl_.pollInput();
-    input.elapsedSeconds = secondsPerFrame_;
-    return input;
-  }
-  glm::ivec2 framebufferSize() const override { return gl_.framebufferSize(); }
-  glm::ivec2 windowSize() const override { return gl_.windowSize(); }
-  void initImGuiPlatform() override { gl_.initImGuiPlatform(); }
-  void newImGuiPlatformFrame() override { gl_.newImGuiPlatformFrame(); }
-  void shutdownImGuiPlatform() override { gl_.shutdownImGuiPlatform(); }
-  bool keepsFramebuffer() const override { return gl_.keepsFramebuffer(); }
-  void present(const std::vector<PixelRect>& changed) override { gl_.present(changed); }
-  void waitForInput(double seconds) override { waits.push_back(seconds); }
-
-  std::vector<double> waits;  // every waitForInput the viewer asked for, in order
-
- private:
-  HeadlessGl gl_;
-  double secondsPerFrame_;
-};
+using fixture::SteppingHeadlessGl;
 
 nlohmann::json readJson(const std::filesystem::path& path) {
   std::ifstream file(path);
@@ -61,7 +29,7 @@ nlohmann::json readJson(const std::filesystem::path& path) {
 
 TEST(HeadlessViewer, RunsFramesWithoutAdvancingThePhysicsClock) {
   HeadlessGl backend(320, 240);
-  Viewer viewer(backend, smallScene(), ViewerOptions{});
+  Viewer viewer(backend, fixture::smallViewerScene(), ViewerOptions{});
   for (int frame = 0; frame < 3; ++frame) EXPECT_TRUE(viewer.frame());
   EXPECT_EQ(viewer.stats().frames, 3);
   EXPECT_EQ(viewer.simulation().stepCount(), 0);  // headless time stands still: a snapshot is reproducible
@@ -75,7 +43,7 @@ TEST(HeadlessViewer, StopsAfterTheRequestedNumberOfFrames) {
   HeadlessGl backend(64, 48);
   ViewerOptions options;
   options.maxFrames = 2;
-  Viewer viewer(backend, smallScene(), options);
+  Viewer viewer(backend, fixture::smallViewerScene(), options);
   EXPECT_TRUE(viewer.frame());
   EXPECT_FALSE(viewer.frame());
 }
@@ -84,7 +52,7 @@ TEST(HeadlessViewer, StopsAfterTheRequestedNumberOfFrames) {
 // pixel at full resolution, and a change (here the slime moved) starts it again from one sample.
 TEST(HeadlessViewer, AStillImageRefinesToSixteenSamplesAndAChangeResetsIt) {
   HeadlessGl backend(320, 240);  // room for the image beside the panel column
-  Settings settings = smallScene();
+  Settings settings = fixture::smallViewerScene();
   Viewer viewer(backend, settings, ViewerOptions{});
   ASSERT_TRUE(viewer.frame());
   EXPECT_EQ(viewer.stats().samplesPerPixel, 1);
@@ -102,7 +70,7 @@ TEST(HeadlessViewer, AStillImageRefinesToSixteenSamplesAndAChangeResetsIt) {
 // nothing new to trace and waits for input up to the idle frame time (the rest of 1/60 s after its
 // own work), so a still window does not spin a core.
 TEST(HeadlessViewer, FramesWithNothingNewToTraceWaitForInput) {
-  Settings settings = smallScene();
+  Settings settings = fixture::smallViewerScene();
   settings.sim.gravity = 0.0;  // the slime floats where it starts: nothing moves
   SteppingHeadlessGl backend(320, 240, 1.0 / 30.0);
   ViewerOptions options;
@@ -146,7 +114,7 @@ TEST(HeadlessViewer, AScenarioGrabTakesHoldAndTheReportCountsIt) {
   // clock then drops what it cannot step), and the checks below need only half a second past the grab.
   options.maxFrames = static_cast<int>(std::ceil(1.5 * (grab->time + 0.5) / kSecondsPerFrame));
   SteppingHeadlessGl backend(320, 240, kSecondsPerFrame);
-  Viewer viewer(backend, smallScene(), options);
+  Viewer viewer(backend, fixture::smallViewerScene(), options);
   ASSERT_EQ(viewer.run(), 0);
   ASSERT_GT(viewer.simulation().time(), grab->time + 0.3) << "the physics fell behind the frames";
 
@@ -192,7 +160,7 @@ TEST(HeadlessViewer, FramesOverTheTargetWhileTheSlimeMovesAreTracedSmaller) {
       std::filesystem::path(SLIME_TEST_OUTPUT_DIR) / "viewer_adaptive_report.json";
   options.reportPath = report.string();
   SteppingHeadlessGl backend(320, 240, 1.0 / 30.0);
-  Settings settings = smallScene();
+  Settings settings = fixture::smallViewerScene();
   settings.render.targetFps = 240.0;  // a scene file's or --set's, as --target-fps sets it
   Viewer viewer(backend, settings, options);
   const int fullWidth = 320 - static_cast<int>(std::lround(panelColumnWidth(320.0f)));
@@ -215,7 +183,7 @@ TEST(HeadlessViewer, AScenarioSetEventIsAppliedAndDrawnAtOnce) {
   ViewerOptions options;
   const char* kSetColour = R"({"events": [{"t": 1.0, "set": {"slime.color": [0.9, 0.2, 0.2]}}]})";
   options.scenario = parseScenario(nlohmann::json::parse(kSetColour), "inline");
-  Settings settings = smallScene();
+  Settings settings = fixture::smallViewerScene();
   settings.sim.gravity = 0.0;
   SteppingHeadlessGl backend(320, 240, 1.0 / 60.0);
   Viewer viewer(backend, settings, options);
@@ -232,7 +200,7 @@ TEST(UiSnapshot, WritesTheWindowWithItsPanelsAtTheCameraSize) {
   const std::filesystem::path path = std::filesystem::path(SLIME_TEST_OUTPUT_DIR) / "ui_snapshot_test.png";
   std::filesystem::remove(path);
   int settleCalls = 0;
-  writeUiSnapshot(smallScene(), path.string(), [&](Simulation& simulation) {
+  writeUiSnapshot(fixture::smallViewerScene(), path.string(), [&](Simulation& simulation) {
     ++settleCalls;
     for (int step = 0; step < 100; ++step) simulation.step();
   });

@@ -20,16 +20,9 @@
 namespace slime::testing {
 namespace {
 
-// ior 1, transmission 1, no absorption, no Phong terms: the slime bends, reflects and absorbs nothing.
-// The floor's own mirror term is off too: a path through the slime spends two of the depth-3 segments
-// in it, so the floor seen through it could not trace its reflection.
+// The invisible slime (render_fixture.h) leaves the image as if it were not there.
 TEST(Invariant, InvisibleSlimeLeavesTheImageUnchanged) {
-  Settings settings = smallScene(96, 72);
-  settings.slime.ior = 1.0;
-  settings.slime.transmission = 1.0;
-  settings.slime.absorption = 0.0;
-  settings.slime.specular = settings.slime.diffuse = settings.slime.ambient = 0.0;
-  settings.floor.specular = 0.0;
+  Settings settings = invisibleSlimeScene();
   RenderStats stats;
   const Image withSlime = renderScene(settings, &stats);
   const Image without = renderMesh(settings, TriangleMesh{});
@@ -85,6 +78,7 @@ void expectFrameEquals(const Image& image, const std::vector<std::uint8_t>& byte
 TEST(Invariant, FramesFromTheFloorCacheEqualFreshFrames) {
   Settings settings = smallScene(160, 120);
   settings.slime.level = 3;
+  settings.render.checkerboard = false;  // exact frames; checkerboard_test.cpp holds the halved ones
   const TriangleMesh resting = restingMesh(settings);
   TriangleMesh moved = resting;
   for (auto& p : moved.positions) p += glm::dvec3(0.03, 0.02, 0.0);
@@ -138,7 +132,8 @@ TEST(Invariant, FramesFromTheFloorCacheEqualFreshFrames) {
 // Without the promise that the buffers were kept, every pixel is written, even when a new zeroed
 // image lands where the last one was (as a loop's local image often does).
 TEST(Invariant, FreshBuffersAreWrittenWhole) {
-  const Settings settings = smallScene(160, 120);
+  Settings settings = smallScene(160, 120);
+  settings.render.checkerboard = false;  // exact frames
   const TriangleMesh mesh = restingMesh(settings);
   const Image expected = renderMesh(settings, mesh);
   Renderer renderer(settings);

@@ -1,0 +1,52 @@
+// A sticky floor (slime.adhesion, Pa): the bulk body's surface nodes that come to rest on the floor
+// stick where they landed. A stuck node is held in place against tangential and upward pull up to
+// its share of the contact's strength, F_i ≤ σ_a · A_i, where σ_a is slime.adhesion and A_i a third of
+// the floor-facing (projected) area of its surface triangles. The pull is read from the substep
+// itself: a stuck node starts a substep at rest at its anchor, so what moved it, Δx = h² F/m for the
+// kick-drift step, gives F = m |Δx| / h² (upward and sideways; pressing down is the floor's). Held,
+// it is put back and stopped. Pulled harder, it peels only if it lies on the contact's edge (a surface
+// neighbour not stuck): peeling starts at the edge and runs inwards as a front, as a tape's does; an
+// interior node holds until the front reaches it. A peeled node sticks again only after it has left
+// the floor (z above twice the contact band) and come back. slime.adhesion = 0 does nothing at all.
+#pragma once
+
+#include "core/integrators/particle_state.h"
+#include "core/scene/icosphere.h"
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace slime {
+
+// Surface nodes at most this high are on the floor (the bulk's surface nodes rest a little above it:
+// the drawn surface, which bulges below the node triangles, is what touches), m.
+constexpr double kAdhesionContactBand = 0.002;
+
+class FloorAdhesion {
+ public:
+  // Forget every contact; `surfaceNodes` nodes 0..N_s−1 carry the `surface` triangles.
+  void reset(const std::vector<Triangle>& surface, std::size_t surfaceNodes);
+  // Records where the stuck nodes start the substep (call before it).
+  void beginSubstep(const ParticleState& state);
+  // After a substep of length h: holds or peels the stuck nodes, sticks the ones newly at rest on
+  // the floor. `strength` is slime.adhesion, Pa; masses from `freeInverseMasses`.
+  void endSubstep(ParticleState& state, const std::vector<Triangle>& surface,
+                  const std::vector<double>& freeInverseMasses, double strength, double h);
+  std::size_t stuckCount() const;
+  std::size_t peeledCount() const { return peeled_; }  // nodes peeled since reset
+  bool stuck(std::size_t node) const { return node < stuck_.size() && stuck_[node] != 0; }
+
+ private:
+  void updateAreas(const std::vector<Triangle>& surface, const std::vector<glm::dvec3>& positions);
+  bool onEdge(std::size_t node) const;
+
+  std::vector<std::uint8_t> stuck_, left_;  // left_: peeled and not yet off the floor
+  std::vector<glm::dvec3> start_;
+  std::vector<double> area_;
+  std::vector<std::uint32_t> neighbourStart_, neighbours_;  // surface adjacency (CSR)
+  std::size_t peeled_ = 0;
+};
+
+}  // namespace slime
