@@ -281,33 +281,26 @@ std::size_t resolveDrawnFloorContact(BulkBody& body, double friction) {
     const double spanSquared = std::max({glm::dot(a, a), glm::dot(b, b), glm::dot(c, c)});
     if (lowest > 0.0 && lowest * lowest > 0.25 * spanSquared) continue;
     for (std::uint32_t vertex : embedding.verticesOfSurfaceTriangle[s]) {
-      // The element map's height first (4 terms against the smooth map's ~45): the smooth surface
-      // stays within a few millimetres of it (3.6 mm under a 3 cm press), under half the span.
+      // The element map's vertex (4 terms), not the smooth one the drawn surface shows (~45 terms: 6×
+      // the step's cost at level 6, and lifting ~45 nodes per vertex in one pass left drawn vertices
+      // 0.95 mm under the floor in the torture runs). The smooth map's vertices are set on the floor
+      // where they dip under it when placed (liftOntoFloor, surface_embedding.h).
       const Tetrahedron& t = embedding.nodes[vertex];
       const glm::dvec4& w = embedding.weights[vertex];
-      const double rough = w.x * x[t.x].z + w.y * x[t.y].z + w.z * x[t.z].z + w.w * x[t.w].z;
-      if (rough > 0.0 && rough * rough > 0.25 * spanSquared) continue;
-      const SmoothTerm* first = embedding.smoothTerms.data() + embedding.smoothStart[vertex];
-      const SmoothTerm* last = embedding.smoothTerms.data() + embedding.smoothStart[vertex + 1];
-      double z = 0.0;
-      for (const SmoothTerm* term = first; term != last; ++term) z += term->weight * x[term->node].z;
+      const double z = w.x * x[t.x].z + w.y * x[t.y].z + w.z * x[t.z].z + w.w * x[t.w].z;
       if (z >= 0.0) continue;
-      // Only the nodes with positive weights lift the vertex (a node the map extrapolates with a
-      // negative weight would be pushed down), node j by Δz_j = λ φ_j² / m_j with λ such that
-      // Σ φ_j Δz_j = −z: the lift goes mostly to the few nodes that carry the vertex most, as the
-      // element map's did (spread over all ~30 nodes of the smooth map in proportion to φ_j, the lifts
-      // sweep several times the volume and squeezed the landing body by over 1 %). Lifted nodes lose
-      // their downward speed.
-      double stiffness = 0.0;  // Σ φ_j³ / m_j over those nodes
-      for (const SmoothTerm* term = first; term != last; ++term)
-        if (term->weight > 0.0) stiffness += term->weight * term->weight * term->weight * state.inverseMasses[term->node];
+      // Only the nodes with positive weights lift the vertex (a node the affine map extrapolates
+      // with a negative weight would be pushed down); lifted nodes lose their downward speed.
+      double stiffness = 0.0;  // Σ w_j² / m_j over those nodes
+      for (int j = 0; j < 4; ++j)
+        if (w[j] > 0.0) stiffness += w[j] * w[j] * state.inverseMasses[t[j]];
       if (stiffness <= 0.0) continue;
       ++touched;
       const double lift = -z / stiffness;
-      for (const SmoothTerm* term = first; term != last; ++term) {
-        if (term->weight <= 0.0 || state.inverseMasses[term->node] == 0.0) continue;
-        state.positions[term->node].z += lift * term->weight * term->weight * state.inverseMasses[term->node];
-        stopFallWithFriction(state.velocities[term->node], friction);
+      for (int j = 0; j < 4; ++j) {
+        if (w[j] <= 0.0 || state.inverseMasses[t[j]] == 0.0) continue;
+        state.positions[t[j]].z += lift * w[j] * state.inverseMasses[t[j]];
+        stopFallWithFriction(state.velocities[t[j]], friction);
       }
     }
   }

@@ -5,6 +5,8 @@
 #include <glm/ext/vector_int3_sized.hpp>
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -142,13 +144,25 @@ void placeEmbedded(const SurfaceEmbedding& embedding, const std::vector<glm::dve
   const std::size_t count = embedding.smoothStart.size() - 1;
   drawn.resize(count);
   const SmoothTerm* terms = embedding.smoothTerms.data();
-  for (std::size_t i = 0; i < count; ++i) {
-    glm::dvec3 sum(0.0);
-    for (std::uint32_t k = embedding.smoothStart[i]; k < embedding.smoothStart[i + 1]; ++k)
-      sum += terms[k].weight * body[terms[k].node];
-    drawn[i] = sum;
+  const auto place = [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      glm::dvec3 sum(0.0);
+      for (std::uint32_t k = embedding.smoothStart[i]; k < embedding.smoothStart[i + 1]; ++k)
+        sum += terms[k].weight * body[terms[k].node];
+      drawn[i] = sum;
+    }
+  };
+  // In parallel over blocks of vertices, each vertex summed in one fixed order (the same result on any
+  // number of threads). ~45 terms a vertex: level 6's 40,962 vertices take milliseconds on one core, level 4's a tenth of one.
+  constexpr std::size_t kBlock = 4096;
+  if (count <= kBlock) {
+    place(0, count);
+    return;
   }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, kBlock),
+                    [&](const tbb::blocked_range<std::size_t>& range) { place(range.begin(), range.end()); });
 }
+
 
 void placeByElements(const SurfaceEmbedding& embedding, const std::vector<glm::dvec3>& body,
                      std::vector<glm::dvec3>& drawn) {

@@ -26,6 +26,15 @@ constexpr int kRollingInterval = 4;     // steps between applications of the rol
 // 4 ms against relaxation times of 10 ms and more). Every step it cost a quarter of the step.
 constexpr int kRelaxInterval = 4;
 
+// Sets every drawn vertex below the floor (z < 0) on it. The physics holds the element map's vertices
+// on the floor (resolveDrawnFloorContact, 4 nodes a vertex); the smooth map of the same nodes, which
+// places the drawn surface, differs from it by millimetres (most at the contact's rim and under a
+// press) and may dip under the floor where the element map does not: those vertices are drawn on the
+// floor, as the contact patch is.
+void liftOntoFloor(std::vector<glm::dvec3>& drawn) {
+  for (glm::dvec3& p : drawn) p.z = std::max(p.z, 0.0);
+}
+
 }  // namespace
 
 Simulation::Simulation(const Settings& settings) { reload(settings); }
@@ -390,6 +399,7 @@ const std::vector<glm::dvec3>& Simulation::positions() const {
   if (!bulk_) return body_.state.positions;
   if (drawnStale_) {
     placeEmbedded(bulkBody_.embedding, bulkBody_.state.positions, drawnPositions_);
+    liftOntoFloor(drawnPositions_);  // the smooth map may dip under the floor the element map rests on
     drawnStale_ = false;
   }
   return drawnPositions_;
