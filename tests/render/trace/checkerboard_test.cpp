@@ -55,7 +55,7 @@ double psnrDb(const Image& a, const Image& b) {
 // A window's frames while the slime moves: half the footprint's pixels or fewer traced, the image
 // within the check's aims of the full trace, and nothing of the fill left behind once it stops.
 TEST(Checkerboard, MovingFramesStayCloseToTheFullTrace) {
-  Settings settings = smallScene(320, 240);
+  Settings settings = withoutCaustics(smallScene(320, 240));
   settings.slime.level = 3;
   const TriangleMesh resting = restingMesh(settings);
   Renderer renderer(settings);
