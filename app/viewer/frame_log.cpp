@@ -9,7 +9,7 @@ namespace slime {
 bool writeFrameLogCsv(const std::vector<FrameRecord>& records, const std::string& path) {
   std::ofstream file(path);
   file << "frame,end_s,frame_ms,physics_ms,refit_ms,trace_ms,upload_ms,ui_ms,"
-          "traced,full_resolution,width,height,scale,grabbed,simulated_s,check_psnr_db\n";
+          "traced,full_resolution,width,height,scale,grabbed,simulated_s,check_psnr_db,caustics_ms,caustic_photons\n";
   char line[360];
   for (std::size_t index = 0; index < records.size(); ++index) {
     const FrameRecord& frame = records[index];
@@ -24,7 +24,8 @@ bool writeFrameLogCsv(const std::vector<FrameRecord>& records, const std::string
       std::snprintf(line, sizeof line, "%.2f", frame.checkPsnrDb);
       file << line;
     }
-    file << '\n';
+    std::snprintf(line, sizeof line, ",%.3f,%llu\n", stages.caustics, static_cast<unsigned long long>(frame.causticPhotons));
+    file << line;
   }
   file.flush();
   return static_cast<bool>(file);
@@ -47,6 +48,7 @@ FrameSummary summarizeFrames(const std::vector<FrameRecord>& records, bool (*inc
     ++traced;
     summary.meanStages.trace += record.stages.trace;
     summary.meanStages.refit += record.stages.refit;
+    summary.meanStages.caustics += record.stages.caustics;
     ++(record.fullResolution ? summary.fullResolutionFrames : summary.reducedResolutionFrames);
   }
   if (summary.frames == 0) return summary;
@@ -60,6 +62,7 @@ FrameSummary summarizeFrames(const std::vector<FrameRecord>& records, bool (*inc
   if (traced > 0) {
     summary.meanStages.trace /= static_cast<double>(traced);
     summary.meanStages.refit /= static_cast<double>(traced);
+    summary.meanStages.caustics /= static_cast<double>(traced);
   }
   return summary;
 }

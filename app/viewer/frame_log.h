@@ -24,10 +24,12 @@ struct FrameRecord {
   bool grabbed = false;           // the slime was held, by the mouse or a scenario, at the frame's end
   double simulatedSeconds = 0.0;  // simulation time at the frame's end
   double checkPsnrDb = -1.0;      // --check-every: the shown image's PSNR against the full trace; < 0: unchecked
+  std::uint64_t causticPhotons = 0;  // photons behind the caustic map of the frame's trace (0: none)
 };
 
 // One line per frame under a header naming the columns (units in the names: _s, _ms, _db; an
-// unchecked frame leaves check_psnr_db empty). Returns false
+// unchecked frame leaves check_psnr_db empty; caustics_ms and caustic_photons come last, so the
+// plot scripts' column numbers hold). Returns false
 // if the file cannot be written.
 bool writeFrameLogCsv(const std::vector<FrameRecord>& records, const std::string& path);
 

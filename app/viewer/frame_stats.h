@@ -12,6 +12,7 @@ struct StageTimes {
   double physics = 0.0;
   double refit = 0.0;
   double trace = 0.0;
+  double caustics = 0.0;  // the caustic photons traced and gathered: part of trace, not beside it
   double upload = 0.0;
   double ui = 0.0;
 };
@@ -27,6 +28,7 @@ struct FrameStats {
   double reusedFraction = 0.0;           // pixels copied from the frame before, not traced (still view)
   int traceThreads = 0;                  // threads tracing the last traced frame
   double threadUse = 0.0;                // their busy time / (trace time × threads), 0..1
+  std::uint64_t causticPhotons = 0;      // photons behind the last traced frame's caustic map (0: none)
   int physicsSteps = 0;                  // fixed steps run in the last frame
   int samplesPerPixel = 1;               // samples averaged in the image shown (progressive anti-aliasing)
   int imageWidth = 0;                    // traced image size of the last frame
@@ -52,6 +54,7 @@ struct FrameStats {
     if (!traced) return;
     stageSums.refit += stages.refit;
     stageSums.trace += stages.trace;
+    stageSums.caustics += stages.caustics;
     ++tracedFrames;
     ++(fullResolution ? fullResolutionFrames : reducedResolutionFrames);
   }
@@ -67,6 +70,7 @@ struct FrameStats {
     if (tracedFrames > 0) {
       mean.refit = stageSums.refit / static_cast<double>(tracedFrames);
       mean.trace = stageSums.trace / static_cast<double>(tracedFrames);
+      mean.caustics = stageSums.caustics / static_cast<double>(tracedFrames);
     }
     return mean;
   }

@@ -280,6 +280,8 @@ void statsWindow(const PanelView& view, PanelRequests& requests) {
     ImGui::Text("physics %6.1f ms  %d steps", stats.stages.physics, stats.physicsSteps);
     ImGui::Text("refit   %6.1f ms", stats.stages.refit);
     ImGui::Text("trace   %6.1f ms  %dx%d", stats.stages.trace, stats.imageWidth, stats.imageHeight);
+    if (stats.causticPhotons > 0)
+      ImGui::Text(" caust. %6.1f ms  %llu photons", stats.stages.caustics, static_cast<unsigned long long>(stats.causticPhotons));
     ImGui::Text("upload  %6.1f ms", stats.stages.upload);
     ImGui::Text("UI      %6.1f ms", stats.stages.ui);
     ImGui::Text("rays    %.2f M/frame", static_cast<double>(stats.rays) / 1e6);

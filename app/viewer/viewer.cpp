@@ -379,6 +379,8 @@ void Viewer::traceImage() {
   rendered_ = true;
   imageChanged_ = render.bytesWritten;
   stats_.stages.trace = traceTime.milliseconds();
+  stats_.stages.caustics = render.causticsMs;
+  stats_.causticPhotons = render.causticPhotons;
   stats_.rays = render.rays.total();
   stats_.megaraysPerSecond = render.traceMs > 0.0 ? static_cast<double>(stats_.rays) / (render.traceMs * 1e3) : 0.0;
   stats_.reusedFraction = static_cast<double>(render.reusedPixels) / (static_cast<double>(size.x) * size.y);
@@ -399,7 +401,10 @@ bool Viewer::refineImage(glm::ivec2 size) {
   if (interacting() || refinement_.converged() || settings_.render.spp > 1) return false;
   if (resolution_.scale() < 1.0) return false;  // the adaptive resolution returns to full first
   sampleImage_.resize(size.x, size.y);
-  renderer_.render(frameSettings(size), sampleImage_, nullptr, /*buffersKept=*/false, refinement_.nextOffset());
+  const RenderStats render =
+      renderer_.render(frameSettings(size), sampleImage_, nullptr, /*buffersKept=*/false, refinement_.nextOffset());
+  stats_.stages.caustics = render.causticsMs;
+  stats_.causticPhotons = render.causticPhotons;
   rendered_ = true;
   imageChanged_ = {0, 0, size.x, size.y};  // the average of every pixel
   return refinement_.add(sampleImage_, image_, &imageBytes_);
@@ -462,7 +467,8 @@ void Viewer::finishFrame(double frameMs) {
   record.endSeconds = stats_.totalFrameMs / 1000.0;
   record.frameMs = frameMs;
   record.stages = stats_.stages;
-  if (!imageTraced_) record.stages.trace = record.stages.refit = 0.0;
+  if (!imageTraced_) record.stages.trace = record.stages.refit = record.stages.caustics = 0.0;
+  record.causticPhotons = stats_.causticPhotons;
   record.traced = imageTraced_;
   record.fullResolution = imageTraced_ && tracedAtFullSize_;
   record.imageWidth = image_.width;

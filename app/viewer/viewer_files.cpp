@@ -79,7 +79,8 @@ void Viewer::loadScene() {
 namespace {
 
 nlohmann::json stagesJson(const StageTimes& stages) {
-  return {{"physics", stages.physics}, {"refit", stages.refit}, {"trace", stages.trace}, {"upload", stages.upload},
+  return {{"physics", stages.physics}, {"refit", stages.refit}, {"trace", stages.trace},
+          {"caustics", stages.caustics}, {"upload", stages.upload},
           {"ui", stages.ui}};
 }
 

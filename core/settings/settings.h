@@ -75,7 +75,7 @@ struct RenderSettings {
   double scale = 1.0;                // resolution scale of the viewer's traced image (0.1..1)
   double targetFps = 0.0;            // viewer: the frame rate its adaptive resolution aims for, 0 = off
   bool shadows = true;               // trace shadow rays to the point light
-  bool caustics = false;             // light focused through the slime onto the floor (photons, render/caustics/)
+  bool caustics = true;              // light focused through the slime onto the floor (photons, render/caustics/)
   int photons = 10000;               // photons shot per frame while the slime or the light moves
   bool checkerboard = true;          // viewer, while moving: half the slime's footprint traced, the rest filled in
   bool checkerboardQuarter = true;   // with checkerboard: a quarter traced, the rest filled in two passes

@@ -133,7 +133,8 @@ void forEachField(S& s, Visitor&& visitor) {
   visit("render.caustics", s.render.caustics, Choices{},
         "caustics: light focused through the slime onto the floor, traced as photons from the light");
   visit("render.photons", s.render.photons, Limits{1000, 10000000, "photons per frame"},
-        "caustic photons shot per frame while the slime or the light moves (16 times as many gathered while still)");
+        "caustic photons per frame of a still image (16 such frames gather the finished map a snapshot draws); "
+        "half as many per frame while the slime or the light moves");
   visit("render.checkerboard", s.render.checkerboard, Choices{},
         "viewer, while things move: trace every other pixel of the slime's footprint, fill in the rest from "
         "their neighbours (tracing those where they disagree)");

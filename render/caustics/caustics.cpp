@@ -43,13 +43,21 @@ const CausticMap* Caustics::update(const Settings& settings, const ShadingParame
     straight_.clear();
     tally_ = PhotonTally{};
     traced_ = 0;
+    frames_ = 0;
     cone_ = photonCone(geometry, parameters.lightPosition);
   } else if (converged()) {
     return map_.empty() ? nullptr : &map_;
   }
-  // The next budget of the sequence (progressive), or all that the finished map still lacks, in chunks.
+  // The photons the map lacks (all of the finished map's, or this progressive frame's), in chunks.
   const PhotonTracer tracer(geometry, intersector, parameters);
-  const std::uint64_t first = traced_, photons = progressive ? budget_ : budget_ * kStillBudgets - traced_;
+  const std::uint64_t finished = budget_ * kStillBudgets;
+  std::uint64_t target = finished;
+  if (progressive) {
+    ++frames_;
+    target = frames_ == 1 ? std::max<std::uint64_t>(1, budget_ / kMovingDivisor)
+                          : std::min(finished, budget_ * static_cast<std::uint64_t>(frames_));
+  }
+  const std::uint64_t first = traced_, photons = target - traced_;
   const std::uint64_t chunks = (photons + kChunk - 1) / kChunk;
   std::vector<std::vector<PhotonLanding>> found(chunks), straight(chunks);
   std::vector<PhotonTally> tallies(chunks);

@@ -53,6 +53,8 @@ TEST(FrameLog, CsvHasAHeaderAndOneLinePerFrame) {
   frame.imageHeight = 180;
   frame.scale = 0.5;
   frame.checkPsnrDb = 41.257;
+  frame.stages.caustics = 3.25;
+  frame.causticPhotons = 20000;
   ASSERT_TRUE(writeFrameLogCsv({record(40.0, true, true, false), frame}, path.string()));
   std::ifstream file(path);
   std::string header, first, second, extra;
@@ -62,9 +64,9 @@ TEST(FrameLog, CsvHasAHeaderAndOneLinePerFrame) {
   EXPECT_FALSE(std::getline(file, extra));
   EXPECT_EQ(header,
             "frame,end_s,frame_ms,physics_ms,refit_ms,trace_ms,upload_ms,ui_ms,"
-            "traced,full_resolution,width,height,scale,grabbed,simulated_s,check_psnr_db");
-  EXPECT_EQ(second, "1,0.0000,33.500,5.000,0.000,40.000,0.000,8.000,1,0,320,180,0.500,1,0.0000,41.26");
-  EXPECT_EQ(first.substr(first.size() - 8), ",0.0000,");  // unchecked: the last column empty
+            "traced,full_resolution,width,height,scale,grabbed,simulated_s,check_psnr_db,caustics_ms,caustic_photons");
+  EXPECT_EQ(second, "1,0.0000,33.500,5.000,0.000,40.000,0.000,8.000,1,0,320,180,0.500,1,0.0000,41.26,3.250,20000");
+  EXPECT_EQ(first.substr(first.size() - 16), ",0.0000,,0.000,0");  // unchecked: check_psnr_db empty
 }
 
 TEST(FrameLog, AnUnwritablePathIsReported) {

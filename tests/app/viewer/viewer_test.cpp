@@ -143,7 +143,7 @@ TEST(HeadlessViewer, AScenarioGrabTakesHoldAndTheReportCountsIt) {
   int lines = 0;
   while (std::getline(log, line)) ++lines, last = line;
   EXPECT_EQ(lines, 1 + options.maxFrames);
-  // grabbed is the 14th of the 16 columns (simulated_s and check_psnr_db follow it).
+  // grabbed is the 14th of the 18 columns (simulated_s, check_psnr_db, caustics_ms, caustic_photons follow it).
   std::vector<std::string> columns;
   std::stringstream fields(last);
   for (std::string field; std::getline(fields, field, ',');) columns.push_back(field);

@@ -308,8 +308,9 @@ TEST(Caustics, PlainRenderDoesNotDependOnEarlierFrames) {
   EXPECT_EQ(differingPixels(first, fresh), 0);
 }
 
-// The viewer's progressive map: one budget a frame while nothing changes, the same photons in the
-// same order, so its 16th frame is the plain render's finished map; a change starts it again.
+// The viewer's progressive map: half a budget in a frame that starts it, then up to k budgets in the
+// k-th frame while nothing changes, the same photons in the same order, so its 16th frame is the
+// plain render's finished map; a change starts it again.
 TEST(Caustics, ProgressiveMapEndsAtThePlainRendersFinishedMap) {
   const Settings settings = clearSlimeLitFromTheSide(48, 36);
   const TriangleMesh mesh = restingMesh(settings);
@@ -318,17 +319,20 @@ TEST(Caustics, ProgressiveMapEndsAtThePlainRendersFinishedMap) {
   renderer.updateSlime(mesh.positions, mesh.triangles);
   Image image;
   image.resize(48, 36);
+  const auto moving = static_cast<std::uint64_t>(settings.render.photons / Caustics::kMovingDivisor);
   RenderStats stats = renderer.render(settings, image);
-  EXPECT_EQ(stats.causticPhotons, static_cast<std::uint64_t>(settings.render.photons));
+  EXPECT_EQ(stats.causticPhotons, moving);
   const Image early = image;
-  for (int frame = 1; frame < Caustics::kStillBudgets; ++frame) stats = renderer.render(settings, image);
+  stats = renderer.render(settings, image);
+  EXPECT_EQ(stats.causticPhotons, 2 * static_cast<std::uint64_t>(settings.render.photons));
+  for (int frame = 2; frame < Caustics::kStillBudgets; ++frame) stats = renderer.render(settings, image);
   EXPECT_EQ(stats.causticPhotons, Caustics::kStillBudgets * static_cast<std::uint64_t>(settings.render.photons));
   EXPECT_GT(differingPixels(early, image), 0);  // the map refined
   EXPECT_EQ(differingPixels(image, renderMesh(settings, mesh)), 0);
   Settings moved = settings;
   moved.light.position.x = 0.24;
   stats = renderer.render(moved, image);
-  EXPECT_EQ(stats.causticPhotons, static_cast<std::uint64_t>(settings.render.photons));
+  EXPECT_EQ(stats.causticPhotons, moving);
 }
 
 // The map's gain is a ratio of what arrived over what would have arrived unblocked, each over its own

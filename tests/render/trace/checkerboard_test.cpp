@@ -56,7 +56,7 @@ double psnrDb(const Image& a, const Image& b) {
 // render.checkerboardQuarter), the image within the check's aims of the full trace, and nothing of the
 // fill left behind once it stops.
 void expectMovingFramesCloseToTheFullTrace(bool quarter) {
-  Settings settings = smallScene(320, 240);
+  Settings settings = withoutCaustics(smallScene(320, 240));
   settings.slime.level = 3;
   settings.render.checkerboardQuarter = quarter;
   const TriangleMesh resting = restingMesh(settings);

@@ -76,7 +76,7 @@ void expectFrameEquals(const Image& image, const std::vector<std::uint8_t>& byte
 // pixels it copied before) and after the camera or the light changed (the caches are dropped).
 // With the window's byte output on, the bytes the tiles write must be the image's own encoding.
 TEST(Invariant, FramesFromTheFloorCacheEqualFreshFrames) {
-  Settings settings = smallScene(160, 120);
+  Settings settings = withoutCaustics(smallScene(160, 120));
   settings.slime.level = 3;
   settings.render.checkerboard = false;  // exact frames; checkerboard_test.cpp holds the halved ones
   const TriangleMesh resting = restingMesh(settings);
@@ -211,7 +211,7 @@ TEST(Invariant, FootprintHoldsEveryPixelTheSlimeChanges) {
 // sample a pixel, the pixels whose centre a silhouette or a refracted plank edge crosses flip
 // whatever the move). A move of one pixel must show by the same rule.
 TEST(Invariant, MotionBelowTheRedrawThresholdDoesNotShow) {
-  Settings settings = smallScene(367, 282);  // the default view at half size
+  Settings settings = withoutCaustics(smallScene(367, 282));  // the default view at half size
   const TriangleMesh mesh = restingMesh(settings);
   auto movedBy = [&](double pixels) {
     std::mt19937 random(7);
@@ -251,7 +251,7 @@ TEST(Invariant, MotionBelowTheRedrawThresholdDoesNotShow) {
 // The seed's algorithm (bounding sphere, then every triangle) and Embree must agree.
 TEST(Oracle, EmbreeMatchesBruteForce) {
   for (const char* optics : {"fresnel", "seed"}) {
-    Settings settings = smallScene(160, 120);
+    Settings settings = withoutCaustics(smallScene(160, 120));
     settings.slime.level = 3;
     settings.render.optics = optics;
     const Image embree = renderScene(settings);
@@ -290,7 +290,7 @@ void expectFinite(const Settings& settings, const TriangleMesh& mesh, const char
 }
 
 TEST(Robustness, NoNanPixelForDegenerateMeshes) {
-  Settings settings = smallScene(48, 36);
+  Settings settings = withoutCaustics(smallScene(48, 36));
   settings.slime.level = 2;
   const TriangleMesh ball = restingMesh(settings);
 

@@ -73,7 +73,7 @@ void compareEveryPixel(const Settings& settings, const SlimeGeometry& geometry, 
 }
 
 TEST(PrimaryVisibility, EqualsTheEyesGridAndTheBruteForcePixelForPixel) {
-  Settings settings = smallScene(128, 96);
+  Settings settings = withoutCaustics(smallScene(128, 96));
   settings.camera.fov = 30.0;
   std::vector<Shape> shapes{{"ball", makeIcosphere(4, settings.slime.radius, settings.slime.position)},
                             {"coarse ball", makeIcosphere(2, settings.slime.radius, settings.slime.position)}};
