@@ -308,8 +308,12 @@ std::size_t resolveDrawnFloorContact(BulkBody& body, double friction) {
 }
 
 double bulkHighestFrequency(const BulkBody& body, BulkScratch& scratch, int iterations) {
-  // Power iteration on M⁻¹K, K applied as −(f(x0 + εu) − f(x0))/ε at the rest shape.
-  const std::vector<glm::dvec3>& rest = body.mesh.positions;
+  return bulkHighestFrequencyAt(body, body.mesh.positions, scratch, iterations);
+}
+
+double bulkHighestFrequencyAt(const BulkBody& body, const std::vector<glm::dvec3>& rest, BulkScratch& scratch,
+                              int iterations) {
+  // Power iteration on M⁻¹K, K applied as −(f(x + εu) − f(x))/ε at the shape x.
   const std::size_t n = rest.size();
   const std::vector<glm::dvec3> still(n, glm::dvec3(0.0));
   std::vector<glm::dvec3> base, probe, direction(n);

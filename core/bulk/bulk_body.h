@@ -122,6 +122,10 @@ std::size_t resolveDrawnFloorContact(BulkBody& body, double friction);
 // ω_max of the undamped linearised body (power iteration on finite differences of the forces) and
 // the dampers' highest rate (Gershgorin bound), for the explicit step limit.
 double bulkHighestFrequency(const BulkBody& body, BulkScratch& scratch, int iterations = 40);
+// The same about the shape `at` (the body's current one): a stretched element is thinner across,
+// so its highest frequency rises (ω ∝ 1/thickness); the step limit follows it under the hands.
+double bulkHighestFrequencyAt(const BulkBody& body, const std::vector<glm::dvec3>& at, BulkScratch& scratch,
+                              int iterations = 40);
 double bulkHighestDampingRate(const BulkBody& body);
 
 }  // namespace slime

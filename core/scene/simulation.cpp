@@ -39,6 +39,9 @@ constexpr double kTravelPerSubstep = 0.25;
 void liftOntoFloor(std::vector<glm::dvec3>& drawn) {
   for (glm::dvec3& p : drawn) p.z = std::max(p.z, 0.0);
 }
+// Steps between estimates of the bulk body's highest frequency about its current shape while a hand
+// holds it or it is still stretched (40 force evaluations, about 2 % of the steps between them).
+constexpr int kFrequencyInterval = 50;
 
 }  // namespace
 
@@ -104,6 +107,7 @@ void Simulation::applySettings(const Settings& settings) {
   settings_.slime.level = level;
   if (material && bulk_) applyBulkMaterial(bulkBody_, settings.slime);
   if (material && !bulk_) applySlimeMaterial(body_, settings.slime);
+  for (Hand& hand : hands_) hand.spring.maxForce = settings_.sim.handForce;  // a hand that holds feels it now
   refinement_ = 1;
   rebuildModels();
 }
@@ -121,7 +125,8 @@ void Simulation::rebuildModels() {
     }
     accelerationField_ = [this](const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v,
                                 std::vector<glm::dvec3>& a) { bulkAccelerations(x, v, a); };
-    highestFrequency_ = bulkHighestFrequency(bulkBody_, bulkScratch_);
+    highestFrequency_ = restFrequency_ = bulkHighestFrequency(bulkBody_, bulkScratch_);
+    deformedFrequency_ = false;
     // symplectic_euler integrates the dampers exactly; the explicit methods feel their rate.
     bulkDampingRate_ = bulkHighestDampingRate(bulkBody_);
     highestDampingRate_ = integrator_ == Integrator::SymplecticEuler ? 0.0 : bulkDampingRate_;
@@ -214,6 +219,15 @@ int Simulation::bulkTravelSubsteps() const {
 
 void Simulation::step() {
   travelSubsteps_ = bulkTravelSubsteps();
+  // A body stretched under the hands has thinner elements, whose highest frequency ω ∝ 1/thickness
+  // rises with the stretch (×1.5 in a 5× strand): the explicit step limit 2/ω follows the shape, so
+  // the step stays stable instead of diverging and rolling back (issue 29, long strands).
+  if (bulk_ && automaticSubsteps_ && !projectiveActive_ && (anyGrabbing() || deformedFrequency_) &&
+      stepCount_ % kFrequencyInterval == 0) {
+    const double now = bulkHighestFrequencyAt(bulkBody_, bulkBody_.state.positions, bulkScratch_);
+    highestFrequency_ = std::max(restFrequency_, now);
+    deformedFrequency_ = now > restFrequency_;
+  }
   const int substeps = substepsPerStep();
   const double h = settings_.sim.dt / substeps;
   if (bulk_) {  // each mouse target moves to where dragTo put it over this step
@@ -511,6 +525,7 @@ bool Simulation::grab(const glm::dvec3& point, double radius, int which) {
     spring.nodes = nodes;
     spring.target = surface;
     spring.damping = kMouseDampingRatio * 2.0 * std::sqrt(spring.stiffness * mass);
+    spring.maxForce = settings_.sim.handForce;
     hand.pendingTarget = surface;
     hand.holding = true;
     hand.nodes = std::move(nodes);

@@ -152,6 +152,8 @@ class Simulation {
   ForceModel forceModel_;    // every force, the damper explicit
   bool automaticSubsteps_ = true;
   double highestFrequency_ = 0.0;
+  double restFrequency_ = 0.0;     // bulk: ω_max at the rest shape; highestFrequency_ never drops below it
+  bool deformedFrequency_ = false; // bulk: highestFrequency_ is above the rest one (a stretched body)
   double highestDampingRate_ = 0.0;
   double bulkDampingRate_ = 0.0;  // bulk: the dampers' Gershgorin rate, for symplectic_euler's cap
   std::vector<glm::dvec2> dampingShares_;  // per spring, for the substep length dampingDecayStep_
