@@ -64,27 +64,29 @@ std::vector<glm::dvec3> modeShape(const Simulation& simulation, bool spheroidal,
   return shape;
 }
 
-double modalAmplitude(const Simulation& simulation, const std::vector<glm::dvec3>& shape) {
-  const std::vector<glm::dvec3>& rest = simulation.bulkBody().mesh.positions;
-  const std::vector<glm::dvec3>& x = simulation.state().positions;
+namespace {
+
+// Σ m (u − origin)·ψ / Σ m ψ·ψ over the nodes (origin: none, or the rest positions).
+double modeMassProjection(const Simulation& simulation, const std::vector<glm::dvec3>& u,
+                      const std::vector<glm::dvec3>* origin, const std::vector<glm::dvec3>& shape) {
   const std::vector<double>& w = simulation.bulkBody().freeInverseMasses;
   double projection = 0.0, norm = 0.0;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    projection += glm::dot(x[i] - rest[i], shape[i]) / w[i];
+  for (std::size_t i = 0; i < u.size(); ++i) {
+    const glm::dvec3 d = origin != nullptr ? u[i] - (*origin)[i] : u[i];
+    projection += glm::dot(d, shape[i]) / w[i];
     norm += glm::dot(shape[i], shape[i]) / w[i];
   }
   return projection / norm;
 }
 
+}  // namespace
+
+double modalAmplitude(const Simulation& simulation, const std::vector<glm::dvec3>& shape) {
+  return modeMassProjection(simulation, simulation.state().positions, &simulation.bulkBody().mesh.positions, shape);
+}
+
 double modalVelocity(const Simulation& simulation, const std::vector<glm::dvec3>& shape) {
-  const std::vector<glm::dvec3>& v = simulation.state().velocities;
-  const std::vector<double>& w = simulation.bulkBody().freeInverseMasses;
-  double projection = 0.0, norm = 0.0;
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    projection += glm::dot(v[i], shape[i]) / w[i];
-    norm += glm::dot(shape[i], shape[i]) / w[i];
-  }
-  return projection / norm;
+  return modeMassProjection(simulation, simulation.state().velocities, nullptr, shape);
 }
 
 double lambTheoryHz(const Simulation& simulation, double eta) {
