@@ -341,6 +341,7 @@ MaterialBenchOptions MaterialBenchOptions::quick() {
   options.creepSeconds = 2.0;
   options.energySeconds = 1.0;
   options.tensile.barSteps = 1000;
+  options.tensile.meshedSteps = 100;
   options.tensile.settleSeconds = 0.5;
   options.damping.resolution = 1;
   options.damping.steps = {0.001, 0.004};
@@ -434,9 +435,8 @@ json runMaterialBench(const Settings& settings, const MaterialBenchOptions& opti
               100.0 * energy["max_deviation_stored"].get<double>(), energy["volume_ratio"]["min"].get<double>(),
               energy["volume_ratio"]["max"].get<double>());
 
-  CsvTable barTable{{"strain_rate", "strain", "stress_pa", "closed_form_pa", "lateral_stretch"}, {}};
-  CsvTable pullTable{{"speed_m_s", "extension_m", "force_n"}, {}};
-  const json tensile = runTensileBench(settings, options.tensile, barTable, pullTable);
+  CsvTable barTable = tensilePointTable(), meshedTable = tensileMeshedTable(), pullTable = tensilePullTable();
+  const json tensile = runTensileBench(settings, options.tensile, barTable, meshedTable, pullTable);
   CsvTable dampingTable;
   const json damping = runDampingBench(settings, options.damping, dampingTable);
 
@@ -463,6 +463,7 @@ json runMaterialBench(const Settings& settings, const MaterialBenchOptions& opti
     writeCsvFile(lambTable, options.csvFile);
     writeCsvFile(creepTable, siblingCsvPath(options.csvFile, "creep"));
     writeCsvFile(barTable, siblingCsvPath(options.csvFile, "tensile"));
+    writeCsvFile(meshedTable, siblingCsvPath(options.csvFile, "tensile_bar"));
     writeCsvFile(pullTable, siblingCsvPath(options.csvFile, "pull"));
     writeCsvFile(dampingTable, siblingCsvPath(options.csvFile, "damping"));
   }

@@ -38,8 +38,8 @@ struct MaterialBenchOptions {
   TensileOptions tensile;
   DampingOptions damping;
   std::string jsonFile;
-  // FILE: the Lamb table; FILE_creep: the creep and recovery series; FILE_tensile: the bar's stress
-  // against strain; FILE_pull: the two hands' force against extension; FILE_damping: the integrators'
+  // FILE: the Lamb table; FILE_creep: the creep and recovery series; FILE_tensile: the uniform bar's
+  // stress against strain; FILE_tensile_bar: the meshed cylinder's; FILE_pull: the two hands' force against extension; FILE_damping: the integrators'
   // numerical damping of Lamb's modes against the step.
   std::string csvFile;
 

@@ -1,17 +1,18 @@
 // The tensile test of `slime bench material` (issue 29, item 5), as a rheometer would run it:
-//  (a) a bar of the slime's material stretched at a constant strain rate ε̇, at three rates: a uniform
-//      bar (one material point, its ends pulled apart, its sides free: F = diag(1 + ε, b, b) with b
-//      found so that the lateral stress is zero) through the bulk body's own stress (firstPiolaStress)
-//      and Maxwell flow (relaxMaxwellBranch), one flow per step as the body does. Its nominal stress
-//      against strain is checked at small strain against the standard linear solid's closed form
-//        σ = E∞·ε + E₁·ε̇·τ·(1 − exp(−ε / (ε̇·τ))),   E∞ = 2μ∞(1 + ν), E₁ = 2μ₁(1 + ν).
-//      Not the tetrahedral cylinder the issue names: a uniform bar strains uniformly, so one point is
-//      the whole bar (the ends' clamping, which a cylinder of elements would add, is left out).
+//  (a) a bar of the slime's material stretched at a constant strain rate ε̇, at three rates: a small
+//      tetrahedral cylinder, its ends held and moved apart (bench_tensile_bar.h: the bulk body's own
+//      elements, solved quasi-statically), its nominal stress against the strain of its middle half (an
+//      extensometer's) checked at small strain against the standard linear solid's closed form
+//        σ = E∞·ε + E₁·ε̇·τ·(1 − exp(−ε / (ε̇·τ))),   E∞ = 2μ∞(1 + ν), E₁ = 2μ₁(1 + ν);
+//      beside it the reference: the uniform bar as one material point (F = diag(1 + ε, b, b) with b
+//      found so that the lateral stress is zero, firstPiolaStress and relaxMaxwellBranch once per step),
+//      which is what the cylinder's middle is when its ends' clamping does not reach it.
 //  (b) the slime itself, pulled apart by two hands at three speeds (each hand at half the speed, in
 //      opposite directions, at mid-height): the hands' pull against the extension of the held parts.
 #pragma once
 
 #include "app/bench/bench_report.h"
+#include "app/bench/bench_tensile_bar.h"
 #include "core/bulk/viscoelastic.h"
 #include "core/settings/settings.h"
 
@@ -25,7 +26,9 @@ struct TensileOptions {
   std::vector<double> strainRates{0.05, 0.5, 5.0};  // 1/s: ε̇τ = 0.03, 0.3, 3 at the default τ = 0.6 s
   double maxStrain = 0.3;          // the bar is stretched to this engineering strain
   double checkStrain = 0.05;       // ... and checked against the closed form up to this one
-  int barSteps = 3000;             // steps per bar run (the Maxwell flow once per step)
+  int barSteps = 3000;             // steps per uniform-point run (the Maxwell flow once per step)
+  int meshedSteps = 300;           // steps per meshed-bar run (each a quasi-static balance, then the flow)
+  MeshedBarOptions meshed;         // the cylinder: 1 cm radius, 8 cm long (4 diameters), 2 rings, 16 layers
   std::vector<double> pullSpeeds{0.05, 0.1, 0.2};  // m/s, the hands' speed apart
   double pullExtension = 0.05;     // m, how far apart the hands move
   double settleSeconds = 1.0;      // the slime rests on the floor this long before the hands take it
@@ -43,8 +46,15 @@ struct BarRun {
 };
 BarRun stretchBar(const ViscoelasticMaterial& material, double strainRate, double maxStrain, int steps);
 
-// Runs (a) and (b); rows of the bar series go to `bar` (rate, strain, stress, closed form) and of the
-// pulls to `pull` (speed, extension, force). Returns the figures as JSON.
-nlohmann::json runTensileBench(const Settings& settings, const TensileOptions& options, CsvTable& bar, CsvTable& pull);
+// The columns of runTensileBench's tables.
+CsvTable tensilePointTable();   // strain_rate, strain, stress_pa, closed_form_pa, lateral_stretch
+CsvTable tensileMeshedTable();  // strain_rate, strain, gauge_strain, stress_pa, closed_form_pa, middle_width
+CsvTable tensilePullTable();    // speed_m_s, extension_m, force_n
+
+// Runs (a) and (b); rows of the uniform point go to `bar`, of the meshed cylinder to `meshed` (the
+// closed form there at the gauge's strain and mean rate) and of the pulls to `pull`. Returns the
+// figures as JSON.
+nlohmann::json runTensileBench(const Settings& settings, const TensileOptions& options, CsvTable& bar,
+                               CsvTable& meshed, CsvTable& pull);
 
 }  // namespace slime

@@ -179,7 +179,7 @@ void registerMaterial(CLI::App& bench, int& exitCode) {
   command->add_flag("--quick", options->quick, "Resolutions 1-2 and short runs (CI)");
   command->add_option("--resolutions", options->resolutions, "Resolutions of the Lamb runs, e.g. 1-3 (default 1-3; --quick 1-2)");
   command->add_option("--json", options->jsonFile, "Write every figure as JSON");
-  command->add_option("--csv", options->csvFile, "Write the Lamb table as CSV (and FILE_creep, the creep and recovery series; FILE_tensile, the bar's stress-strain; FILE_pull, the two hands' force-extension; FILE_damping, the integrators' numerical damping against the step)");
+  command->add_option("--csv", options->csvFile, "Write the Lamb table as CSV (and FILE_creep, the creep and recovery series; FILE_tensile, the uniform bar's stress-strain; FILE_tensile_bar, the meshed cylinder's; FILE_pull, the two hands' force-extension; FILE_damping, the integrators' numerical damping against the step)");
   addSceneOptions(*command, options->scene);
   command->callback([options, &exitCode] {
     MaterialBenchOptions bench = options->quick ? MaterialBenchOptions::quick() : MaterialBenchOptions{};

@@ -64,8 +64,13 @@ TEST(BenchTensileLong, FasterPullsOfTheSlimeNeedMoreForce) {
   options.pullSpeeds = {0.05, 0.2};
   options.pullExtension = 0.04;
   options.settleSeconds = 0.5;
-  CsvTable bar{{"a", "b", "c", "d", "e"}, {}}, pull{{"a", "b", "c"}, {}};
-  const nlohmann::json report = runTensileBench(settings, options, bar, pull);
+  options.meshedSteps = 20;
+  options.maxStrain = 0.1;
+  CsvTable bar = tensilePointTable(), meshed = tensileMeshedTable(), pull = tensilePullTable();
+  const nlohmann::json report = runTensileBench(settings, options, bar, meshed, pull);
+  ASSERT_EQ(report["bar"].size(), 1u);
+  EXPECT_LT(std::abs(report["bar"][0]["meshed_max_relative_error"].get<double>()), 0.05);
+  EXPECT_EQ(meshed.rows.size(), 21u);
   ASSERT_EQ(report["pulls"].size(), 2u);
   const nlohmann::json& slow = report["pulls"][0];
   const nlohmann::json& fast = report["pulls"][1];
