@@ -43,7 +43,7 @@ void blockStressForces(const ViscoelasticMaterial& material, const TetBlock& res
 }
 
 // The Maxwell branches' flow (relaxMaxwellBranch) of a block of tetrahedra, kLaneWidth lanes at a time
-// (lanes past the last tetrahedron flow too, with F = 0 and so det 0: they keep their rest state).
+// (lanes past the last tetrahedron flow too, with F = 0, and are never read).
 void blockRelax(const TetBlock& rest, const double (&shape)[9][kTetLanes], double decay, MaxwellBlock& maxwell) {
   for (std::size_t o = 0; o < kTetLanes; o += kLaneWidth)
     relaxLanes(shape, rest.restInverse, decay, o, maxwell.metric, maxwell.inverse);
