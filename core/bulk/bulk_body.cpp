@@ -2,6 +2,7 @@
 
 #include "core/scene/floor_contact.h"
 #include "core/membrane/volume.h"
+#include "core/bulk/tet_lanes.h"
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
@@ -11,6 +12,8 @@
 
 namespace slime {
 namespace {
+
+static_assert(kTetLanes % kLaneWidth == 0, "a block holds whole vectors of lanes");
 
 std::size_t edgeIndex(const std::vector<glm::u32vec2>& edges, std::uint32_t a, std::uint32_t b) {
   const glm::u32vec2 key{std::min(a, b), std::max(a, b)};
@@ -30,27 +33,20 @@ inline void setLaneMatrix(double (&entries)[9][kTetLanes], std::size_t lane, con
 }
 
 // Nodal forces H = P·forceMap (P the first Piola stress at F = Ds·Dm⁻¹) of a block of tetrahedra,
-// one per lane; the loop over lanes is the one the compiler vectorises.
+// kLaneWidth lanes at a time (tet_lanes.h).
 void blockStressForces(const ViscoelasticMaterial& material, const TetBlock& rest, const double (&shape)[9][kTetLanes],
-                       const double (&maxwell)[9][kTetLanes], double (&forces)[9][kTetLanes]) {
-  for (std::size_t lane = 0; lane < kTetLanes; ++lane) {
-    const glm::dmat3 f = laneMatrix(shape, lane) * laneMatrix(rest.restInverse, lane);
-    const glm::dmat3 p = firstPiolaStress(material, f, laneMatrix(maxwell, lane));
-    setLaneMatrix(forces, lane, p * laneMatrix(rest.forceMap, lane));
-  }
+                       const double (&maxwell)[9][kTetLanes], std::size_t count, double (&forces)[9][kTetLanes]) {
+  const double lambdaPrime = volumetricModulus(material), alpha = restVolumeRatio(material);
+  for (std::size_t o = 0; o < count; o += kLaneWidth)
+    stressForceLanes(material.longTermShear, material.maxwellShear, lambdaPrime, alpha, shape, rest.restInverse,
+                     rest.forceMap, maxwell, o, forces);
 }
 
-
-// The Maxwell branches' flow (relaxMaxwellBranch) of a block of tetrahedra, one per lane (lanes past
-// the last tetrahedron flow too, with F = 0, and are never read).
+// The Maxwell branches' flow (relaxMaxwellBranch) of a block of tetrahedra, kLaneWidth lanes at a time
+// (lanes past the last tetrahedron flow too, with F = 0, and are never read).
 void blockRelax(const TetBlock& rest, const double (&shape)[9][kTetLanes], double decay, MaxwellBlock& maxwell) {
-  for (std::size_t lane = 0; lane < kTetLanes; ++lane) {
-    const glm::dmat3 f = laneMatrix(shape, lane) * laneMatrix(rest.restInverse, lane);
-    const MaxwellRest flowed =
-        relaxMaxwellBranch(f, {laneMatrix(maxwell.metric, lane), laneMatrix(maxwell.inverse, lane)}, decay);
-    setLaneMatrix(maxwell.metric, lane, flowed.metric);
-    setLaneMatrix(maxwell.inverse, lane, flowed.inverse);
-  }
+  for (std::size_t o = 0; o < kTetLanes; o += kLaneWidth)
+    relaxLanes(shape, rest.restInverse, decay, o, maxwell.metric, maxwell.inverse);
 }
 
 }  // namespace
@@ -171,7 +167,7 @@ void bulkInternalForces(const BulkBody& body, const std::vector<glm::dvec3>& x, 
     alignas(64) double shape[9][kTetLanes];
     alignas(64) double h[9][kTetLanes];
     gatherShapes(tetrahedra, x, block, shape);
-    blockStressForces(body.material, body.restBlocks[block], shape, body.maxwell[block].inverse, h);
+    blockStressForces(body.material, body.restBlocks[block], shape, body.maxwell[block].inverse, count, h);
     for (std::size_t lane = 0; lane < count; ++lane) {
       const Tetrahedron& t = tetrahedra[first + lane];
       const glm::dvec3 h0(h[0][lane], h[1][lane], h[2][lane]), h1(h[3][lane], h[4][lane], h[5][lane]),

@@ -1,0 +1,133 @@
+// The bulk body's per-element arithmetic written once for a whole vector of tetrahedra (GCC/Clang vector
+// extensions, no intrinsics): the nodal forces H = P·(−V0 Dm⁻ᵀ) of the stress (viscoelastic.h's
+// firstPiolaStress) and the Maxwell branches' flow (relaxMaxwellBranch), kLaneWidth tetrahedra per
+// instruction. GCC left the per-lane glm loops scalar on an AVX2 processor (perf, issue 27: the force loop
+// was 51 % of a step and the flow 14 %, all vmulsd/vfmaddsd), so the lanes are spelt out here.
+// Entries are stored [3·column + row][lane] as in TetBlock (bulk_body.h). The same operations in the same
+// order for every lane, so the result does not depend on where a tetrahedron sits in its block.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+
+namespace slime {
+
+#if defined(__AVX512F__)
+constexpr std::size_t kLaneWidth = 8;  // doubles per vector register
+#else
+constexpr std::size_t kLaneWidth = 4;  // AVX2 (and two SSE2 registers without it)
+#endif
+using Lanes = double __attribute__((vector_size(kLaneWidth * sizeof(double))));
+using IntLanes = std::int64_t __attribute__((vector_size(kLaneWidth * sizeof(double))));
+using FloatLanes = float __attribute__((vector_size(kLaneWidth * sizeof(float))));
+using Int32Lanes = std::int32_t __attribute__((vector_size(kLaneWidth * sizeof(float))));
+
+[[gnu::always_inline]] inline Lanes loadLanes(const double* p) {
+  Lanes v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+[[gnu::always_inline]] inline void storeLanes(double* p, const Lanes& v) { std::memcpy(p, &v, sizeof v); }
+
+// x^(−1/3) per lane for x in [2^−126, 2^126] (cube_root.h's method with a single-precision first guess,
+// since AVX2 has no 64-bit integer ↔ double conversion): the float bit trick (3.4 %), then three
+// fourth-order steps r ← r (1 + e/3 + 2e²/9 + 14e³/81), e = 1 − x r³ (3.4 % → 1e-5 → 1e-19 → rounding),
+// within a few ulp. Lanes outside that range give meaningless values; the caller masks them.
+[[gnu::always_inline]] inline void inverseCubeRootLanes(const Lanes& x, Lanes& root) {
+  const Lanes low = x < 0x1p-126 ? Lanes{} + 0x1p-126 : x;
+  const Lanes clamped = low > 0x1p126 ? Lanes{} + 0x1p126 : low;
+  const FloatLanes single = __builtin_convertvector(clamped, FloatLanes);
+  Int32Lanes bits;
+  std::memcpy(&bits, &single, sizeof bits);
+  // 2^23 (127·4/3 − 0.066) − bits/3, as kInverseCubeRootGuessBits is for double (cube_root.h).
+  const FloatLanes third = __builtin_convertvector(bits, FloatLanes) * (1.0f / 3.0f);
+  const Int32Lanes guessBits = 0x54a237fa - __builtin_convertvector(third, Int32Lanes);
+  FloatLanes guess;
+  std::memcpy(&guess, &guessBits, sizeof guess);
+  Lanes r = __builtin_convertvector(guess, Lanes);
+  for (int step = 0; step < 3; ++step) {
+    const Lanes e = 1.0 - clamped * (r * r * r);
+    r += r * e * (1.0 / 3.0 + e * (2.0 / 9.0 + e * (14.0 / 81.0)));
+  }
+  root = r;
+}
+
+// Nodal forces of kLaneWidth tetrahedra from offset `o` of a block's [9][kTetLanes] arrays:
+//   F = Ds Dm⁻¹,  P = μ∞ F + λ'(J − α) cof F + μ1 (F B_v − cof F),  H = P · forceMap
+// (viscoelastic.h; μ1 = 0 leaves the Maxwell term out).
+template <std::size_t N>
+[[gnu::always_inline]] inline void stressForceLanes(double longTermShear, double maxwellShear, double lambdaPrime,
+                                                     double restVolumeRatio, const double (&shape)[9][N],
+                                                     const double (&restInverse)[9][N], const double (&forceMap)[9][N],
+                                                     const double (&maxwellInverse)[9][N], std::size_t o,
+                                                     double (&forces)[9][N]) {
+  Lanes ds[9], f[9];
+  for (int e = 0; e < 9; ++e) ds[e] = loadLanes(&shape[e][o]);
+  for (int c = 0; c < 3; ++c) {
+    const Lanes d0 = loadLanes(&restInverse[3 * c][o]), d1 = loadLanes(&restInverse[3 * c + 1][o]),
+                d2 = loadLanes(&restInverse[3 * c + 2][o]);
+    for (int r = 0; r < 3; ++r) f[3 * c + r] = ds[r] * d0 + ds[3 + r] * d1 + ds[6 + r] * d2;
+  }
+  // cof F: columns f1×f2, f2×f0, f0×f1.
+  Lanes cof[9];
+  for (int c = 0; c < 3; ++c) {
+    const int a = 3 * ((c + 1) % 3), b = 3 * ((c + 2) % 3);
+    cof[3 * c + 0] = f[a + 1] * f[b + 2] - f[a + 2] * f[b + 1];
+    cof[3 * c + 1] = f[a + 2] * f[b + 0] - f[a + 0] * f[b + 2];
+    cof[3 * c + 2] = f[a + 0] * f[b + 1] - f[a + 1] * f[b + 0];
+  }
+  const Lanes j = f[0] * cof[0] + f[1] * cof[1] + f[2] * cof[2];
+  const Lanes volumetric = lambdaPrime * (j - restVolumeRatio);
+  Lanes p[9];
+  for (int e = 0; e < 9; ++e) p[e] = longTermShear * f[e] + volumetric * cof[e];
+  if (maxwellShear > 0.0) {
+    for (int c = 0; c < 3; ++c) {
+      const Lanes b0 = loadLanes(&maxwellInverse[3 * c][o]), b1 = loadLanes(&maxwellInverse[3 * c + 1][o]),
+                  b2 = loadLanes(&maxwellInverse[3 * c + 2][o]);
+      for (int r = 0; r < 3; ++r)
+        p[3 * c + r] += maxwellShear * (f[r] * b0 + f[3 + r] * b1 + f[6 + r] * b2 - cof[3 * c + r]);
+    }
+  }
+  for (int c = 0; c < 3; ++c) {
+    const Lanes m0 = loadLanes(&forceMap[3 * c][o]), m1 = loadLanes(&forceMap[3 * c + 1][o]),
+                m2 = loadLanes(&forceMap[3 * c + 2][o]);
+    for (int r = 0; r < 3; ++r) storeLanes(&forces[3 * c + r][o], p[r] * m0 + p[3 + r] * m1 + p[6 + r] * m2);
+  }
+}
+
+// The Maxwell flow of kLaneWidth tetrahedra from offset `o` (viscoelastic.h's relaxMaxwellBranch):
+// G = C + (G_v − C)·decay, C = FᵀF; G_v ← G det(G)^(−1/3), B_v ← adj(G) det(G)^(−2/3). A lane whose det(G)
+// is not in [2^−126, 2^126] (inverted, or its volume changed 10^19-fold) keeps its rest state.
+template <std::size_t N>
+[[gnu::always_inline]] inline void relaxLanes(const double (&shape)[9][N], const double (&restInverse)[9][N],
+                                               double decay, std::size_t o, double (&metric)[9][N],
+                                               double (&inverse)[9][N]) {
+  Lanes ds[9], f[9];
+  for (int e = 0; e < 9; ++e) ds[e] = loadLanes(&shape[e][o]);
+  for (int c = 0; c < 3; ++c) {
+    const Lanes d0 = loadLanes(&restInverse[3 * c][o]), d1 = loadLanes(&restInverse[3 * c + 1][o]),
+                d2 = loadLanes(&restInverse[3 * c + 2][o]);
+    for (int r = 0; r < 3; ++r) f[3 * c + r] = ds[r] * d0 + ds[3 + r] * d1 + ds[6 + r] * d2;
+  }
+  const auto dot = [&](int a, int b) { return f[3 * a] * f[3 * b] + f[3 * a + 1] * f[3 * b + 1] + f[3 * a + 2] * f[3 * b + 2]; };
+  const Lanes c00 = dot(0, 0), c11 = dot(1, 1), c22 = dot(2, 2), c01 = dot(0, 1), c02 = dot(0, 2), c12 = dot(1, 2);
+  const auto blend = [&](const Lanes& c, int entry) { return c + (loadLanes(&metric[entry][o]) - c) * decay; };
+  const Lanes m00 = blend(c00, 0), m11 = blend(c11, 4), m22 = blend(c22, 8);
+  const Lanes m01 = blend(c01, 3), m02 = blend(c02, 6), m12 = blend(c12, 7);
+  const Lanes a00 = m11 * m22 - m12 * m12, a11 = m00 * m22 - m02 * m02, a22 = m00 * m11 - m01 * m01;
+  const Lanes a01 = m02 * m12 - m01 * m22, a02 = m01 * m12 - m02 * m11, a12 = m01 * m02 - m00 * m12;
+  const Lanes det = m00 * a00 + m01 * a01 + m02 * a02;
+  Lanes scale;
+  inverseCubeRootLanes(det, scale);
+  const Lanes inverseScale = scale * scale;
+  const IntLanes flows = (det >= 0x1p-126) & (det <= 0x1p126);  // per lane, all bits set where it flows
+  const Lanes metricFlowed[9] = {m00, m01, m02, m01, m11, m12, m02, m12, m22};
+  const Lanes inverseFlowed[9] = {a00, a01, a02, a01, a11, a12, a02, a12, a22};
+  for (int e = 0; e < 9; ++e) {
+    storeLanes(&metric[e][o], flows ? metricFlowed[e] * scale : loadLanes(&metric[e][o]));
+    storeLanes(&inverse[e][o], flows ? inverseFlowed[e] * inverseScale : loadLanes(&inverse[e][o]));
+  }
+}
+
+}  // namespace slime
