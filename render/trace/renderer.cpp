@@ -429,11 +429,17 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
   const bool brute = settings.render.backend == "brute";
   const SlimeIntersector& intersector = brute ? static_cast<const SlimeIntersector&>(impl.brute) : impl.embree;
   WhittedTracer tracer(impl.geometry, intersector, impl.floor, parameters);
-  const auto causticsStart = std::chrono::steady_clock::now();
-  tracer.setCaustics(impl.caustics.update(settings, parameters, impl.geometry, intersector, brute ? nullptr : impl.arena.get(),
-                                              impl.progressiveCaustics));
-  stats.causticsMs = millisecondsSince(causticsStart);
-  stats.causticPhotons = impl.caustics.photons();
+  // The caustic map's photons meet the slime through Embree's own queries (PhotonTracer: intersect),
+  // not the light's or the eye's grids, and the tiles alone read the map: so the photons are traced
+  // beside the frame's setup below, on the same cores, rather than before it (issue 28: the setup's
+  // three tasks leave a core idle while the longest finishes).
+  const CausticMap* causticMap = nullptr;
+  const auto causticsOfTheFrame = [&] {
+    const auto causticsStart = std::chrono::steady_clock::now();
+    causticMap = impl.caustics.update(settings, parameters, impl.geometry, intersector, brute ? nullptr : impl.arena.get(),
+                                      impl.progressiveCaustics);
+    stats.causticsMs = millisecondsSince(causticsStart);
+  };
 
   FloorShading* floorShadings = nullptr;  // the caches, with one sample per pixel while the view holds
   const bool lastKeptCaches = impl.lastKeptCaches;
@@ -452,6 +458,7 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
     impl.embree.prepareEye(impl.geometry, glm::vec3(camera.position), !found);
   };
   if (brute) {
+    causticsOfTheFrame();
     footprintOfTheSlime();
     impl.visibility.clear();
     impl.embree.prepareLight(impl.geometry, parameters.lightPosition, false);
@@ -466,12 +473,14 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
     };
     handOff(&impl);
     impl.arena->execute([&] {
-      tbb::parallel_invoke(task(footprintOfTheSlime),
+      tbb::parallel_invoke(task(causticsOfTheFrame), task(footprintOfTheSlime),
                            task([&] { impl.embree.prepareLight(impl.geometry, parameters.lightPosition, parameters.shadows); }),
                            task(primaryHits));
     });
     takeOver(&impl);
   }
+  tracer.setCaustics(causticMap);
+  stats.causticPhotons = impl.caustics.photons();
   const ScreenFootprint* footprint = &impl.footprint;
   if (samplesPerAxis == 1) {
     const FloorCacheKey view = floorCacheKey(camera, parameters, image.width, image.height, pixelOffset);
