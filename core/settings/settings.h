@@ -79,6 +79,7 @@ struct RenderSettings {
   int photons = 10000;               // photons shot per frame while the slime or the light moves
   bool checkerboard = true;          // viewer, while moving: half the slime's footprint traced, the rest filled in
   bool checkerboardQuarter = true;   // with checkerboard: a quarter traced, the rest filled in two passes
+  bool checkerboardSixteenth = true; // with checkerboardQuarter: one pixel in 4 × 4 traced, the rest filled in four passes
 };
 
 struct SimSettings {

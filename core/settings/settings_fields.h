@@ -141,6 +141,9 @@ void forEachField(S& s, Visitor&& visitor) {
   visit("render.checkerboardQuarter", s.render.checkerboardQuarter, Choices{},
         "with render.checkerboard: trace every other row of the checkerboard's colour only (a quarter of the "
         "footprint), fill the colour's other rows from their diagonal neighbours, then the rest as before");
+  visit("render.checkerboardSixteenth", s.render.checkerboardSixteenth, Choices{},
+        "with render.checkerboardQuarter: trace one pixel of each 4 x 4 block of the footprint, fill the quarter's "
+        "lattice from neighbours two pixels away (diagonal, then beside), then the rest as the quarter does");
   visit("render.targetFps", s.render.targetFps, Limits{0.0, 240.0, "frames per second"},
         "viewer: trace the image smaller while moving frames miss this rate (0: always full resolution)");
   // Simulation

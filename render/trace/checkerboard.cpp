@@ -9,18 +9,20 @@
 namespace slime {
 
 bool fillFromNeighbours(const glm::vec3* const neighbours[4], glm::vec3& color, float contrast) {
+  // The range of √max(c, 0) over the neighbours, per channel: √ is monotone (and IEEE's correctly
+  // rounded √ too), so it is √ of the largest value less √ of the smallest: 6 roots, not 12, the
+  // same bits as taking the root of each (the fill pass was 4 % of a held frame's samples in perf).
   glm::vec3 low(INFINITY), high(-INFINITY);
   int count = 0;
   for (int i = 0; i < 4; ++i) {
     if (!neighbours[i]) continue;
     if (!std::isfinite(neighbours[i]->x + neighbours[i]->y + neighbours[i]->z)) return false;
-    const glm::vec3 perceived = glm::sqrt(glm::max(*neighbours[i], glm::vec3(0.0f)));
-    low = glm::min(low, perceived);
-    high = glm::max(high, perceived);
+    low = glm::min(low, *neighbours[i]);
+    high = glm::max(high, *neighbours[i]);
     ++count;
   }
   if (count == 0) return false;
-  const glm::vec3 range = high - low;
+  const glm::vec3 range = glm::sqrt(glm::max(high, glm::vec3(0.0f))) - glm::sqrt(glm::max(low, glm::vec3(0.0f)));
   // NaN (a non-finite neighbour) fails this test too: the pixel is traced.
   if (!(std::max({range.x, range.y, range.z}) <= contrast)) return false;
   const auto spread = [](const glm::vec3& a, const glm::vec3& b) {

@@ -25,11 +25,31 @@ inline bool checkerboardTraced(int x, int y, int parity) { return ((x + y + pari
 // neighbours traced (x ± 1, y ± 1: the same colour, the traced rows) and are filled from them first;
 // then the other colour is filled from its four neighbours beside it, as with the half checkerboard.
 // A quarter of the footprint's pixels traced, and every fill reads only finished pixels.
-enum class CheckerboardPass : std::uint8_t { Traced = 0, FromBeside = 1, FromDiagonals = 2 };
+// The sixteenth (render.checkerboardSixteenth, issue 28): the same one level further. Of each 4 × 4
+// block only the pixel at (ox, oy) modulo 4 is traced; the quarter's lattice (both offsets from it
+// even) is filled first, from neighbours two pixels away: the block's centre (2, 2) from its four
+// diagonal ones (all traced), then (2, 0) and (0, 2) from the four beside them (traced, or filled
+// just before); then the quarter's two passes at one pixel, as above. Each pass still reads only
+// pixels finished before it. The fills are passes in this order; the enum's value marks a skipped pixel.
+enum class CheckerboardPass : std::uint8_t { Traced = 0, FromBeside = 1, FromDiagonals = 2, FromBesideWide = 3, FromDiagonalsWide = 4 };
 
 inline CheckerboardPass checkerboardPass(int x, int y, int parity, bool quarter, int phase) {
   if (!checkerboardTraced(x, y, parity)) return CheckerboardPass::FromBeside;
   return quarter && ((y + phase) & 1) != 0 ? CheckerboardPass::FromDiagonals : CheckerboardPass::Traced;
+}
+
+// The sixteenth's pass of pixel (x, y) with the traced pixel of each block at (ox, oy) modulo 4.
+inline CheckerboardPass checkerboardSixteenthPass(int x, int y, int ox, int oy) {
+  const int dx = (x - ox) & 3, dy = (y - oy) & 3;
+  if (((dx | dy) & 1) != 0)  // off the quarter's lattice: its own two passes
+    return (dx & dy & 1) != 0 ? CheckerboardPass::FromDiagonals : CheckerboardPass::FromBeside;
+  if (dx == 0 && dy == 0) return CheckerboardPass::Traced;
+  return dx == 2 && dy == 2 ? CheckerboardPass::FromDiagonalsWide : CheckerboardPass::FromBesideWide;
+}
+
+// The distance of a pass's neighbours, in pixels.
+inline int checkerboardStep(CheckerboardPass pass) {
+  return pass == CheckerboardPass::FromBesideWide || pass == CheckerboardPass::FromDiagonalsWide ? 2 : 1;
 }
 
 // neighbours: left, right, up, down (or, for the quarter's diagonal pass, up-left, down-right,

@@ -117,8 +117,10 @@ struct Renderer::Impl {
   // and per pixel, 1 where a tile left it to be filled in (cleared as it is filled).
   // With the quarter (render.checkerboardQuarter) also the phase of the rows traced; the two flip
   // in turn, so four frames in a row trace each pixel once.
-  bool halved = false, quartered = false;
-  int parity = 0, phase = 0;
+  // With the sixteenth (render.checkerboardSixteenth), the traced pixel of each 4 × 4 block instead,
+  // (blockX, blockY), which visits all 16 in 16 frames (blockFrame counts them).
+  bool halved = false, quartered = false, sixteenth = false;
+  int parity = 0, phase = 0, blockX = 0, blockY = 0, blockFrame = 0;
   std::vector<std::uint8_t> skipped;
 
   explicit Impl(const Settings& settings)
@@ -228,7 +230,8 @@ struct Renderer::Impl {
               glm::vec3 pickedColors[kRunPixels];
               for (int i = 0; i < count; ++i) {
                 const int x = x0 + i;
-                const CheckerboardPass pass = checkerboardPass(x, y, parity, quartered, phase);
+                const CheckerboardPass pass = sixteenth ? checkerboardSixteenthPass(x, y, blockX, blockY)
+                                                        : checkerboardPass(x, y, parity, quartered, phase);
                 if (pass != CheckerboardPass::Traced && footprint->contains(x, y)) {
                   skipped[first + i] = static_cast<std::uint8_t>(pass);
                   colors[i] = glm::vec3(0.0f);
@@ -344,6 +347,8 @@ struct Renderer::Impl {
     const glm::vec3 eye(camera.position);
     const PrimaryView view(camera, image.width, image.height);
     const int width = image.width, height = image.height;
+    const int step = checkerboardStep(pass);
+    const bool diagonal = pass == CheckerboardPass::FromDiagonals || pass == CheckerboardPass::FromDiagonalsWide;
     for (int y = rowBegin; y < rowEnd; ++y) {
       const ScreenFootprint::Span span = footprint.rows[y];
       const std::size_t row = static_cast<std::size_t>(y) * width;
@@ -365,15 +370,16 @@ struct Renderer::Impl {
       for (int x = std::max(0, span.x0); x < std::min(width, span.x1); ++x) {
         if (skipped[row + x] != static_cast<std::uint8_t>(pass)) continue;
         skipped[row + x] = 0;
-        const bool left = x > 0, right = x + 1 < width, up = y > 0, down = y + 1 < height;
+        const bool left = x >= step, right = x + step < width, up = y >= step, down = y + step < height;
         const glm::vec3* p = &image.pixels[row + x];
-        const glm::vec3* neighbours[4] = {left ? p - 1 : nullptr, right ? p + 1 : nullptr, up ? p - width : nullptr,
-                                          down ? p + width : nullptr};
-        if (pass == CheckerboardPass::FromDiagonals) {  // two opposite pairs: up-left/down-right, up-right/down-left
-          neighbours[0] = left && up ? p - width - 1 : nullptr;
-          neighbours[1] = right && down ? p + width + 1 : nullptr;
-          neighbours[2] = right && up ? p - width + 1 : nullptr;
-          neighbours[3] = left && down ? p + width - 1 : nullptr;
+        const std::ptrdiff_t across = step, along = static_cast<std::ptrdiff_t>(step) * width;
+        const glm::vec3* neighbours[4] = {left ? p - across : nullptr, right ? p + across : nullptr,
+                                          up ? p - along : nullptr, down ? p + along : nullptr};
+        if (diagonal) {  // two opposite pairs: up-left/down-right, up-right/down-left
+          neighbours[0] = left && up ? p - along - across : nullptr;
+          neighbours[1] = right && down ? p + along + across : nullptr;
+          neighbours[2] = right && up ? p - along + across : nullptr;
+          neighbours[3] = left && down ? p + along - across : nullptr;
         }
         glm::vec3 color;
         if (fillFromNeighbours(neighbours, color)) {
@@ -429,11 +435,17 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
   const bool brute = settings.render.backend == "brute";
   const SlimeIntersector& intersector = brute ? static_cast<const SlimeIntersector&>(impl.brute) : impl.embree;
   WhittedTracer tracer(impl.geometry, intersector, impl.floor, parameters);
-  const auto causticsStart = std::chrono::steady_clock::now();
-  tracer.setCaustics(impl.caustics.update(settings, parameters, impl.geometry, intersector, brute ? nullptr : impl.arena.get(),
-                                              impl.progressiveCaustics));
-  stats.causticsMs = millisecondsSince(causticsStart);
-  stats.causticPhotons = impl.caustics.photons();
+  // The caustic map's photons meet the slime through Embree's own queries (PhotonTracer: intersect),
+  // not the light's or the eye's grids, and the tiles alone read the map: so the photons are traced
+  // beside the frame's setup below, on the same cores, rather than before it (issue 28: the setup's
+  // three tasks leave a core idle while the longest finishes).
+  const CausticMap* causticMap = nullptr;
+  const auto causticsOfTheFrame = [&] {
+    const auto causticsStart = std::chrono::steady_clock::now();
+    causticMap = impl.caustics.update(settings, parameters, impl.geometry, intersector, brute ? nullptr : impl.arena.get(),
+                                      impl.progressiveCaustics);
+    stats.causticsMs = millisecondsSince(causticsStart);
+  };
 
   FloorShading* floorShadings = nullptr;  // the caches, with one sample per pixel while the view holds
   const bool lastKeptCaches = impl.lastKeptCaches;
@@ -452,6 +464,7 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
     impl.embree.prepareEye(impl.geometry, glm::vec3(camera.position), !found);
   };
   if (brute) {
+    causticsOfTheFrame();
     footprintOfTheSlime();
     impl.visibility.clear();
     impl.embree.prepareLight(impl.geometry, parameters.lightPosition, false);
@@ -466,12 +479,14 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
     };
     handOff(&impl);
     impl.arena->execute([&] {
-      tbb::parallel_invoke(task(footprintOfTheSlime),
+      tbb::parallel_invoke(task(causticsOfTheFrame), task(footprintOfTheSlime),
                            task([&] { impl.embree.prepareLight(impl.geometry, parameters.lightPosition, parameters.shadows); }),
                            task(primaryHits));
     });
     takeOver(&impl);
   }
+  tracer.setCaustics(causticMap);
+  stats.causticPhotons = impl.caustics.photons();
   const ScreenFootprint* footprint = &impl.footprint;
   if (samplesPerAxis == 1) {
     const FloorCacheKey view = floorCacheKey(camera, parameters, image.width, image.height, pixelOffset);
@@ -501,9 +516,15 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
   // a turning camera is traced whole.
   impl.halved = settings.render.checkerboard && impl.imageInPlace && !brute;
   impl.quartered = impl.halved && settings.render.checkerboardQuarter;
+  impl.sixteenth = impl.quartered && settings.render.checkerboardSixteenth;
   if (impl.halved) {
     impl.parity ^= 1;  // the other colour from the last halved frame
     if (impl.parity == 0) impl.phase ^= 1;  // and every other time, the other rows of the quarter
+    // The sixteenth's block offset: frame k (mod 16) traces (2·b0 + b2, 2·b1 + b3) of k's bits b0..b3,
+    // so consecutive frames trace pixels two apart and 16 frames trace each pixel once.
+    const int k = impl.blockFrame++ & 15;
+    impl.blockX = 2 * (k & 1) + ((k >> 2) & 1);
+    impl.blockY = 2 * ((k >> 1) & 1) + ((k >> 3) & 1);
     if (impl.skipped.size() != image.pixels.size()) impl.skipped.assign(image.pixels.size(), 0);
   }
   for (TraceCounters& counts : impl.counters) counts = TraceCounters{};
@@ -533,6 +554,10 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
           handOff(&impl);
         });
       };
+      if (impl.sixteenth) {  // the quarter's lattice first, from neighbours two pixels away
+        fill(CheckerboardPass::FromDiagonalsWide);
+        fill(CheckerboardPass::FromBesideWide);
+      }
       if (impl.quartered) fill(CheckerboardPass::FromDiagonals);  // the traced colour's other rows first
       fill(CheckerboardPass::FromBeside);
     });

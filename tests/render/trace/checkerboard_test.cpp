@@ -53,12 +53,13 @@ double psnrDb(const Image& a, const Image& b) {
 }
 
 // A window's frames while the slime moves: half the footprint's pixels or fewer traced (a quarter with
-// render.checkerboardQuarter), the image within the check's aims of the full trace, and nothing of the
-// fill left behind once it stops.
-void expectMovingFramesCloseToTheFullTrace(bool quarter) {
+// render.checkerboardQuarter, a sixteenth with render.checkerboardSixteenth), the image within the
+// check's aims of the full trace, and nothing of the fill left behind once it stops.
+void expectMovingFramesCloseToTheFullTrace(bool quarter, bool sixteenth = false) {
   Settings settings = withoutCaustics(smallScene(320, 240));
   settings.slime.level = 3;
   settings.render.checkerboardQuarter = quarter;
+  settings.render.checkerboardSixteenth = sixteenth;
   const TriangleMesh resting = restingMesh(settings);
   Renderer renderer(settings);
   Image image;
@@ -99,6 +100,10 @@ void expectMovingFramesCloseToTheFullTrace(bool quarter) {
       EXPECT_GE(4 * (stats.filledPixels + stats.tracedFillPixels) + 8 * image.width, 3u * static_cast<std::uint64_t>(footprintPixels))
           << what << ": about three quarters of the footprint are left to the fill";
     }
+    if (sixteenth) {  // fifteen sixteenths of it, less four rows of the image at each span's ends
+      EXPECT_GE(16 * (stats.filledPixels + stats.tracedFillPixels) + 64 * image.width, 15u * static_cast<std::uint64_t>(footprintPixels))
+          << what << ": about fifteen sixteenths of the footprint are left to the fill";
+    }
   }
   // Still again, traced in full: the very image of a fresh renderer.
   settings.render.checkerboard = false;
@@ -115,6 +120,43 @@ void expectMovingFramesCloseToTheFullTrace(bool quarter) {
 TEST(Checkerboard, MovingFramesStayCloseToTheFullTrace) { expectMovingFramesCloseToTheFullTrace(false); }
 
 TEST(Checkerboard, QuarterTracedFramesStayCloseToTheFullTrace) { expectMovingFramesCloseToTheFullTrace(true); }
+
+TEST(Checkerboard, SixteenthTracedFramesStayCloseToTheFullTrace) { expectMovingFramesCloseToTheFullTrace(true, true); }
+
+// Every pixel of a 4 × 4 block has one pass, the block's traced pixel moves over all 16 in turn,
+// and each fill pass's neighbours come from earlier passes (the traced pixel, or a pass filled before).
+TEST(Checkerboard, SixteenthPassesReadOnlyFinishedPixels) {
+  const auto order = [](CheckerboardPass pass) {  // the order the passes run in
+    switch (pass) {
+      case CheckerboardPass::Traced: return 0;
+      case CheckerboardPass::FromDiagonalsWide: return 1;
+      case CheckerboardPass::FromBesideWide: return 2;
+      case CheckerboardPass::FromDiagonals: return 3;
+      case CheckerboardPass::FromBeside: return 4;
+    }
+    return 5;
+  };
+  for (int oy = 0; oy < 4; ++oy)
+    for (int ox = 0; ox < 4; ++ox) {
+      int traced = 0;
+      for (int y = 8; y < 12; ++y)
+        for (int x = 8; x < 12; ++x) {
+          const CheckerboardPass pass = checkerboardSixteenthPass(x, y, ox, oy);
+          traced += pass == CheckerboardPass::Traced;
+          if (pass == CheckerboardPass::Traced) continue;
+          const int step = checkerboardStep(pass);
+          const bool diagonal = pass == CheckerboardPass::FromDiagonals || pass == CheckerboardPass::FromDiagonalsWide;
+          const int offsets[4][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};
+          const int diagonals[4][2] = {{-1, -1}, {1, 1}, {1, -1}, {-1, 1}};
+          for (int i = 0; i < 4; ++i) {
+            const int* d = diagonal ? diagonals[i] : offsets[i];
+            const CheckerboardPass neighbour = checkerboardSixteenthPass(x + step * d[0], y + step * d[1], ox, oy);
+            EXPECT_LT(order(neighbour), order(pass)) << "pixel " << x << "," << y << " offset " << ox << "," << oy;
+          }
+        }
+      EXPECT_EQ(traced, 1);
+    }
+}
 
 // Without the window's promise (a snapshot, the check's reference) nothing is filled in.
 TEST(Checkerboard, OnlyAWindowsFramesAreHalved) {
