@@ -178,8 +178,8 @@ SidePull sidePull(double adhesion) {
   return {centroid(simulation).x - before.x, simulation.metrics().width};
 }
 
-// 6,000 Pa: the strength chosen by the pull (docs/physics.md); not the default yet, because a
-// floor that strong holds a slime pressed or yanked flat (the torture runs' rest shape does not come back).
+// 6,000 Pa: the strength chosen by the pull (docs/physics.md); not the default yet: with the
+// rate-dependent contact two torture runs still fail at 8000 Pa (the pressed-flat body, the rk4 yank's bound).
 constexpr double kStickyFloor = 6000.0;
 
 TEST(FloorAdhesion, AStickyFloorStretchesTheSlimeBeforeItSlides) {
