@@ -12,6 +12,7 @@ void FloorAdhesion::reset(const std::vector<Triangle>& surface, std::size_t surf
   left_.assign(surfaceNodes, 0);
   start_.assign(surfaceNodes, glm::dvec3(0.0));
   area_.assign(surfaceNodes, 0.0);
+  age_.assign(surfaceNodes, 0.0);
   peeled_ = 0;
   // Each surface node's neighbours along the surface triangles' edges, sorted and unique.
   std::vector<std::vector<std::uint32_t>> lists(surfaceNodes);
@@ -77,14 +78,24 @@ void FloorAdhesion::endSubstep(ParticleState& state, const std::vector<Triangle>
     glm::dvec3 move = state.positions[i] - start_[i];
     move.z = std::max(move.z, 0.0);
     const double pull = glm::length(move) / (freeInverseMasses[i] * h * h);  // F = m |Δx| / h², N
-    if (pull > strength * area_[i] && onEdge(i)) {
+    age_[i] += h;
+    const double grown = kAdhesionFreshShare + (1.0 - kAdhesionFreshShare) * (1.0 - std::exp(-age_[i] / kAdhesionDwell));
+    const double holds = grown * strength * area_[i];  // σ(t) A_i, N
+    const bool edge = onEdge(i);
+    if (pull > holds && edge) {
       peel.push_back(static_cast<std::uint32_t>(i));
       continue;
     }
+    // Held: it creeps by h v_c r^n along its pull (at most as far as the pull moved it); only an edge
+    // node may lift, and lifted out of the band it has peeled.
+    const double ratio = holds > 0.0 ? pull / holds : 0.0;
+    const double moved = glm::length(move);
+    const double creep = moved > 0.0 ? std::min(1.0, h * kAdhesionCreepSpeed * std::pow(ratio, kAdhesionCreepExponent) / moved) : 0.0;
     glm::dvec3& x = state.positions[i];
-    x.x = start_[i].x;
-    x.y = start_[i].y;
-    x.z = std::min(x.z, start_[i].z);
+    x.x = start_[i].x + creep * move.x;
+    x.y = start_[i].y + creep * move.y;
+    x.z = std::min(x.z, start_[i].z + (edge ? creep * move.z : 0.0));
+    if (edge && x.z > kAdhesionContactBand) peel.push_back(static_cast<std::uint32_t>(i));
     state.velocities[i] = glm::dvec3(0.0, 0.0, std::min(0.0, state.velocities[i].z));
   }
   for (std::uint32_t i : peel) {
@@ -103,6 +114,7 @@ void FloorAdhesion::endSubstep(ParticleState& state, const std::vector<Triangle>
     if (stuck_[i] || state.inverseMasses[i] == 0.0) continue;
     if (z <= kAdhesionContactBand && state.velocities[i].z <= 0.0) {
       stuck_[i] = 1;  // caught where it lands: its sliding stops
+      age_[i] = 0.0;
       state.velocities[i] = glm::dvec3(0.0, 0.0, std::min(0.0, state.velocities[i].z));
     }
   }

@@ -8,6 +8,17 @@
 // neighbour not stuck): peeling starts at the edge and runs inwards as a front, as a tape's does; an
 // interior node holds until the front reaches it. A peeled node sticks again only after it has left
 // the floor (z above twice the contact band) and come back. slime.adhesion = 0 does nothing at all.
+//
+// Rate dependence (issue 29; a wet slime or a pressure-sensitive adhesive is a viscous contact, not a
+// rigid weld): (1) below its strength a stuck node creeps — it slides (and, on the contact's edge,
+// lifts) at v = v_c · r^n with r = F / (σ A) its load ratio, kAdhesionCreepSpeed v_c and
+// kAdhesionCreepExponent n < 1 (a power-law creep of the contact layer, as in the power-law rheology
+// of soft adhesives: a sublinear law lets the body's own small restoring pull still creep while a
+// hand's pull, which loads the contact several times more, moves it barely faster); an edge node
+// lifted out of the contact band has peeled. (2) A fresh contact is weak and gains strength with the
+// time it has been in contact (contact ageing, as in Dieterich's rate-and-state friction):
+// σ(t) = σ_a · (f₀ + (1 − f₀)(1 − exp(−t / τ_w))), f₀ = kAdhesionFreshShare, τ_w = kAdhesionDwell,
+// so a slime landing on the table does not glue itself down at the spread of its impact.
 #pragma once
 
 #include "core/integrators/particle_state.h"
@@ -23,6 +34,12 @@ namespace slime {
 // Surface nodes at most this high are on the floor (the bulk's surface nodes rest a little above it:
 // the drawn surface, which bulges below the node triangles, is what touches), m.
 constexpr double kAdhesionContactBand = 0.002;
+// The contact's creep speed at its full strength (r = 1), m/s, and the creep law's exponent n.
+constexpr double kAdhesionCreepSpeed = 0.005;
+constexpr double kAdhesionCreepExponent = 0.5;
+// Contact ageing: a fresh contact holds kAdhesionFreshShare of σ_a and grows to σ_a over kAdhesionDwell, s.
+constexpr double kAdhesionFreshShare = 0.2;
+constexpr double kAdhesionDwell = 0.5;
 
 class FloorAdhesion {
  public:
@@ -44,7 +61,7 @@ class FloorAdhesion {
 
   std::vector<std::uint8_t> stuck_, left_;  // left_: peeled and not yet off the floor
   std::vector<glm::dvec3> start_;
-  std::vector<double> area_;
+  std::vector<double> area_, age_;  // age_: time in contact, s
   std::vector<std::uint32_t> neighbourStart_, neighbours_;  // surface adjacency (CSR)
   std::size_t peeled_ = 0;
 };

@@ -50,6 +50,26 @@ void pullOnce(Patch& patch, FloorAdhesion& adhesion, std::uint32_t node, double 
   adhesion.endSubstep(patch.state, patch.surface, patch.inverseMasses, strength, h);
 }
 
+// Leaves the patch at rest for 5 s (ten dwell times): its contacts reach their full strength.
+void ageContact(Patch& patch, FloorAdhesion& adhesion, double strength, double h) {
+  for (int k = 0; k < 5000; ++k) {
+    adhesion.beginSubstep(patch.state);
+    adhesion.endSubstep(patch.state, patch.surface, patch.inverseMasses, strength, h);
+  }
+}
+
+// Pulls `node` up by `force` every substep, from rest each time (a sustained load), for `seconds`;
+// returns how long it stayed stuck (s), `seconds` if it never peeled.
+double holdUnder(Patch& patch, FloorAdhesion& adhesion, std::uint32_t node, double force, double strength, double h,
+                 double seconds) {
+  for (int k = 0; k * h < seconds; ++k) {
+    pullOnce(patch, adhesion, node, force, strength, h);
+    if (!adhesion.stuck(node)) return k * h;
+    patch.state.velocities[node] = glm::dvec3(0.0);
+  }
+  return seconds;
+}
+
 TEST(FloorAdhesion, HoldsUpToItsStrengthAndPeelsOnlyFromTheEdge) {
   Patch patch = makePatch();
   FloorAdhesion adhesion;
@@ -57,12 +77,13 @@ TEST(FloorAdhesion, HoldsUpToItsStrengthAndPeelsOnlyFromTheEdge) {
   const double h = 1e-3, strength = 100.0;  // Pa
   adhesion.endSubstep(patch.state, patch.surface, patch.inverseMasses, strength, h);  // lands: all stick
   EXPECT_EQ(adhesion.stuckCount(), 9u);
+  ageContact(patch, adhesion, strength, h);
   // The contact's corner node (1, 1) holds a third of six triangles' projected 0.5 cm², 1e-4 m²:
   // 10 mN at 100 Pa.
   const std::uint32_t corner = 6, centre = 12;
   pullOnce(patch, adhesion, corner, 9e-3, strength, h);
   EXPECT_TRUE(adhesion.stuck(corner)) << "held below its strength";
-  EXPECT_DOUBLE_EQ(patch.state.positions[corner].z, 0.0);  // put back
+  EXPECT_LT(patch.state.positions[corner].z, 1e-5);  // put back, but for a substep's creep (5 µm)
   pullOnce(patch, adhesion, corner, 11e-3, strength, h);
   EXPECT_FALSE(adhesion.stuck(corner)) << "peels above its strength";
   // The centre node (also 10 mN) is pulled ten times harder but is not on the edge: it holds.
@@ -73,6 +94,45 @@ TEST(FloorAdhesion, HoldsUpToItsStrengthAndPeelsOnlyFromTheEdge) {
   // A peeled node lying on the floor does not stick again until it has left it.
   adhesion.endSubstep(patch.state, patch.surface, patch.inverseMasses, strength, h);
   EXPECT_FALSE(adhesion.stuck(corner));
+}
+
+// Rate dependence (floor_adhesion.h): the corner node (10 mN strength at 100 Pa) loaded at half its
+// strength holds a hand's quick tug of 50 ms, but under the same load sustained it creeps up out of
+// the contact band and peels within a second (v_c r^n = 3.5 mm/s over the 2 mm band: 0.57 s).
+TEST(FloorAdhesion, AQuickPullHoldsAndASustainedLoadBelowItsStrengthPeels) {
+  Patch patch = makePatch();
+  FloorAdhesion adhesion;
+  adhesion.reset(patch.surface, patch.state.size());
+  const double h = 1e-3, strength = 100.0;
+  adhesion.endSubstep(patch.state, patch.surface, patch.inverseMasses, strength, h);
+  ageContact(patch, adhesion, strength, h);
+  const std::uint32_t corner = 6;
+  EXPECT_DOUBLE_EQ(holdUnder(patch, adhesion, corner, 5e-3, strength, h, 0.05), 0.05) << "a quick tug holds";
+  EXPECT_LT(patch.state.positions[corner].z, 0.5e-3);
+  const double held = holdUnder(patch, adhesion, corner, 5e-3, strength, h, 3.0);
+  std::printf("half the strength sustained: peeled after %.3f s more\n", held);
+  EXPECT_GT(held, 0.3);
+  EXPECT_LT(held, 1.0) << "a sustained load below the strength must creep and peel";
+}
+
+// Contact ageing: a contact just made holds a fifth of σ_a (a landing slime is not glued down at once);
+// after a few dwell times it holds all of it.
+TEST(FloorAdhesion, AFreshContactIsWeakAndStrengthensWithTimeInContact) {
+  const double h = 1e-3, strength = 100.0;
+  const std::uint32_t corner = 6;
+  Patch fresh = makePatch();
+  FloorAdhesion freshAdhesion;
+  freshAdhesion.reset(fresh.surface, fresh.state.size());
+  freshAdhesion.endSubstep(fresh.state, fresh.surface, fresh.inverseMasses, strength, h);
+  pullOnce(fresh, freshAdhesion, corner, 5e-3, strength, h);
+  EXPECT_FALSE(freshAdhesion.stuck(corner)) << "half σ_a peels a fresh contact";
+  Patch aged = makePatch();
+  FloorAdhesion agedAdhesion;
+  agedAdhesion.reset(aged.surface, aged.state.size());
+  agedAdhesion.endSubstep(aged.state, aged.surface, aged.inverseMasses, strength, h);
+  ageContact(aged, agedAdhesion, strength, h);
+  pullOnce(aged, agedAdhesion, corner, 5e-3, strength, h);
+  EXPECT_TRUE(agedAdhesion.stuck(corner)) << "an aged contact holds half σ_a";
 }
 
 TEST(FloorAdhesion, ZeroStrengthSticksNothing) {
@@ -118,8 +178,8 @@ SidePull sidePull(double adhesion) {
   return {centroid(simulation).x - before.x, simulation.metrics().width};
 }
 
-// 6,000 Pa: the strength chosen by the pull (docs/physics.md); not the default yet, because a
-// floor that strong holds a slime pressed or yanked flat (the torture runs' rest shape does not come back).
+// 6,000 Pa: the strength chosen by the pull (docs/physics.md); not the default yet: with the
+// rate-dependent contact two torture runs still fail at 8000 Pa (the pressed-flat body, the rk4 yank's bound).
 constexpr double kStickyFloor = 6000.0;
 
 TEST(FloorAdhesion, AStickyFloorStretchesTheSlimeBeforeItSlides) {
