@@ -53,6 +53,19 @@ using Int32Lanes = std::int32_t __attribute__((vector_size(kLaneWidth * sizeof(f
   root = r;
 }
 
+// F = Ds Dm⁻¹ of kLaneWidth tetrahedra from offset `o`, column-major (f[3c + r] = F_rc).
+template <std::size_t N>
+[[gnu::always_inline]] inline void deformationGradientLanes(const double (&shape)[9][N], const double (&restInverse)[9][N],
+                                                            std::size_t o, Lanes (&f)[9]) {
+  Lanes ds[9];
+  for (int e = 0; e < 9; ++e) ds[e] = loadLanes(&shape[e][o]);
+  for (int c = 0; c < 3; ++c) {
+    const Lanes d0 = loadLanes(&restInverse[3 * c][o]), d1 = loadLanes(&restInverse[3 * c + 1][o]),
+                d2 = loadLanes(&restInverse[3 * c + 2][o]);
+    for (int r = 0; r < 3; ++r) f[3 * c + r] = ds[r] * d0 + ds[3 + r] * d1 + ds[6 + r] * d2;
+  }
+}
+
 // Nodal forces of kLaneWidth tetrahedra from offset `o` of a block's [9][kTetLanes] arrays:
 //   F = Ds Dm⁻¹,  P = μ∞ F + λ'(J − α) cof F + μ1 (F B_v − cof F),  H = P · forceMap
 // (viscoelastic.h; μ1 = 0 leaves the Maxwell term out).
@@ -62,13 +75,8 @@ template <std::size_t N>
                                                      const double (&restInverse)[9][N], const double (&forceMap)[9][N],
                                                      const double (&maxwellInverse)[9][N], std::size_t o,
                                                      double (&forces)[9][N]) {
-  Lanes ds[9], f[9];
-  for (int e = 0; e < 9; ++e) ds[e] = loadLanes(&shape[e][o]);
-  for (int c = 0; c < 3; ++c) {
-    const Lanes d0 = loadLanes(&restInverse[3 * c][o]), d1 = loadLanes(&restInverse[3 * c + 1][o]),
-                d2 = loadLanes(&restInverse[3 * c + 2][o]);
-    for (int r = 0; r < 3; ++r) f[3 * c + r] = ds[r] * d0 + ds[3 + r] * d1 + ds[6 + r] * d2;
-  }
+  Lanes f[9];
+  deformationGradientLanes(shape, restInverse, o, f);
   // cof F: columns f1×f2, f2×f0, f0×f1.
   Lanes cof[9];
   for (int c = 0; c < 3; ++c) {
@@ -103,13 +111,8 @@ template <std::size_t N>
 [[gnu::always_inline]] inline void relaxLanes(const double (&shape)[9][N], const double (&restInverse)[9][N],
                                                double decay, std::size_t o, double (&metric)[9][N],
                                                double (&inverse)[9][N]) {
-  Lanes ds[9], f[9];
-  for (int e = 0; e < 9; ++e) ds[e] = loadLanes(&shape[e][o]);
-  for (int c = 0; c < 3; ++c) {
-    const Lanes d0 = loadLanes(&restInverse[3 * c][o]), d1 = loadLanes(&restInverse[3 * c + 1][o]),
-                d2 = loadLanes(&restInverse[3 * c + 2][o]);
-    for (int r = 0; r < 3; ++r) f[3 * c + r] = ds[r] * d0 + ds[3 + r] * d1 + ds[6 + r] * d2;
-  }
+  Lanes f[9];
+  deformationGradientLanes(shape, restInverse, o, f);
   const auto dot = [&](int a, int b) { return f[3 * a] * f[3 * b] + f[3 * a + 1] * f[3 * b + 1] + f[3 * a + 2] * f[3 * b + 2]; };
   const Lanes c00 = dot(0, 0), c11 = dot(1, 1), c22 = dot(2, 2), c01 = dot(0, 1), c02 = dot(0, 2), c12 = dot(1, 2);
   const auto blend = [&](const Lanes& c, int entry) { return c + (loadLanes(&metric[entry][o]) - c) * decay; };

@@ -10,6 +10,7 @@
 #include "app/bench/bench_tensile.h"
 #include "app/bench/bench_tensile_bar.h"
 #include "core/settings/settings_io.h"
+#include "sls_oracle.h"
 
 #include <gtest/gtest.h>
 
@@ -20,13 +21,6 @@
 
 namespace slime {
 namespace {
-
-// Written from the formula, independently of tensileClosedForm.
-double slsConstantRateStress(const SlimeSettings& s, double strain, double rate) {
-  const double eInfinity = 2.0 * s.modulus * s.longTerm * (1.0 + s.poisson);
-  const double eMaxwell = 2.0 * s.modulus * (1.0 - s.longTerm) * (1.0 + s.poisson);
-  return eInfinity * strain + eMaxwell * rate * s.relaxation * (1.0 - std::exp(-strain / (rate * s.relaxation)));
-}
 
 TEST(BenchTensileBar, CylinderMeshIsPositiveConformingAndFillsItsVolume) {
   const CylinderMesh cylinder = makeCylinderTetMesh(0.01, 0.08, 2, 16);
@@ -74,7 +68,7 @@ TEST(BenchTensileBar, MiddleFollowsTheStandardLinearSolidAtThreeRates) {
     for (std::size_t k = 1; k < run.strains.size(); ++k) {
       const double gauge = run.gaugeStrains[k];
       if (gauge > 0.05) continue;
-      const double oracle = slsConstantRateStress(slime, gauge, rate * gauge / run.strains[k]);
+      const double oracle = fixture::standardLinearSolidStress(slime, gauge, rate * gauge / run.strains[k]);
       EXPECT_NEAR(run.stresses[k], oracle, 0.05 * oracle) << "rate " << rate << " gauge strain " << gauge;
       ++checked;
     }

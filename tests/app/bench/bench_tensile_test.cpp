@@ -8,6 +8,7 @@
 //    (BenchTensileLong: seconds of physics).
 #include "app/bench/bench_tensile.h"
 #include "core/settings/settings_io.h"
+#include "sls_oracle.h"
 
 #include <gtest/gtest.h>
 
@@ -16,13 +17,6 @@
 namespace slime {
 namespace {
 
-// Written from the formula, independently of tensileClosedForm.
-double standardLinearSolid(const SlimeSettings& s, double strain, double rate) {
-  const double eInfinity = 2.0 * s.modulus * s.longTerm * (1.0 + s.poisson);
-  const double eMaxwell = 2.0 * s.modulus * (1.0 - s.longTerm) * (1.0 + s.poisson);
-  return eInfinity * strain + eMaxwell * rate * s.relaxation * (1.0 - std::exp(-strain / (rate * s.relaxation)));
-}
-
 TEST(BenchTensile, BarFollowsTheStandardLinearSolidAtSmallStrainAtThreeRates) {
   const SlimeSettings slime = defaultSettings().slime;
   for (double rate : {0.05, 0.5, 5.0}) {
@@ -30,7 +24,7 @@ TEST(BenchTensile, BarFollowsTheStandardLinearSolidAtSmallStrainAtThreeRates) {
     ASSERT_EQ(run.strains.size(), 501u);
     EXPECT_NEAR(run.stresses.front(), 0.0, 1e-9);  // free of stress at rest
     for (std::size_t k = 50; k < run.strains.size(); k += 50) {
-      const double oracle = standardLinearSolid(slime, run.strains[k], rate);
+      const double oracle = fixture::standardLinearSolidStress(slime, run.strains[k], rate);
       EXPECT_NEAR(run.stresses[k], oracle, 0.05 * oracle) << "rate " << rate << " strain " << run.strains[k];
     }
   }
