@@ -373,6 +373,7 @@ void Viewer::traceImage() {
     return;
   }
   refinement_.reset();
+  framesSinceNewImage_ = 0;
   stats_.samplesPerPixel = 1;
   image_.resize(size.x, size.y);
   const RenderStats render = renderer_.render(frameSettings(size), image_, &imageBytes_, /*buffersKept=*/true);
@@ -398,6 +399,11 @@ void Viewer::traceImage() {
 // (camera, slime, settings, size) resets it in traceImage. Supersampled settings (render.spp > 1)
 // already average their own samples.
 bool Viewer::refineImage(glm::ivec2 size) {
+  // Nothing may have moved lately: the user for kRefineAfterSeconds, the slime for kStillFramesBeforeRefining
+  // frames. A slime creeping past the redraw threshold every other frame would otherwise alternate a
+  // footprint frame with a whole-image refinement sample that its next move throws away.
+  framesSinceNewImage_ = std::min(framesSinceNewImage_ + 1, kStillFramesBeforeRefining);
+  if (framesSinceNewImage_ < kStillFramesBeforeRefining) return false;
   if (interacting() || refinement_.converged() || settings_.render.spp > 1) return false;
   if (resolution_.scale() < 1.0) return false;  // the adaptive resolution returns to full first
   sampleImage_.resize(size.x, size.y);

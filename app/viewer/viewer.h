@@ -51,6 +51,9 @@ void checkSettings(const Settings& settings, const Settings& current);
 class Viewer {
  public:
   static constexpr double kRefineAfterSeconds = 0.25;  // stillness before the image starts refining
+  // ... and frames with no new image before it does: a creeping slime that crosses the redraw threshold
+  // every other or every third frame is redrawn in its footprint, not refined in whole between its moves.
+  static constexpr int kStillFramesBeforeRefining = 3;
   // A frame that traced nothing new (the scene still, the image refined) lasts at least this long
   // unless input arrives: a still window shows 60 frames a second, not as many as a core can draw.
   static constexpr double kIdleFrameSeconds = 1.0 / 60.0;
@@ -207,6 +210,7 @@ class Viewer {
   glm::dvec3 grabTargetDrawn_[kHands]{};  // per hand, the target its grabbed points were last pulled to
   double wallClock_ = 0.0;
   double lastInteraction_ = -1e9;
+  int framesSinceNewImage_ = 0;     // frames since the last one that traced a new image
   int grabCount_ = 0;
   double heightAtGrab_ = 0.0;       // the slime's height when the last grab began
   double peakHeightWhileGrabbing_ = 0.0;

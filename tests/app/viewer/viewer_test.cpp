@@ -65,6 +65,29 @@ TEST(HeadlessViewer, AStillImageRefinesToSixteenSamplesAndAChangeResetsIt) {
   EXPECT_EQ(viewer.stats().samplesPerPixel, 1);
 }
 
+// A slime that moves every third frame (creeping past the redraw threshold) is redrawn when it moves
+// and not refined between its moves: a refinement sample traces the whole image, which the next move
+// throws away. Once still, it refines within a few frames.
+TEST(HeadlessViewer, ASlimeMovingEveryFewFramesIsNotRefinedBetweenItsMoves) {
+  SteppingHeadlessGl backend(320, 240, 0.0);  // no physics inside the frames: the test moves the slime
+  Viewer viewer(backend, fixture::smallViewerScene(), ViewerOptions{});
+  ASSERT_TRUE(viewer.frame());
+  for (int move = 0; move < 3; ++move) {
+    for (int step = 0; step < 20; ++step) viewer.simulation().step();  // the slime falls a visible distance
+    viewer.simulationAdvanced();
+    ASSERT_TRUE(viewer.frame());
+    EXPECT_EQ(viewer.stats().samplesPerPixel, 1) << "move " << move;
+    for (int frame = 0; frame < 2; ++frame) {
+      ASSERT_TRUE(viewer.frame());
+      EXPECT_EQ(viewer.stats().samplesPerPixel, 1) << "refined between two moves, after move " << move;
+    }
+  }
+  // Still, it refines within a few frames (kStillFramesBeforeRefining and one: measured, it starts at the
+  // fourth frame after the move).
+  for (int frame = 0; frame < Viewer::kStillFramesBeforeRefining + 1; ++frame) ASSERT_TRUE(viewer.frame());
+  EXPECT_GT(viewer.stats().samplesPerPixel, 1) << "still for " << Viewer::kStillFramesBeforeRefining + 2 << " frames";
+}
+
 // A still scene: the frames that trace (the first image, then its 16 refining samples) never wait;
 // every other frame (waiting for stillness before refining, and after the image has its samples) has
 // nothing new to trace and waits for input up to the idle frame time (the rest of 1/60 s after its
