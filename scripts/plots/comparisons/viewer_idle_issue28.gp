@@ -1,6 +1,6 @@
 # Issue 28 after the merge of 2026-11-27: the viewer's frame rate at 1280×720 over the scripted drag and over
 # the first 20 s after the drop (nobody touches it, the camera still), 55b35a3 (the issue's base) against
-# main 7b08dca, run in turn on the idle AMD EPYC family 25 (round 1 of 3, the median round of each build),
+# main 7b08dca (and, for the settling panel, edb50f6 beside a second base run: settle_*_edb50f6_*, settle_base_round2_*), run in turn on the idle AMD EPYC family 25 (round 1 of 3, the median round of each build),
 # and the PSNR of checked frames (--check-every 10) of the sixteenth checkerboard against the full trace.
 # Commands: docs/performance.md, "Issue 28 on the idle machine, after the merge of 2026-11-27".
 # Frame log columns: 3 frame_ms, 14 grabbed, 15 simulated_s, 16 check_psnr_db.
@@ -10,7 +10,7 @@ load "scripts/plots/_style.gp"
 set output dir."/viewer_idle_issue28.png"
 set lmargin 10
 set rmargin 4
-set multiplot layout 3, 1 title "Viewer at 1280×720, AMD EPYC family 25 (2 cores, AVX2), idle, builds in turn\n{/*0.85 held median 15.6 → 31.0 fps (1.99×), first 20 s after the drop 15.6 → 33.7 fps (2.16×), medians of 3 rounds}"
+set multiplot layout 3, 1 title "Viewer at 1280×720, AMD EPYC family 25 (2 cores, AVX2), idle, builds in turn\n{/*0.85 held median 15.6 → 31.0 fps (1.99×), first 20 s after the drop 15.6 → 33.7 fps (2.16×), then 16.0 → 40.9 fps (2.56×, edb50f6), medians of 3 rounds}"
 set key inside right top box opaque
 set ylabel "fps, drag"
 set xlabel "simulated time (s)"
@@ -18,13 +18,17 @@ set yrange [0:60]
 plot dir."/held_base_1.csv" using 15:(1000.0 / $3) with lines lw 1 lc rgb "#7570b3" title "55b35a3", \
      dir."/held_main_1.csv" using 15:(1000.0 / $3) with lines lw 1 lc rgb "#d95f02" title "main 7b08dca", \
      dir."/held_main_1.csv" using 15:($14 == 1 ? 1 : NaN) with points pt 5 ps 0.3 lc rgb "#999999" title "held", \
-     30 with lines dt 3 lc rgb "#1b9e77" title "30 fps"
+     30 with lines dt 3 lc rgb "#666666" title "30 fps"
 set ylabel "fps, after the drop"
 set xrange [0:20]
+set yrange [0:95]
+set key inside left top horizontal
 plot dir."/settle_base_1.csv" using 15:(1000.0 / $3) with lines lw 1 lc rgb "#7570b3" title "55b35a3", \
      dir."/settle_main_1.csv" using 15:(1000.0 / $3) with lines lw 1 lc rgb "#d95f02" title "main 7b08dca", \
-     30 with lines dt 3 lc rgb "#1b9e77" title "30 fps"
+     dir."/settle_main_edb50f6_1.csv" using 15:(1000.0 / $3) with lines lw 1 lc rgb "#1b9e77" title "edb50f6 (refines after 3 still frames)", \
+     30 with lines dt 3 lc rgb "#666666" title "30 fps"
 set autoscale x
+set key inside right top vertical
 set ylabel "PSNR (dB)"
 set xlabel "frame"
 set yrange [25:70]
