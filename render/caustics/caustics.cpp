@@ -5,6 +5,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <chrono>
 
 namespace slime {
@@ -14,50 +15,8 @@ constexpr std::uint64_t kChunk = 1024;  // photons per task; landings concatenat
 
 }  // namespace
 
-const CausticMap* Caustics::update(const Settings& settings, const ShadingParameters& parameters,
-                                   const SlimeGeometry& geometry, const SlimeIntersector& intersector,
-                                   tbb::task_arena* arena, bool progressive) {
-  const auto start = std::chrono::steady_clock::now();
-  lastMs_ = 0.0;
-  const bool slime = geometry.boundRadius > 0.0f || geometry.analyticSphere;
-  if (!settings.render.caustics || !parameters.shadows || !(parameters.lightPosition.z > 0.0f) || !slime) {
-    key_.clear();
-    map_.clear();
-    traced_ = 0;
-    return nullptr;
-  }
-  // Everything the photons' paths depend on.
-  std::vector<float> key;
-  key.reserve(3 * geometry.positions.size() + 24);
-  for (const glm::vec3& v : geometry.positions) key.insert(key.end(), {v.x, v.y, v.z});
-  const glm::vec3& a = parameters.slimeAbsorption;
-  key.insert(key.end(), {parameters.lightPosition.x, parameters.lightPosition.y, parameters.lightPosition.z, a.x, a.y, a.z,
-                         parameters.ior, parameters.transmission, static_cast<float>(parameters.optics),
-                         static_cast<float>(geometry.analyticSphere), geometry.sphereRadius, geometry.boundRadius,
-                         static_cast<float>(settings.render.photons), static_cast<float>(settings.render.backend == "brute"),
-                         static_cast<float>(geometry.triangles.size())});
-  budget_ = static_cast<std::uint64_t>(std::max(1, settings.render.photons));
-  if (key != key_) {
-    key_ = std::move(key);
-    landings_.clear();
-    straight_.clear();
-    tally_ = PhotonTally{};
-    traced_ = 0;
-    frames_ = 0;
-    cone_ = photonCone(geometry, parameters.lightPosition);
-  } else if (converged()) {
-    return map_.empty() ? nullptr : &map_;
-  }
-  // The photons the map lacks (all of the finished map's, or this progressive frame's), in chunks.
-  const PhotonTracer tracer(geometry, intersector, parameters);
-  const std::uint64_t finished = budget_ * kStillBudgets;
-  std::uint64_t target = finished;
-  if (progressive) {
-    ++frames_;
-    target = frames_ == 1 ? std::max<std::uint64_t>(1, budget_ / kMovingDivisor)
-                          : std::min(finished, budget_ * static_cast<std::uint64_t>(frames_));
-  }
-  const std::uint64_t first = traced_, photons = target - traced_;
+void Caustics::trace(const PhotonTracer& tracer, std::uint64_t first, std::uint64_t photons, tbb::task_arena* arena,
+                     Photons& out) {
   const std::uint64_t chunks = (photons + kChunk - 1) / kChunk;
   std::vector<std::vector<PhotonLanding>> found(chunks), straight(chunks);
   std::vector<PhotonTally> tallies(chunks);
@@ -79,11 +38,105 @@ const CausticMap* Caustics::update(const Settings& settings, const ShadingParame
     for (std::uint64_t c = 0; c < chunks; ++c) traceChunk(c);
   }
   for (std::uint64_t c = 0; c < chunks; ++c) {
-    landings_.insert(landings_.end(), found[c].begin(), found[c].end());
-    straight_.insert(straight_.end(), straight[c].begin(), straight[c].end());
-    tally_ += tallies[c];
+    out.landings.insert(out.landings.end(), found[c].begin(), found[c].end());
+    out.straight.insert(out.straight.end(), straight[c].begin(), straight[c].end());
+    out.tally += tallies[c];
   }
-  traced_ += photons;
+  lastTraced_ += photons;
+}
+
+const CausticMap* Caustics::update(const Settings& settings, const ShadingParameters& parameters,
+                                   const SlimeGeometry& geometry, const SlimeIntersector& intersector,
+                                   tbb::task_arena* arena, bool progressive) {
+  const auto start = std::chrono::steady_clock::now();
+  lastMs_ = 0.0;
+  lastTraced_ = 0;
+  const bool slime = geometry.boundRadius > 0.0f || geometry.analyticSphere;
+  if (!settings.render.caustics || !parameters.shadows || !(parameters.lightPosition.z > 0.0f) || !slime) {
+    key_.clear();
+    map_.clear();
+    traced_ = 0;
+    halvesValid_ = stale_ = false;
+    return nullptr;
+  }
+  // Everything the photons' paths depend on: the slime's shape first (its vertices and bounds), then the rest.
+  const std::size_t shapeFloats = 3 * geometry.positions.size() + 1;
+  std::vector<float> key;
+  key.reserve(shapeFloats + 24);
+  for (const glm::vec3& v : geometry.positions) key.insert(key.end(), {v.x, v.y, v.z});
+  key.push_back(geometry.boundRadius);
+  const glm::vec3& a = parameters.slimeAbsorption;
+  key.insert(key.end(), {parameters.lightPosition.x, parameters.lightPosition.y, parameters.lightPosition.z, a.x, a.y, a.z,
+                         parameters.ior, parameters.transmission, static_cast<float>(parameters.optics),
+                         static_cast<float>(geometry.analyticSphere), geometry.sphereRadius,
+                         static_cast<float>(settings.render.photons), static_cast<float>(settings.render.backend == "brute"),
+                         static_cast<float>(geometry.triangles.size())});
+  budget_ = static_cast<std::uint64_t>(std::max(1, settings.render.photons));
+  const PhotonTracer tracer(geometry, intersector, parameters);
+  if (key != key_) {
+    // Only the slime's shape changed since the last moving frame (its light, optics and budget
+    // as they were): the photons' other half may be kept from it.
+    const bool onlyTheSlimeMoved = key.size() == key_.size() &&
+                                   std::equal(key.begin() + static_cast<std::ptrdiff_t>(shapeFloats), key.end(),
+                                              key_.begin() + static_cast<std::ptrdiff_t>(shapeFloats));
+    key_ = std::move(key);
+    landings_.clear();
+    straight_.clear();
+    tally_ = PhotonTally{};
+    traced_ = 0;
+    frames_ = 0;
+    cone_ = photonCone(geometry, parameters.lightPosition);
+    if (progressive) {
+      // A moving frame: M photons, half of them kept from the last moving frame where only the slime moved.
+      frames_ = 1;
+      const std::uint64_t moving = std::max<std::uint64_t>(1, budget_ / kMovingDivisor), half = moving / 2;
+      const std::uint64_t firsts[2] = {0, half}, counts[2] = {half, moving - half};
+      const bool keep = kKeepMovingHalf && halvesValid_ && onlyTheSlimeMoved && half > 0;
+      for (int h = 0; h < 2; ++h) {
+        if (keep && h != nextHalf_) continue;
+        halves_[h] = Photons{};
+        trace(tracer, firsts[h], counts[h], arena, halves_[h]);
+      }
+      nextHalf_ = keep ? 1 - nextHalf_ : 0;
+      stale_ = keep;
+      halvesValid_ = true;
+      for (const Photons& h : halves_) {  // in the sequence's order: [0, M/2) then [M/2, M)
+        landings_.insert(landings_.end(), h.landings.begin(), h.landings.end());
+        straight_.insert(straight_.end(), h.straight.begin(), h.straight.end());
+        tally_ += h.tally;
+      }
+      traced_ = moving;
+      map_.build(landings_, static_cast<double>(traced_), cone_.solidAngle,
+                 shadowRegion(cone_, geometry.boundCenter, geometry.boundRadius), &straight_);
+      lastMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      return map_.empty() ? nullptr : &map_;
+    }
+  } else if (converged() && !stale_) {
+    return map_.empty() ? nullptr : &map_;
+  }
+  halvesValid_ = false;  // a still frame: the next moving frame traces all its photons
+  if (stale_) {
+    // Half of the map was traced on an earlier shape: the still map starts again from fresh photons,
+    // the same sequence, so that it still ends at the finished map.
+    landings_.clear();
+    straight_.clear();
+    tally_ = PhotonTally{};
+    traced_ = 0;
+    stale_ = false;
+  }
+  // The photons the map lacks (all of the finished map's, or this progressive frame's), in chunks.
+  const std::uint64_t finished = budget_ * kStillBudgets;
+  std::uint64_t target = finished;
+  if (progressive) {
+    ++frames_;
+    target = std::min(finished, budget_ * static_cast<std::uint64_t>(frames_));
+  }
+  Photons added;
+  trace(tracer, traced_, target - traced_, arena, added);
+  landings_.insert(landings_.end(), added.landings.begin(), added.landings.end());
+  straight_.insert(straight_.end(), added.straight.begin(), added.straight.end());
+  tally_ += added.tally;
+  traced_ = target;
   map_.build(landings_, static_cast<double>(traced_), cone_.solidAngle, shadowRegion(cone_, geometry.boundCenter, geometry.boundRadius),
              &straight_);
   lastMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -25,6 +25,15 @@ class Caustics {
   // (issue 30 item 4: 5,000 photons by default, 8–9 % of a loaded 1280×720 frame against 18 % for
   // 10,000). The kernel adapts to the smaller count (caustic_map.h); the next still frame catches up.
   static constexpr int kMovingDivisor = 2;
+  // While only the slime moves, frame after frame (held, dragged, falling), a moving frame traces half
+  // of its M = render.photons / kMovingDivisor photons afresh, in turn photons [0, M/2) and [M/2, M) of
+  // the sequence, and keeps the other half from the moving frame before (issue 28: the photons were
+  // 5 of a held frame's ~30 ms on AMD family 25). The map still holds M photons, so it is no noisier;
+  // half of them are one frame behind the slime (≈ 30 ms of a hand's motion). A light, optics or
+  // budget change, or the first moving frame after a still one, traces all M; the first still frame
+  // after a kept half starts the map again from fresh photons, so the progressive map still ends at
+  // the finished one.
+  static constexpr bool kKeepMovingHalf = true;
 
   // The map for this frame, or null when caustics are off (render.caustics, render.shadows, the light
   // below the floor, no slime). `arena`: the photons in its threads; null: on this thread (the brute
@@ -35,17 +44,33 @@ class Caustics {
   // - `progressive` (the interactive viewer): a new shape, light or setting starts again from
   //   render.photons / kMovingDivisor photons; the k-th frame in a row with nothing changed brings
   //   the map to k · render.photons photons, until kStillBudgets of them: the same photons in the same
-  //   order, so the 16th still frame is the finished map.
+  //   order, so the 16th still frame is the finished map; a frame where only the slime moved since
+  //   the last moving frame traces half of them (kKeepMovingHalf).
   const CausticMap* update(const Settings& settings, const ShadingParameters& parameters, const SlimeGeometry& geometry,
                            const SlimeIntersector& intersector, tbb::task_arena* arena, bool progressive = false);
 
   std::uint64_t photons() const { return traced_; }  // photons behind the current map
+  std::uint64_t lastTraced() const { return lastTraced_; }  // photons the last update traced
   const PhotonTally& tally() const { return tally_; }
   bool converged() const { return traced_ >= budget_ * kStillBudgets; }
   double lastMs() const { return lastMs_; }  // the last update's time, wall clock
 
  private:
+  // The photons [first, first + count) traced on `geometry`: their landings and tally appended.
+  struct Photons {
+    std::vector<PhotonLanding> landings, straight;
+    PhotonTally tally;
+  };
+  void trace(const PhotonTracer& tracer, std::uint64_t first, std::uint64_t count, tbb::task_arena* arena, Photons& out);
+
   std::vector<float> key_;  // the slime's vertices, the light, the optics and the budget of the map
+  // The last moving frame's two halves of its M photons (kKeepMovingHalf): valid while no still frame
+  // came after it; the next moving frame traces halves_[nextHalf_] afresh and keeps the other.
+  Photons halves_[2];
+  bool halvesValid_ = false;
+  int nextHalf_ = 0;
+  bool stale_ = false;  // the map holds a half traced on an earlier shape of the slime
+  std::uint64_t lastTraced_ = 0;
   std::vector<PhotonLanding> landings_, straight_;  // through the slime; every photon's straight line (caustic_map.h)
   PhotonTally tally_;
   CausticMap map_;

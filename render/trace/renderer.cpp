@@ -358,11 +358,10 @@ struct Renderer::Impl {
         glm::vec3 colors[kWavefrontPixels];
         traceColumns(tracer, intersector, eye, y, columns, pending, directionX, directionY, directionZ, width,
                      floorShadings, counts, colors);
-        for (int j = 0; j < pending; ++j) {
+        for (int j = 0; j < pending; ++j) {  // encoded with the row's span after the last pass (encodeFootprint)
           const bool finite = std::isfinite(colors[j].x + colors[j].y + colors[j].z);
           counts.nonFinitePixels += !finite;
           image.pixels[row + columns[j]] = finite ? colors[j] : glm::vec3(0.0f);
-          if (srgba) encodeSrgb8(&image.pixels[row + columns[j]], 1, 4, srgba + 4 * (row + columns[j]));
         }
         counts.tracedFillPixels += static_cast<std::uint64_t>(pending);
         pending = 0;
@@ -384,7 +383,6 @@ struct Renderer::Impl {
         glm::vec3 color;
         if (fillFromNeighbours(neighbours, color)) {
           image.pixels[row + x] = color;
-          if (srgba) encodeSrgb8(&image.pixels[row + x], 1, 4, srgba + 4 * (row + x));
           ++counts.filledPixels;
           continue;
         }
@@ -399,6 +397,19 @@ struct Renderer::Impl {
       tracePending();
     }
     counts.busyMs += millisecondsSince(start);
+  }
+
+  // After the last fill pass: the footprint's pixels of rows [rowBegin, rowEnd) as sRGB bytes, a row's
+  // span in one call (8 pixels a step), not one pixel at a time as each pass fills or traces it
+  // (issue 28: the fills' single-pixel encoding was 2-4 % of a held frame's samples).
+  void encodeFootprint(const Image& image, std::uint8_t* srgba, int rowBegin, int rowEnd) const {
+    for (int y = rowBegin; y < rowEnd; ++y) {
+      const ScreenFootprint::Span span = footprint.rows[y];
+      const int x0 = std::max(0, span.x0), x1 = std::min(image.width, span.x1);
+      if (x1 <= x0) continue;
+      const std::size_t first = static_cast<std::size_t>(y) * image.width + x0;
+      encodeSrgb8(&image.pixels[first], static_cast<std::size_t>(x1 - x0), 4, srgba + 4 * first);
+    }
   }
 };
 
@@ -560,6 +571,12 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
       }
       if (impl.quartered) fill(CheckerboardPass::FromDiagonals);  // the traced colour's other rows first
       fill(CheckerboardPass::FromBeside);
+      if (bytes)
+        tbb::parallel_for(tbb::blocked_range<int>(0, image.height, 4 * kTileRows), [&](const tbb::blocked_range<int>& rows) {
+          takeOver(&impl);
+          impl.encodeFootprint(image, bytes, rows.begin(), rows.end());
+          handOff(&impl);
+        });
     });
     takeOver(&impl);
   }

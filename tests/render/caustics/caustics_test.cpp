@@ -28,16 +28,18 @@ struct Ball {
   SlimeGeometry geometry;
   EmbreeScene embree{0};
   ShadingParameters parameters;
-  Ball(const glm::dvec3& center, const glm::dvec3& light, const glm::dvec3& color, double absorption) {
+  // analytic = false: the icosphere's triangles alone, of radius R × scale.
+  Ball(const glm::dvec3& center, const glm::dvec3& light, const glm::dvec3& color, double absorption,
+       bool analytic = true, double scale = 1.0) {
     settings.slime.shape = "sphere";
     settings.slime.position = center;
     settings.slime.color = color;
     settings.slime.absorption = absorption;
     settings.slime.transmission = 1.0;
     settings.light.position = light;
-    const TriangleMesh mesh = makeIcosphere(2, settings.slime.radius, center);
+    const TriangleMesh mesh = makeIcosphere(2, settings.slime.radius * scale, center);
     const bool topology = geometry.update(mesh.positions, mesh.triangles);
-    geometry.setAnalyticSphere(true, static_cast<float>(settings.slime.radius));
+    geometry.setAnalyticSphere(analytic, static_cast<float>(settings.slime.radius));
     embree.update(geometry, topology);
     parameters = makeShadingParameters(settings, 100);
   }
@@ -333,6 +335,75 @@ TEST(Caustics, ProgressiveMapEndsAtThePlainRendersFinishedMap) {
   moved.light.position.x = 0.24;
   stats = renderer.render(moved, image);
   EXPECT_EQ(stats.causticPhotons, moving);
+}
+
+// Moving frames where only the slime moved (issue 28) trace half of their M photons afresh, in turn
+// [0, M/2) and [M/2, M), and keep the other half from the moving frame before: the map is exactly the
+// one built from those two halves; the still frame after it starts again from fresh photons.
+// (Tracing the same half every frame, or keeping nothing, fails the equalities below.)
+TEST(Caustics, MovingFramesTraceHalfThePhotonsAndKeepTheOtherHalf) {
+  const glm::dvec3 light{0.1, 0.05, 0.5}, color{0.5, 0.7, 0.9};
+  // Triangle meshes, c larger than a and b: its bounds change too.
+  Ball a({0.0, 0.0, 0.04}, light, color, 20.0, false), b({0.006, 0.0, 0.04}, light, color, 20.0, false),
+      c({0.012, 0.004, 0.04}, light, color, 20.0, false, 1.1);
+  Settings settings = a.settings;
+  settings.render.photons = 2000;
+  const std::uint64_t moving = settings.render.photons / Caustics::kMovingDivisor, half = moving / 2;
+  struct Traced {
+    std::vector<PhotonLanding> landings, straight;
+  };
+  const auto traced = [](const Ball& ball, std::uint64_t first, std::uint64_t count) {
+    Traced t;
+    PhotonTally tally;
+    PhotonTracer(ball.geometry, ball.embree, ball.parameters)
+        .trace(photonCone(ball.geometry, ball.parameters.lightPosition), first, count, t.landings, tally, &t.straight);
+    return t;
+  };
+  const auto mapOf = [](const Ball& ball, const std::vector<Traced>& parts, std::uint64_t emitted) {
+    Traced all;
+    for (const Traced& t : parts) {
+      all.landings.insert(all.landings.end(), t.landings.begin(), t.landings.end());
+      all.straight.insert(all.straight.end(), t.straight.begin(), t.straight.end());
+    }
+    const PhotonCone cone = photonCone(ball.geometry, ball.parameters.lightPosition);
+    CausticMap map;
+    map.build(all.landings, static_cast<double>(emitted), cone.solidAngle,
+              shadowRegion(cone, ball.geometry.boundCenter, ball.geometry.boundRadius), &all.straight);
+    return map;
+  };
+  // The gain over a grid of floor points about the shadows: equal maps give equal gains everywhere.
+  const auto differences = [&](const CausticMap& x, const CausticMap& y) {
+    int count = 0;
+    for (int j = 0; j <= 40; ++j)
+      for (int i = 0; i <= 40; ++i) {
+        const glm::vec3 point(-0.1f + 0.25f * i / 40.0f, -0.12f + 0.24f * j / 40.0f, 0.0f);
+        count += x.gain(point, glm::vec3(light)) != y.gain(point, glm::vec3(light));
+      }
+    return count;
+  };
+  Caustics caustics;
+  const auto update = [&](const Ball& ball) {
+    return caustics.update(settings, ball.parameters, ball.geometry, ball.embree, nullptr, /*progressive=*/true);
+  };
+  ASSERT_NE(update(a), nullptr);  // the first moving frame: all M
+  EXPECT_EQ(caustics.lastTraced(), moving);
+  EXPECT_EQ(differences(*update(a), *update(a)), 0);
+  // a's still frames above ended the halves: b traces all M again.
+  const CausticMap* map = update(b);
+  EXPECT_EQ(caustics.lastTraced(), moving);
+  EXPECT_EQ(differences(*map, mapOf(b, {traced(b, 0, moving)}, moving)), 0);
+  map = update(c);  // the first half afresh on c, the second kept from b
+  EXPECT_EQ(caustics.lastTraced(), half);
+  EXPECT_EQ(caustics.photons(), moving);
+  EXPECT_EQ(differences(*map, mapOf(c, {traced(c, 0, half), traced(b, half, moving - half)}, moving)), 0);
+  EXPECT_GT(differences(*map, mapOf(c, {traced(c, 0, moving)}, moving)), 0);  // b's half shows
+  map = update(a);  // the second half afresh on a, the first kept from c
+  EXPECT_EQ(caustics.lastTraced(), moving - half);
+  EXPECT_EQ(differences(*map, mapOf(a, {traced(c, 0, half), traced(a, half, moving - half)}, moving)), 0);
+  // Still on a: the map starts again from fresh photons, [0, 2 budgets), as without the kept half.
+  map = update(a);
+  EXPECT_EQ(caustics.lastTraced(), 2 * static_cast<std::uint64_t>(settings.render.photons));
+  EXPECT_EQ(differences(*map, mapOf(a, {traced(a, 0, 2 * settings.render.photons)}, 2 * settings.render.photons)), 0);
 }
 
 // The map's gain is a ratio of what arrived over what would have arrived unblocked, each over its own
