@@ -22,7 +22,7 @@ long_physics='Torture|DefaultsHoldLevel6|DefaultsHold.BallFallsSettlesSoftAndRou
 # Seconds of simulated physics each, 12-40 s apiece under ASan (F25): the press, the pinch, the drop
 # with two other integrators, Lamb's modes, energy, the stiffer dampers, the sticky floor. The code they
 # drive runs under ASan in the short tests (Hands, Projective, BulkSlime's others, the scenarios).
-long_under_asan='BulkSlime\.(APressLeaves|HeldUpByAPinch|Lamb|EnergyIsKept|FallsJiggles)|DefaultBall\.ComesToRest|StifferDamper\.|FloorAdhesion\.AStickyFloorStretches'
+long_under_asan='BulkSlime\.(APressLeaves|HeldUpByAPinch|Lamb|EnergyIsKept|FallsJiggles)|DefaultBall\.ComesToRest|StifferDamper\.|FloorAdhesion\.TheStickyDefaultStretches'
 for preset in "${@:-asan tsan}"; do
   for p in $preset; do
     cmake --preset "$p" -G Ninja >/dev/null

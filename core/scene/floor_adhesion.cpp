@@ -14,6 +14,8 @@ void FloorAdhesion::reset(const std::vector<Triangle>& surface, std::size_t surf
   area_.assign(surfaceNodes, 0.0);
   age_.assign(surfaceNodes, 0.0);
   peeled_ = 0;
+  strengthHeld_ = 0.0;
+  momentumTaken_ = displacementTaken_ = glm::dvec3(0.0);
   // Each surface node's neighbours along the surface triangles' edges, sorted and unique.
   std::vector<std::vector<std::uint32_t>> lists(surfaceNodes);
   for (const Triangle& t : surface) {
@@ -73,6 +75,7 @@ void FloorAdhesion::endSubstep(ParticleState& state, const std::vector<Triangle>
   // Hold or peel. Peeling is decided on the state before this pass, so one substep's front moves by
   // at most one ring of nodes.
   std::vector<std::uint32_t> peel;
+  strengthHeld_ = 0.0;
   for (std::size_t i = 0; i < count; ++i) {
     if (!stuck_[i] || state.inverseMasses[i] == 0.0) continue;
     glm::dvec3 move = state.positions[i] - start_[i];
@@ -86,17 +89,21 @@ void FloorAdhesion::endSubstep(ParticleState& state, const std::vector<Triangle>
       peel.push_back(static_cast<std::uint32_t>(i));
       continue;
     }
+    strengthHeld_ += holds;
     // Held: it creeps by h v_c r^n along its pull (at most as far as the pull moved it); only an edge
     // node may lift, and lifted out of the band it has peeled.
     const double ratio = holds > 0.0 ? pull / holds : 0.0;
     const double moved = glm::length(move);
     const double creep = moved > 0.0 ? std::min(1.0, h * kAdhesionCreepSpeed * std::pow(ratio, kAdhesionCreepExponent) / moved) : 0.0;
     glm::dvec3& x = state.positions[i];
+    const glm::dvec3 before = x, velocityBefore = state.velocities[i];
     x.x = start_[i].x + creep * move.x;
     x.y = start_[i].y + creep * move.y;
     x.z = std::min(x.z, start_[i].z + (edge ? creep * move.z : 0.0));
     if (edge && x.z > kAdhesionContactBand) peel.push_back(static_cast<std::uint32_t>(i));
     state.velocities[i] = glm::dvec3(0.0, 0.0, std::min(0.0, state.velocities[i].z));
+    displacementTaken_ += (before - x) / freeInverseMasses[i];
+    momentumTaken_ += (velocityBefore - state.velocities[i]) / freeInverseMasses[i];
   }
   for (std::uint32_t i : peel) {
     stuck_[i] = 0;
@@ -115,7 +122,9 @@ void FloorAdhesion::endSubstep(ParticleState& state, const std::vector<Triangle>
     if (z <= kAdhesionContactBand && state.velocities[i].z <= 0.0) {
       stuck_[i] = 1;  // caught where it lands: its sliding stops
       age_[i] = 0.0;
+      const glm::dvec3 velocityBefore = state.velocities[i];
       state.velocities[i] = glm::dvec3(0.0, 0.0, std::min(0.0, state.velocities[i].z));
+      momentumTaken_ += (velocityBefore - state.velocities[i]) / freeInverseMasses[i];
     }
   }
 }

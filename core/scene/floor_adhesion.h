@@ -53,6 +53,15 @@ class FloorAdhesion {
                   const std::vector<double>& freeInverseMasses, double strength, double h);
   std::size_t stuckCount() const;
   std::size_t peeledCount() const { return peeled_; }  // nodes peeled since reset
+  // Σ σ(t)·A_i over the nodes stuck after the last substep, N: the most the contact holds against a
+  // pull on its edge nodes (an interior node holds until the peeling front reaches it).
+  double strengthHeld() const { return strengthHeld_; }
+  // What the contact has taken from the body since reset, summed over the nodes it held, stopped or
+  // put back: momentum Σ m_i Δv_i (kg·m/s) and mass-weighted displacement Σ m_i Δx_i (kg·m). The body's
+  // centre of mass at time T lies (Σ_s m Δx_s + Σ_s m Δv_s (T − t_s)) / M behind where the other forces
+  // alone would put it (Newton for the substeps s the contact acted in).
+  glm::dvec3 momentumTaken() const { return momentumTaken_; }
+  glm::dvec3 displacementTaken() const { return displacementTaken_; }
   bool stuck(std::size_t node) const { return node < stuck_.size() && stuck_[node] != 0; }
 
  private:
@@ -64,6 +73,8 @@ class FloorAdhesion {
   std::vector<double> area_, age_;  // age_: time in contact, s
   std::vector<std::uint32_t> neighbourStart_, neighbours_;  // surface adjacency (CSR)
   std::size_t peeled_ = 0;
+  double strengthHeld_ = 0.0;  // N
+  glm::dvec3 momentumTaken_{0.0}, displacementTaken_{0.0};
 };
 
 }  // namespace slime

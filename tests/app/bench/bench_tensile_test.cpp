@@ -52,6 +52,10 @@ TEST(BenchTensile, BarLimitsAreTheElasticAndTheInstantaneousModuli) {
 // sanitizers: Long, so they leave it out.
 TEST(BenchTensileLong, FasterPullsOfTheSlimeNeedMoreForce) {
   Settings settings = defaultSettings();
+  // The material's rate dependence, on the floor the chart was measured on (docs/material.md): on the
+  // sticky default (8000 Pa) the contact's creep adds to both pulls and the fast one needs only 6 %
+  // more at half the extension (0.929 against 0.876 N), under the 10 % asked.
+  settings.slime.adhesion = 0.0;
   TensileOptions options;
   options.strainRates = {0.5};
   options.barSteps = 100;
