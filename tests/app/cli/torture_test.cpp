@@ -356,9 +356,9 @@ void bulkYanked(const TortureResult& run, const TortureResult&) {
 
 // tests/scenarios/lift_by_top_to_44cm.json (see liftedByTheTop); the target is at 44 cm from 1.5 s
 // to the release at 2 s. The body's weight m g (2.6 N) is under the hand's limit, so the hand lifts it
-// clear of the floor (its lowest point measured 14–28 cm up) and never lets it slip: the grabbed
+// clear of the floor (its lowest point measured 15–29 cm up) and never lets it slip: the grabbed
 // point stays within the spring's reach F_max / kMouseStiffness of the target (measured
-// ≤ 1.3 cm of 2.5 cm). The hand carries the weight: over the hold, ∫ F_z dt = m g T + m Δv_z (Newton,
+// ≤ 2.2 cm of 4 cm at the default 16 N; ≤ 1.3 cm of 2.5 cm at 10 N). The hand carries the weight: over the hold, ∫ F_z dt = m g T + m Δv_z (Newton,
 // with the hand the only other force; measured within 0.1 %, 5 % allowed for the velocities' finite
 // differences). Hanging from a 1.5 cm pinch the slime droops past 1.5 diameters (measured 1.9 at
 // the default resolution, 3.5 at resolution 1; it bounces on the hand at a few Hz, so the largest
@@ -403,8 +403,8 @@ void bulkLifted(const TortureResult& run, const TortureResult&) {
 // (1 mm allowed). The body must give way: its height drops by more than `lowered`.
 // tests/scenarios/fling_up_and_slam.json (issue 27's "flung up 25 cm in 50 ms and slammed down"):
 // grabbed at the top at 1 s, its target 35 cm up within 50 ms, then back to the floor within 50 ms,
-// released at 1.1 s. The hand pulls at its 10 N limit, so the patch cannot reach 35 cm: it must rise
-// at least 12 cm (measured 19 cm at the default resolution) and be driven back down to under 7 cm by
+// released at 1.1 s. The hand pulls at its limit (16 N by default), so the patch cannot reach 35 cm: it
+// must rise at least 12 cm (measured 26–27 cm at 16 N, 19 cm at 10 N) and be driven back down to under 7 cm by
 // the release, and the body must land hard (its top, 6 cm at rest, pressed under 7.5 cm while it
 // comes down from a height of more than 1.5 rest heights).
 void bulkFlungAndSlammed(const TortureResult& run, const TortureResult& rest) {
@@ -447,7 +447,7 @@ void bulkExpectPressed(const TortureResult& run, const TortureResult& rest, doub
 
 // tests/scenarios/press_top_to_the_floor.json (see pressedToTheFloor): 7 cm down over 0.3 s, which
 // for the sagged bulk body (5.8 cm tall) aims 1.2 cm below the floor. The hand's limit guarantees
-// 4.4 cm; measured 5.3 cm (resolution 2) and 5.9 cm (resolution 1), the crushed bottom under the patch
+// 2.9 cm at 16 N (4.4 cm at 10 N); measured 5.3 cm (resolution 2) and 5.8–5.9 cm (resolution 1), the crushed bottom under the patch
 // stopping it. The height must drop by 5 % of the depth: the skin beside the finger stays up
 // (measured 13 mm at resolution 2, 4.1–5.8 mm on the coarse resolution-1 surface).
 void bulkPressedToTheFloor(const TortureResult& run, const TortureResult& rest) {
@@ -458,8 +458,8 @@ void bulkPressedToTheFloor(const TortureResult& run, const TortureResult& rest) 
 // spring's stretch |F| / k of (12, 0, 6) cm, give or take the damper's share (measured ≤ 0.3 mm; 1 mm
 // allowed), and the body has come along: its centre of mass moved out at least half the 8 cm drag
 // (measured 7.8–19 cm: the stiff and the light body slide more than they stretch). The press then
-// lands on the body's flank (the body has moved from under its point); the hand's limit (2.5 cm)
-// guarantees nothing for a 2 cm press, but it never needed more than 2.2 N of its 10 N, and the patch
+// lands on the body's flank (the body has moved from under its point); the spring's reach (4 cm at
+// 16 N) guarantees nothing for a 2 cm press, but it never needed more than 2.2 N, and the patch
 // went down 81–100 % of the depth (three quarters required). The height drops only by what the
 // dent draws down: measured 1.0–4.8 mm; more than 0.5 mm required.
 void bulkStretchedThenPressed(const TortureResult& run, const TortureResult& rest) {
