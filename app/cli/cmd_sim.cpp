@@ -8,6 +8,7 @@
 #include "core/scene/scenario.h"
 #include "core/settings/settings_io.h"
 #include "core/scene/simulation.h"
+#include "core/scene/strand_profile.h"
 
 #include <nlohmann/json.hpp>
 
@@ -65,9 +66,14 @@ struct HandSample {
   glm::dvec3 position{0.0}, force{0.0};
 };
 
+// While both hands hold: the drawn body's thickness across the line between them at ¼, ½ and ¾ of
+// the way (strandThickness), m — whether a strand thins in the middle.
+constexpr double kStrandFractions[3] = {0.25, 0.5, 0.75};
+
 struct SeriesSample {
   double t, volumeRatio, height, width, kineticEnergy;
   HandSample hands[kHands];
+  double strand[3] = {-1.0, -1.0, -1.0};  // −1: not both hands holding
 };
 
 SeriesSample metricsSample(double t, const SlimeMetrics& metrics, const Simulation& simulation) {
@@ -75,6 +81,10 @@ SeriesSample metricsSample(double t, const SlimeMetrics& metrics, const Simulati
   for (int hand = 0; hand < kHands; ++hand)
     if (simulation.grabbing(hand))
       sample.hands[hand] = {true, simulation.grabbedPoint(hand), simulation.handForce(hand)};
+  if (sample.hands[0].holding && sample.hands[1].holding)
+    for (int i = 0; i < 3; ++i)
+      sample.strand[i] = strandThickness(simulation.positions(), sample.hands[0].position, sample.hands[1].position,
+                                         kStrandFractions[i]);
   return sample;
 }
 
@@ -93,6 +103,7 @@ json seriesJson(const std::vector<SeriesSample>& series) {
     }
     samples.push_back({{"t", s.t}, {"volume_ratio", s.volumeRatio}, {"height", s.height}, {"width", s.width},
                        {"kinetic_energy", s.kineticEnergy}, {"hands", hands}});
+    if (s.strand[0] >= 0.0) samples.back()["strand"] = {s.strand[0], s.strand[1], s.strand[2]};
   }
   return samples;
 }

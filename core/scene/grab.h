@@ -5,6 +5,7 @@
 #pragma once
 
 #include "core/scene/icosphere.h"
+#include "core/settings/settings.h"
 
 #include <glm/vec3.hpp>
 
@@ -33,9 +34,9 @@ std::vector<std::uint32_t> pointsWithinRadius(const std::vector<glm::dvec3>& pos
 // The bulk slime's grab and press: a mouse spring, a compliant constraint with the force limit of a
 // hand. Each grabbed node i is pulled towards target + offset_i by its share of the stiffness, with a
 // damper on its velocity relative to the target's; the sum of these forces is scaled down to at most
-// kMouseMaxForce. A slow pull lets the material flow into a neck; a fast one takes the body along.
+// maxForce, the setting sim.handForce (one source: its default, SimSettings and assets/default.json;
+// 16 N). A slow pull lets the material flow into a neck; a fast one takes the body along.
 constexpr double kMouseStiffness = 400.0;  // N/m, the whole pinch
-constexpr double kMouseMaxForce = 10.0;    // N, about what a child's pinch pulls (1 kg-force)
 constexpr double kMouseDampingRatio = 0.7; // of the pinch's critical damping 2√(k m)
 
 struct MouseSpring {
@@ -46,7 +47,7 @@ struct MouseSpring {
   glm::dvec3 targetVelocity{0.0};
   double stiffness = kMouseStiffness;
   double damping = 0.0;             // N·s/m
-  double maxForce = kMouseMaxForce;
+  double maxForce = SimSettings{}.handForce;  // N; Simulation::grab sets the run's sim.handForce
 };
 
 // Adds the mouse spring's forces to `forces`; returns the total force the hand exerts, N.

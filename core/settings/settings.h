@@ -88,7 +88,7 @@ struct SimSettings {
   int substeps = 1;                        // substeps per step (xpbd, projective)
   int iterations = 1;                      // projective: local/global iterations per substep
   double gravity = 9.81;                   // |g|, m/s^2, pointing along -z
-  double handForce = 10.0;                 // bulk: the most force each hand pulls with, N
+  double handForce = 16.0;                 // bulk: the most force each hand pulls with, N (a child's firm two-handed pull)
   double timeScale = 1.0;                  // simulated seconds per wall-clock second in the viewer
   bool paused = false;                     // viewer: physics paused
 };

@@ -155,10 +155,12 @@ void forEachField(S& s, Visitor&& visitor) {
   visit("sim.iterations", s.sim.iterations, Limits{1, 100, "iterations"},
         "projective: local/global iterations per substep (more: less numerical damping, more cost)");
   visit("sim.gravity", s.sim.gravity, Limits{0.0, 100.0, "m/s^2"}, "|g|, pointing along -z");
-  // A child's pinch pulls about 10 N (1 kg-force); two hands stretching a slime into a long strand
-  // pull harder (docs/physics.md, "Long strands").
+  // 16 N (1.6 kg-force) a hand: a child's firm pull on a toy held in both hands, well under what a
+  // child's grip holds (grip strength 100-200 N at 6-10 years); a default slime's strand needs
+  // G∞·A₀·(λ − λ⁻²) ≈ 12 N a hand at 5× (docs/physics.md, "Long strands"), which 10 N (a pinch's) missed.
   visit("sim.handForce", s.sim.handForce, Limits{1.0, 100.0, "N"},
-        "bulk: the most force each hand (grab) pulls with; the spring to its patch is scaled down beyond it");
+        "bulk: the most force each hand (grab) pulls with, about a child's firm two-handed pull (16 N); "
+        "the spring to its patch is scaled down beyond it");
   visit("sim.timeScale", s.sim.timeScale, Limits{0.01, 10.0, "simulated s per wall s"},
         "viewer: simulated seconds per wall-clock second");
   visit("sim.paused", s.sim.paused, Choices{}, "viewer: physics paused");

@@ -341,7 +341,7 @@ struct Renderer::Impl {
   // this pass starts and none is written by it: rows may be filled in parallel.
   void fillSkipped(const WhittedTracer& tracer, const SlimeIntersector& intersector, const Camera& camera,
                    glm::vec2 pixelOffset, CheckerboardPass pass, int rowBegin, int rowEnd, Image& image,
-                   std::uint8_t* srgba, FloorShading* floorShadings, TraceCounters& counts) {
+                   FloorShading* floorShadings, TraceCounters& counts) {
     FlushDenormals flush;
     const auto start = std::chrono::steady_clock::now();
     const glm::vec3 eye(camera.position);
@@ -560,7 +560,7 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
       const auto fill = [&](CheckerboardPass pass) {
         tbb::parallel_for(tbb::blocked_range<int>(0, image.height, kTileRows), [&](const tbb::blocked_range<int>& rows) {
           takeOver(&impl);
-          impl.fillSkipped(tracer, intersector, camera, pixelOffset, pass, rows.begin(), rows.end(), image, bytes,
+          impl.fillSkipped(tracer, intersector, camera, pixelOffset, pass, rows.begin(), rows.end(), image,
                            floorShadings, impl.counters.local());
           handOff(&impl);
         });

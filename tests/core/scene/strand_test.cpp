@@ -44,16 +44,16 @@ double thicknessAt(const Simulation& simulation, double at) {
 struct StrandRun {
   double restDiameter, strand, smallestElement, volumeMin, volumeMax, released, nan;
   double middle, ends, neck;  // thickness across the strand: half-way, at the hands, thinnest between, m
+  double quarter;             // the thicker of the two at a quarter and three quarters of the way, m
   std::size_t rollbacks;
 };
 
 // Each hand closes on the side of the slime: the nodes within 3 cm of the surface point (about 70),
-// a fist's hold rather than a pinch's. Two hands pulling a strand apart pull up to 20 N each
-// (sim.handForce; the default 10 N stops the default slime at 3.2× with this hold).
+// a fist's hold rather than a pinch's. Each pulls with at most the default sim.handForce (16 N, a
+// child's firm pull; 10 N stopped the default slime at 4.0×).
 StrandRun pullIntoAStrand(const std::string& integrator) {
   Settings settings = defaultSettings();
   settings.sim.integrator = integrator;
-  settings.sim.handForce = 20.0;
   Simulation simulation(settings);
   while (simulation.time() < 1.0 - 1e-9) simulation.step();
   StrandRun run{};
@@ -82,6 +82,7 @@ StrandRun pullIntoAStrand(const std::string& integrator) {
   run.strand = simulation.metrics().width;
   const double a = simulation.grabbedPoint(0).x, b = simulation.grabbedPoint(1).x;
   run.middle = thicknessAt(simulation, 0.5 * (a + b));
+  run.quarter = std::max(thicknessAt(simulation, a + 0.25 * (b - a)), thicknessAt(simulation, a + 0.75 * (b - a)));
   // The held ends: the thickest slab within the fist (3 cm inside each hand's point).
   const auto held = [&](double at, double inward) {
     double thickest = 0.0;
@@ -92,8 +93,9 @@ StrandRun pullIntoAStrand(const std::string& integrator) {
   run.neck = run.ends;
   for (double s = 0.1; s < 0.901; s += 0.05) run.neck = std::min(run.neck, thicknessAt(simulation, a + s * (b - a)));
   std::printf("strand (%s): hands at %.1f and %.1f cm, forces %.2f / %.2f N; thickness at the hands %.1f cm, "
-              "half-way %.1f cm, thinnest between %.1f cm\n", integrator.c_str(), a * 100, b * 100,
-              glm::length(simulation.handForce(0)), glm::length(simulation.handForce(1)), run.ends * 100,
+              "¼ and ¾ of the way %.1f / %.1f cm, half-way %.1f cm, thinnest between %.1f cm\n", integrator.c_str(), a * 100,
+              b * 100, glm::length(simulation.handForce(0)), glm::length(simulation.handForce(1)), run.ends * 100,
+              thicknessAt(simulation, a + 0.25 * (b - a)) * 100, thicknessAt(simulation, a + 0.75 * (b - a)) * 100,
               run.middle * 100, run.neck * 100);
   simulation.releaseAll();
   const double t1 = simulation.time();
