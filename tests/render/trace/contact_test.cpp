@@ -55,10 +55,12 @@ void expectCleanContact(int level) {
   Settings settings = withoutCaustics(smallScene(200, 150));  // the camera's rays at the contact
   settings.slime.position = defaultSettings().slime.position;  // dropped and settled, as the snapshot
   settings.slime.level = level;
-  // Settled on the floor without adhesion: on the sticky default (8000 Pa) levels 0 and 1 settle a
-  // little differently and show one isolated pixel each at the contact, Embree and brute force alike
-  // (so the renderer's, not the backends'; open, docs/physics.md adhesion).
-  settings.slime.adhesion = 0.0;
+  // Levels 0 and 1 settle without adhesion. On the sticky default (8000 Pa) their 20- and 80-face
+  // shapes keep a facet seen almost edge-on where the base meets the floor: one pixel apart from its
+  // neighbours at each level (level 0 at the tip of the base, level 1 at the end of a one-pixel ledge),
+  // the same in Embree and the brute force, so the geometry's, not a rounding's toss, which is what
+  // this oracle is for. Levels 2–4 (the default and finer) settle on the sticky default.
+  if (level < 2) settings.slime.adhesion = 0.0;
   const TriangleMesh mesh = settledMesh(settings);
   const Image embree = renderMesh(settings, mesh);
   settings.render.backend = "brute";
