@@ -45,6 +45,12 @@ void Caustics::trace(const PhotonTracer& tracer, std::uint64_t first, std::uint6
   lastTraced_ += photons;
 }
 
+void Caustics::append(const Photons& photons) {
+  landings_.insert(landings_.end(), photons.landings.begin(), photons.landings.end());
+  straight_.insert(straight_.end(), photons.straight.begin(), photons.straight.end());
+  tally_ += photons.tally;
+}
+
 const CausticMap* Caustics::update(const Settings& settings, const ShadingParameters& parameters,
                                    const SlimeGeometry& geometry, const SlimeIntersector& intersector,
                                    tbb::task_arena* arena, bool progressive) {
@@ -91,20 +97,16 @@ const CausticMap* Caustics::update(const Settings& settings, const ShadingParame
       frames_ = 1;
       const std::uint64_t moving = std::max<std::uint64_t>(1, budget_ / kMovingDivisor), half = moving / 2;
       const std::uint64_t firsts[2] = {0, half}, counts[2] = {half, moving - half};
-      const bool keep = kKeepMovingHalf && halvesValid_ && onlyTheSlimeMoved && half > 0;
+      const bool keep = halvesValid_ && onlyTheSlimeMoved && half > 0;
       for (int h = 0; h < 2; ++h) {
         if (keep && h != nextHalf_) continue;
-        halves_[h] = Photons{};
+        halves_[h].clear();
         trace(tracer, firsts[h], counts[h], arena, halves_[h]);
       }
       nextHalf_ = keep ? 1 - nextHalf_ : 0;
       stale_ = keep;
       halvesValid_ = true;
-      for (const Photons& h : halves_) {  // in the sequence's order: [0, M/2) then [M/2, M)
-        landings_.insert(landings_.end(), h.landings.begin(), h.landings.end());
-        straight_.insert(straight_.end(), h.straight.begin(), h.straight.end());
-        tally_ += h.tally;
-      }
+      for (const Photons& h : halves_) append(h);  // in the sequence's order: [0, M/2) then [M/2, M)
       traced_ = moving;
       map_.build(landings_, static_cast<double>(traced_), cone_.solidAngle,
                  shadowRegion(cone_, geometry.boundCenter, geometry.boundRadius), &straight_);
@@ -131,11 +133,9 @@ const CausticMap* Caustics::update(const Settings& settings, const ShadingParame
     ++frames_;
     target = std::min(finished, budget_ * static_cast<std::uint64_t>(frames_));
   }
-  Photons added;
-  trace(tracer, traced_, target - traced_, arena, added);
-  landings_.insert(landings_.end(), added.landings.begin(), added.landings.end());
-  straight_.insert(straight_.end(), added.straight.begin(), added.straight.end());
-  tally_ += added.tally;
+  added_.clear();
+  trace(tracer, traced_, target - traced_, arena, added_);
+  append(added_);
   traced_ = target;
   map_.build(landings_, static_cast<double>(traced_), cone_.solidAngle, shadowRegion(cone_, geometry.boundCenter, geometry.boundRadius),
              &straight_);

@@ -25,7 +25,7 @@ class Caustics {
   // (issue 30 item 4: 5,000 photons by default, 8–9 % of a loaded 1280×720 frame against 18 % for
   // 10,000). The kernel adapts to the smaller count (caustic_map.h); the next still frame catches up.
   static constexpr int kMovingDivisor = 2;
-  // While only the slime moves, frame after frame (held, dragged, falling), a moving frame traces half
+  // Kept halves: while only the slime moves, frame after frame (held, dragged, falling), a moving frame traces half
   // of its M = render.photons / kMovingDivisor photons afresh, in turn photons [0, M/2) and [M/2, M) of
   // the sequence, and keeps the other half from the moving frame before (issue 28: the photons were
   // 5 of a held frame's ~30 ms on AMD family 25). The map still holds M photons, so it is no noisier;
@@ -33,7 +33,6 @@ class Caustics {
   // budget change, or the first moving frame after a still one, traces all M; the first still frame
   // after a kept half starts the map again from fresh photons, so the progressive map still ends at
   // the finished one.
-  static constexpr bool kKeepMovingHalf = true;
 
   // The map for this frame, or null when caustics are off (render.caustics, render.shadows, the light
   // below the floor, no slime). `arena`: the photons in its threads; null: on this thread (the brute
@@ -45,7 +44,7 @@ class Caustics {
   //   render.photons / kMovingDivisor photons; the k-th frame in a row with nothing changed brings
   //   the map to k · render.photons photons, until kStillBudgets of them: the same photons in the same
   //   order, so the 16th still frame is the finished map; a frame where only the slime moved since
-  //   the last moving frame traces half of them (kKeepMovingHalf).
+  //   the last moving frame traces half of them (kept halves, above).
   const CausticMap* update(const Settings& settings, const ShadingParameters& parameters, const SlimeGeometry& geometry,
                            const SlimeIntersector& intersector, tbb::task_arena* arena, bool progressive = false);
 
@@ -60,13 +59,18 @@ class Caustics {
   struct Photons {
     std::vector<PhotonLanding> landings, straight;
     PhotonTally tally;
+    void clear() { landings.clear(), straight.clear(), tally = PhotonTally{}; }  // keeps the vectors' capacity
   };
   void trace(const PhotonTracer& tracer, std::uint64_t first, std::uint64_t count, tbb::task_arena* arena, Photons& out);
 
   std::vector<float> key_;  // the slime's vertices, the light, the optics and the budget of the map
-  // The last moving frame's two halves of its M photons (kKeepMovingHalf): valid while no still frame
+  // The map's photons gain `photons`' landings and tally.
+  void append(const Photons& photons);
+
+  // The last moving frame's two halves of its M photons (kept halves): valid while no still frame
   // came after it; the next moving frame traces halves_[nextHalf_] afresh and keeps the other.
   Photons halves_[2];
+  Photons added_;  // a still frame's new photons, reused from frame to frame
   bool halvesValid_ = false;
   int nextHalf_ = 0;
   bool stale_ = false;  // the map holds a half traced on an earlier shape of the slime
