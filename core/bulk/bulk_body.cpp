@@ -90,6 +90,7 @@ BulkBody buildBulkBody(const SlimeSettings& slime) {
       setLaneMatrix(block.metric, lane, glm::dmat3(1.0));
     }
   body.edges = tetrahedronEdges(mesh.tetrahedra);
+  body.edgeColours = colourEdges(body.edges, mesh.positions.size());
   body.drawn = makeIcosphere(slime.level, slime.radius, slime.position);
   if (slime.level >= mesh.shellLevel) {
     body.embedding = embedSurface(mesh, body.drawn, slime.level);
@@ -194,51 +195,71 @@ void bulkInternalForces(const BulkBody& body, const std::vector<glm::dvec3>& x, 
 
 void dampEdges(const BulkBody& body, double h, BulkScratch& scratch, ParticleState& state) {
   const std::vector<double>& w = state.inverseMasses;
-  if (scratch.decayStep != h || scratch.edgeDecay.size() != body.edges.size()) {
-    scratch.edgeDecay.resize(body.edges.size());
-    for (std::size_t s = 0; s < body.edges.size(); ++s)
-      scratch.edgeDecay[s] = 1.0 - std::exp(-body.edgeDamping[s] * (w[body.edges[s].x] + w[body.edges[s].y]) * h);
+  const std::vector<std::uint32_t>& order = body.edgeColours.order;
+  const std::size_t count = body.edges.size();
+  if (scratch.decayStep != h || scratch.edgeDecay.size() != count) {
+    const bool coloured = order.size() == count;  // else the edges' own order
+    scratch.dampedPairs.resize(count);
+    scratch.edgeDecay.resize(count);
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::size_t s = coloured ? order[k] : k;
+      scratch.dampedPairs[k] = body.edges[s];
+      scratch.edgeDecay[k] = 1.0 - std::exp(-body.edgeDamping[s] * (w[body.edges[s].x] + w[body.edges[s].y]) * h);
+    }
     scratch.decayStep = h;
   }
-  // Pair after pair in the edges' order, each seeing the velocities the earlier ones left. The edges
-  // are sorted by i, so v_i stays in a register while its edges pass (j > i: never the same node).
-  // The change is (w_i, w_j)·a·((v_j − v_i)·d) d with a = decay/(|d|² (w_i + w_j)), found apart from
-  // the velocities, so that only a dot product and two multiply-adds wait on the previous pair.
-  const std::vector<glm::u32vec2>& edges = body.edges;
-  const std::vector<glm::dvec3>& x = state.positions;
-  std::vector<glm::dvec3>& v = state.velocities;
-  for (std::size_t s = 0; s < edges.size();) {
-    const std::uint32_t i = edges[s].x;
-    glm::dvec3 velocity = v[i];
-    for (; s < edges.size() && edges[s].x == i; ++s) {
-      const std::uint32_t j = edges[s].y;
-      const double inverseMassSum = w[i] + w[j];
-      if (inverseMassSum <= 0.0) continue;
-      const glm::dvec3 d = x[j] - x[i];
-      const double lengthSquared = glm::dot(d, d);
-      if (lengthSquared <= 0.0) continue;
-      const double share = scratch.edgeDecay[s] / (lengthSquared * inverseMassSum);
-      const double relativeSpeed = glm::dot(v[j] - velocity, d);
-      velocity += (w[i] * share * relativeSpeed) * d;
-      v[j] -= (w[j] * share * relativeSpeed) * d;
-    }
-    v[i] = velocity;
+  // Pair after pair, colour after colour. Within a colour no two pairs share a node, so no pair waits
+  // on the one before it; the change is (w_i, w_j)·a·((v_j − v_i)·d) d with a = decay/(|d|² (w_i + w_j)).
+  const glm::u32vec2* pairs = scratch.dampedPairs.data();
+  const double* decay = scratch.edgeDecay.data();
+  const glm::dvec3* x = state.positions.data();
+  glm::dvec3* v = state.velocities.data();
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::uint32_t i = pairs[k].x, j = pairs[k].y;
+    const double inverseMassSum = w[i] + w[j];
+    if (inverseMassSum <= 0.0) continue;
+    const glm::dvec3 d = x[j] - x[i];
+    const double lengthSquared = glm::dot(d, d);
+    if (lengthSquared <= 0.0) continue;
+    const double share = decay[k] / (lengthSquared * inverseMassSum);
+    const double relativeSpeed = glm::dot(v[j] - v[i], d);
+    v[i] += (w[i] * share * relativeSpeed) * d;
+    v[j] -= (w[j] * share * relativeSpeed) * d;
   }
 }
 
 void projectBulkVolume(const BulkBody& body, double h, BulkScratch& scratch, ParticleState& state) {
-  const double volume = volumeGradient(state.positions, body.mesh.surface, scratch.volumeGradient);
-  const std::vector<glm::dvec3>& gradient = scratch.volumeGradient;
+  // One pass over the surface triangles for 6V and 6∇V (volume.h's sums, about the first node; the
+  // surface triangles hold only the surface nodes 0..N_s−1), one over those nodes for Σ w|∇V|².
+  const std::size_t surfaceNodes = body.mesh.surfaceNodes;
+  std::vector<glm::dvec3>& gradient = scratch.volumeGradient;  // 6∇V
+  gradient.assign(surfaceNodes, glm::dvec3(0.0));
+  std::vector<glm::dvec3>& x = state.positions;
+  if (surfaceNodes == 0) return;
+  const glm::dvec3 origin = x[0];
+  double sixTimesVolume = 0.0;
+  for (const Triangle& t : body.mesh.surface) {
+    const glm::dvec3 a = x[t.x] - origin, b = x[t.y] - origin, c = x[t.z] - origin;
+    const glm::dvec3 bc = glm::cross(b, c);
+    sixTimesVolume += glm::dot(a, bc);
+    gradient[t.x] += bc;
+    gradient[t.y] += glm::cross(c, a);
+    gradient[t.z] += glm::cross(a, b);
+  }
   // A node lying on the floor is held by it (as a pinned node is by the hand): it does not move.
-  const auto mobility = [&](std::size_t i) { return state.positions[i].z > 0.0 ? state.inverseMasses[i] : 0.0; };
-  double resistance = 0.0;  // Σ w_i |∇_i V|²
-  for (std::size_t i = 0; i < body.mesh.surfaceNodes; ++i) resistance += mobility(i) * glm::dot(gradient[i], gradient[i]);
+  const std::vector<double>& w = state.inverseMasses;
+  double resistance = 0.0;  // Σ w_i |6∇_i V|²
+  for (std::size_t i = 0; i < surfaceNodes; ++i)
+    resistance += (x[i].z > 0.0 ? w[i] : 0.0) * glm::dot(gradient[i], gradient[i]);
   if (resistance <= 0.0) return;
-  const double multiplier = (body.restVolume - volume) / resistance;
-  for (std::size_t i = 0; i < body.mesh.surfaceNodes; ++i) {
-    const glm::dvec3 move = (multiplier * mobility(i)) * gradient[i];
-    state.positions[i] += move;
-    state.velocities[i] += move / h;
+  // Δx_i = (V0 − V) w_i ∇_i V / Σ w|∇V|² = 6 (V0 − V) w_i (6∇_i V) / Σ w|6∇V|².
+  const double multiplier = 6.0 * (body.restVolume - sixTimesVolume / 6.0) / resistance;
+  const double inverseStep = 1.0 / h;
+  for (std::size_t i = 0; i < surfaceNodes; ++i) {
+    if (!(x[i].z > 0.0)) continue;
+    const glm::dvec3 move = (multiplier * w[i]) * gradient[i];
+    x[i] += move;
+    state.velocities[i] += move * inverseStep;
   }
 }
 

@@ -22,6 +22,7 @@
 #include "core/scene/icosphere.h"
 #include "core/integrators/particle_state.h"
 #include "core/settings/settings.h"
+#include "core/bulk/edge_colours.h"
 #include "core/bulk/surface_embedding.h"
 #include "core/bulk/tet_mesh.h"
 #include "core/bulk/viscoelastic.h"
@@ -59,6 +60,7 @@ struct BulkBody {
   std::vector<MaxwellBlock> maxwell;      // per block of kTetLanes tetrahedra, B_v and G_v
   std::vector<glm::u32vec2> edges;        // every tetrahedron edge once
   std::vector<double> edgeDamping;        // k_d per edge, N·s/m
+  EdgeColours edgeColours;                // the order dampEdges takes the edges in
   ViscoelasticMaterial material;
   double restVolume = 0.0;                // V0 of the tetrahedral ball, m³
   double totalMass = 0.0;                 // kg
@@ -82,7 +84,10 @@ void applyBulkMaterial(BulkBody& body, const SlimeSettings& slime);
 // Scratch for the forces (sized on first use, no allocation per step after that).
 struct BulkScratch {
   std::vector<glm::dvec3> forces;
-  std::vector<double> edgeDecay;   // per edge, 1 − exp(−k_d (w_i + w_j) h) for the step decayStep
+  // Per edge in dampEdges' order (BulkBody::edgeColours): its two nodes and 1 − exp(−k_d (w_i + w_j) h)
+  // for the step decayStep.
+  std::vector<glm::u32vec2> dampedPairs;
+  std::vector<double> edgeDecay;
   double decayStep = -1.0;
   std::vector<glm::dvec3> volumeGradient;
   std::vector<glm::dvec3> positions;  // the frequency estimate's displaced shape
@@ -96,8 +101,9 @@ void bulkInternalForces(const BulkBody& body, const std::vector<glm::dvec3>& pos
 
 // The seed's dampers integrated exactly pair by pair, as symplectic_euler does for the membrane: the
 // relative velocity of each edge's ends along the edge decays by exp(−k_d (w_i + w_j) h), the two
-// ends sharing the change by their inverse masses (momentum kept). A contraction for any h, so the
-// dampers never limit the step. Call after the kick.
+// ends sharing the change by their inverse masses (momentum kept). A contraction for any h; with the
+// kicks between passes the step is capped (Simulation::largestStableStep). The pairs are taken colour
+// after colour (edge_colours.h), each seeing the velocities the earlier ones left. Call after the kick.
 void dampEdges(const BulkBody& body, double h, BulkScratch& scratch, ParticleState& state);
 
 // Moves the surface nodes so the body's volume is its rest volume again (one projection along ∇V)

@@ -1,7 +1,10 @@
 #include "core/scene/grab.h"
 
+#include "core/scene/simulation.h"
+
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 #include <limits>
@@ -102,6 +105,33 @@ glm::dvec3 applyMouseSpringImplicitly(const MouseSpring& spring, const std::vect
   const double scale = magnitude > spring.maxForce ? spring.maxForce / magnitude : 1.0;
   for (std::size_t k = 0; k < spring.nodes.size(); ++k) velocities[spring.nodes[k]] += scale * change[k];
   return scale * hand;
+}
+
+// The membrane's grabbed points, Simulation's (simulation.h).
+// Grabbed points land exactly where they are driven (the integrators moved them by v h).
+void Simulation::placeGrabbedPoints() {
+  ParticleState& state = body_.state;
+  for (const Hand& hand : hands_) {
+    for (std::size_t k = 0; k < hand.nodes.size(); ++k) {
+      glm::dvec3 target = hand.anchor + hand.offsets[k];
+      target.z = std::max(target.z, 0.0);
+      state.positions[hand.nodes[k]] = target;
+    }
+  }
+}
+
+void Simulation::driveGrabbedPoints(double h) {
+  ParticleState& state = body_.state;
+  for (Hand& hand : hands_) {
+    if (!hand.holding) continue;
+    const glm::dvec3 next = stepTowards(hand.anchor, hand.target, kGrabSpeed * h);
+    for (std::size_t k = 0; k < hand.nodes.size(); ++k) {
+      glm::dvec3 target = next + hand.offsets[k];
+      target.z = std::max(target.z, 0.0);
+      state.velocities[hand.nodes[k]] = (target - state.positions[hand.nodes[k]]) / h;
+    }
+    hand.anchor = next;
+  }
 }
 
 }  // namespace slime

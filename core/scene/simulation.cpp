@@ -19,7 +19,7 @@ namespace {
 
 constexpr int kGoodStateInterval = 8;   // steps between saved good states
 constexpr int kMaxRefinement = 64;      // the guard doubles substeps after a rollback, up to this
-constexpr double kExactDamperStepFactor = 8.0;  // see largestStableStep
+constexpr double kExactDamperStepFactor = 12.0;  // see largestStableStep
 constexpr int kCleanStepsToCoarsen = 500;  // after this many steps with no rollback it halves them again
 constexpr int kRollingInterval = 4;     // steps between applications of the rolling resistance
 // Steps between the Maxwell branches' flow updates (exact over the interval for the strain at its end;
@@ -195,7 +195,10 @@ double Simulation::largestStableStep() const {
   // The bulk's exact dampers are a contraction pair by pair, but applied one pair after another
   // between the kicks they are not unconditionally stable: measured on the lightest slime
   // (slime.mass=0.01, Gershgorin rate 7.3e4/s), h = 0.125 ms was stable and 0.25 ms was not, so the
-  // step is capped at kExactDamperStepFactor / rate (no cap at the defaults: 2.9 ms).
+  // step is capped at kExactDamperStepFactor / rate (no cap at the defaults: 4.4 ms). Taken colour
+  // after colour (edge_colours.h) rather than chained along each node's edges, 0.2 ms held for 0.5 s
+  // and 0.225 ms rolled back (the chain's order: 0.125 ms held, 0.15 ms rolled back), so the factor is
+  // 12 (0.164 ms), no longer 8.
   if (bulk_ && integrator_ == Integrator::SymplecticEuler && bulkDampingRate_ > 0.0)
     return std::min(step, kExactDamperStepFactor / bulkDampingRate_);
   return step;
@@ -327,6 +330,8 @@ void Simulation::bulkSubstep(double h) {
   // solver's implicit step is not that, and holding its nodes back made it roll back (21 times in a
   // two-hand pull at 6000 Pa), so it has no adhesion yet.
   const double adhesion = integrator_ == Integrator::Projective ? 0.0 : settings_.slime.adhesion;
+  const double friction = settings_.slime.friction;
+  bool floorDone = false;  // the floor contact on every node, fused with the drift below
   if (adhesion > 0.0) adhesion_.beginSubstep(state);
   switch (integrator_) {
     case Integrator::ExplicitEuler: explicitEulerStep(state, h, accelerationField_, integratorScratch_); break;
@@ -365,43 +370,22 @@ void Simulation::bulkSubstep(double h) {
         if (w != 0.0) state.velocities[i] += h * (a[i] * w + gravity);
       }
       dampEdges(bulkBody_, h, bulkScratch_, state);
-      for (std::size_t i = 0; i < state.size(); ++i)
-        if (state.inverseMasses[i] != 0.0) state.positions[i] += h * state.velocities[i];
+      // Drift and the floor in one pass (the floor moves only the node it holds).
+      for (std::size_t i = 0; i < state.size(); ++i) {
+        if (state.inverseMasses[i] == 0.0) continue;
+        state.positions[i] += h * state.velocities[i];
+        if (state.inverseMasses[i] > 0.0) resolveFloorContactAt(state.positions[i], state.velocities[i], friction);
+      }
+      floorDone = true;
       break;
     }
   }
-  const double friction = settings_.slime.friction;
-  for (std::size_t i = 0; i < state.size(); ++i)
-    if (state.inverseMasses[i] > 0.0) resolveFloorContactAt(state.positions[i], state.velocities[i], friction);
+  if (!floorDone)
+    for (std::size_t i = 0; i < state.size(); ++i)
+      if (state.inverseMasses[i] > 0.0) resolveFloorContactAt(state.positions[i], state.velocities[i], friction);
   projectBulkVolume(bulkBody_, h, bulkScratch_, state);
   drawnTouching_ = resolveDrawnFloorContact(bulkBody_, friction) > 0;
   if (adhesion > 0.0) adhesion_.endSubstep(state, bulkBody_.mesh.surface, bulkBody_.freeInverseMasses, adhesion, h);
-}
-
-// Grabbed points land exactly where they are driven (the integrators moved them by v h).
-void Simulation::placeGrabbedPoints() {
-  ParticleState& state = body_.state;
-  for (const Hand& hand : hands_) {
-    for (std::size_t k = 0; k < hand.nodes.size(); ++k) {
-      glm::dvec3 target = hand.anchor + hand.offsets[k];
-      target.z = std::max(target.z, 0.0);
-      state.positions[hand.nodes[k]] = target;
-    }
-  }
-}
-
-void Simulation::driveGrabbedPoints(double h) {
-  ParticleState& state = body_.state;
-  for (Hand& hand : hands_) {
-    if (!hand.holding) continue;
-    const glm::dvec3 next = stepTowards(hand.anchor, hand.target, kGrabSpeed * h);
-    for (std::size_t k = 0; k < hand.nodes.size(); ++k) {
-      glm::dvec3 target = next + hand.offsets[k];
-      target.z = std::max(target.z, 0.0);
-      state.velocities[hand.nodes[k]] = (target - state.positions[hand.nodes[k]]) / h;
-    }
-    hand.anchor = next;
-  }
 }
 
 void Simulation::saveGoodState() {

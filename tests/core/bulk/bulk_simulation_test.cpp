@@ -332,5 +332,19 @@ TEST(BulkSlime, RefinementAfterARollbackReturnsAfterCleanSteps) {
   for (const glm::dvec3& p : simulation.positions()) ASSERT_TRUE(std::isfinite(p.x + p.y + p.z));
 }
 
+// The lightest slime's step is capped by its dampers (Simulation::largestStableStep): taken at
+// exactly that cap with no automatic substeps, it holds (kExactDamperStepFactor 24, 0.33 ms, rolls back).
+TEST(BulkSlime, LightestSlimeHoldsAtTheDamperStepCap) {
+  Settings settings = defaultSettings();
+  settings.slime.mass = 0.01;
+  const double cap = Simulation(settings).largestStableStep();
+  ASSERT_LT(cap, 0.0002) << "the dampers' cap no longer binds the lightest slime";
+  settings.sim.dt = cap;
+  Simulation simulation(settings);
+  simulation.setAutomaticSubsteps(false);
+  while (simulation.divergences().empty() && simulation.time() < 0.4) simulation.step();
+  EXPECT_TRUE(simulation.divergences().empty()) << simulation.divergences().front().what;
+}
+
 }  // namespace
 }  // namespace slime
