@@ -41,6 +41,11 @@ constexpr std::size_t kTetLanes = 64;
 struct TetBlock {
   alignas(64) double restInverse[9][kTetLanes] = {};  // Dm⁻¹
   alignas(64) double forceMap[9][kTetLanes] = {};     // −V0 Dm⁻ᵀ
+  // The element pass's own (element_pass.h): the four nodes, K0 = −V0 Dm⁻¹Dm⁻ᵀ (six entries,
+  // tet_lanes.h's kSymmetricEntry) and 1/det Dm; node 0 and zeros past the last tetrahedron.
+  alignas(64) std::uint32_t nodes[4][kTetLanes] = {};
+  alignas(64) double stiffnessMap[6][kTetLanes] = {};
+  alignas(64) double volumeScale[kTetLanes] = {};
 };
 
 // The Maxwell branches' rest states (viscoelastic.h's MaxwellRest) of a block's tetrahedra, laid
@@ -48,6 +53,7 @@ struct TetBlock {
 struct MaxwellBlock {
   alignas(64) double inverse[9][kTetLanes] = {};  // B_v
   alignas(64) double metric[9][kTetLanes] = {};   // G_v = B_v⁻¹, which the flow blends
+  alignas(64) double forceMap[6][kTetLanes] = {}; // M = −V0 Dm⁻¹ B_v Dm⁻ᵀ (element_pass.h), follows B_v
 };
 
 struct BulkBody {
