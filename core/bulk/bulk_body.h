@@ -53,7 +53,12 @@ struct TetBlock {
 struct MaxwellBlock {
   alignas(64) double inverse[9][kTetLanes] = {};  // B_v
   alignas(64) double metric[9][kTetLanes] = {};   // G_v = B_v⁻¹, which the flow blends
-  alignas(64) double forceMap[6][kTetLanes] = {}; // M = −V0 Dm⁻¹ B_v Dm⁻ᵀ (element_pass.h), follows B_v
+};
+
+// M = −V0 Dm⁻¹ B_v Dm⁻ᵀ of a block's tetrahedra (six entries, element_pass.h), which follows B_v: kept
+// apart from MaxwellBlock so that the guard's saved states do not copy it (refreshed on a rollback).
+struct MaxwellMapBlock {
+  alignas(64) double forceMap[6][kTetLanes] = {};
 };
 
 struct BulkBody {
@@ -63,6 +68,7 @@ struct BulkBody {
   std::vector<TetRest> rest;              // per tetrahedron
   std::vector<TetBlock> restBlocks;       // the same by kTetLanes, for the force loop
   std::vector<MaxwellBlock> maxwell;      // per block of kTetLanes tetrahedra, B_v and G_v
+  std::vector<MaxwellMapBlock> maxwellMaps;  // M per block, from maxwell (refreshMaxwellForceMaps)
   std::vector<glm::u32vec2> edges;        // every tetrahedron edge once
   std::vector<double> edgeDamping;        // k_d per edge, N·s/m
   ViscoelasticMaterial material;

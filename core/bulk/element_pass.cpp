@@ -116,10 +116,11 @@ void fillElementBlocks(BulkBody& body) {
 }
 
 void refreshMaxwellForceMaps(BulkBody& body) {
+  body.maxwellMaps.resize(body.maxwell.size());
   for (std::size_t b = 0; b < body.maxwell.size() && b < body.restBlocks.size(); ++b)
     for (std::size_t o = 0; o < kTetLanes; o += kLaneWidth)
       congruenceLanes(body.restBlocks[b].restInverse, body.restBlocks[b].forceMap, body.maxwell[b].inverse, o,
-                      body.maxwell[b].forceMap);
+                      body.maxwellMaps[b].forceMap);
 }
 
 void elementForces(const BulkBody& body, const std::vector<glm::dvec3>& x, std::vector<glm::dvec3>& forces) {
@@ -136,7 +137,7 @@ void elementForces(const BulkBody& body, const std::vector<glm::dvec3>& x, std::
       Lanes ds[9], h[9];
       gatherLanes(block, quads.positions, o, ds);
       shapeForceLanes(material.longTermShear, material.maxwellShear, lambdaPrime, alpha, ds, block.stiffnessMap,
-                      body.maxwell[b].forceMap, block.volumeScale, o, h);
+                      body.maxwellMaps[b].forceMap, block.volumeScale, o, h);
       scatterLanes(block, h, o, quads.forces);
     }
   }
@@ -158,7 +159,7 @@ void relaxElements(BulkBody& body, double decay) {
     }
     for (std::size_t o = 0; o < kTetLanes; o += kLaneWidth) {
       relaxLanes(shape, block.restInverse, decay, o, maxwell.metric, maxwell.inverse);
-      congruenceLanes(block.restInverse, block.forceMap, maxwell.inverse, o, maxwell.forceMap);
+      congruenceLanes(block.restInverse, block.forceMap, maxwell.inverse, o, body.maxwellMaps[b].forceMap);
     }
   }
 }

@@ -19,7 +19,7 @@ namespace slime {
 void fillElementBlocks(BulkBody& body);
 
 // M = −V0 Dm⁻¹ B_v Dm⁻ᵀ of every block from its B_v: after anything that sets B_v other than
-// relaxElements (building the body, the projective solver's storeMaxwell).
+// relaxElements (building the body, the projective solver's storeMaxwell, the guard's rollback).
 void refreshMaxwellForceMaps(BulkBody& body);
 
 // Elastic and Maxwell nodal forces at x; `forces` is resized and overwritten.
