@@ -2,6 +2,7 @@
 
 #include "core/scene/floor_contact.h"
 #include "core/membrane/volume.h"
+#include "core/bulk/element_pass.h"
 #include "core/bulk/tet_lanes.h"
 
 #include <glm/geometric.hpp>
@@ -30,23 +31,6 @@ inline glm::dmat3 laneMatrix(const double (&entries)[9][kTetLanes], std::size_t 
 }
 inline void setLaneMatrix(double (&entries)[9][kTetLanes], std::size_t lane, const glm::dmat3& m) {
   for (int entry = 0; entry < 9; ++entry) entries[entry][lane] = m[entry / 3][entry % 3];
-}
-
-// Nodal forces H = P·forceMap (P the first Piola stress at F = Ds·Dm⁻¹) of a block of tetrahedra,
-// kLaneWidth lanes at a time (tet_lanes.h).
-void blockStressForces(const ViscoelasticMaterial& material, const TetBlock& rest, const double (&shape)[9][kTetLanes],
-                       const double (&maxwell)[9][kTetLanes], std::size_t count, double (&forces)[9][kTetLanes]) {
-  const double lambdaPrime = volumetricModulus(material), alpha = restVolumeRatio(material);
-  for (std::size_t o = 0; o < count; o += kLaneWidth)
-    stressForceLanes(material.longTermShear, material.maxwellShear, lambdaPrime, alpha, shape, rest.restInverse,
-                     rest.forceMap, maxwell, o, forces);
-}
-
-// The Maxwell branches' flow (relaxMaxwellBranch) of a block of tetrahedra, kLaneWidth lanes at a time
-// (lanes past the last tetrahedron flow too, with F = 0, and are never read).
-void blockRelax(const TetBlock& rest, const double (&shape)[9][kTetLanes], double decay, MaxwellBlock& maxwell) {
-  for (std::size_t o = 0; o < kTetLanes; o += kLaneWidth)
-    relaxLanes(shape, rest.restInverse, decay, o, maxwell.metric, maxwell.inverse);
 }
 
 }  // namespace
@@ -89,6 +73,7 @@ BulkBody buildBulkBody(const SlimeSettings& slime) {
       setLaneMatrix(block.inverse, lane, glm::dmat3(1.0));
       setLaneMatrix(block.metric, lane, glm::dmat3(1.0));
     }
+  fillElementBlocks(body);
   body.edges = tetrahedronEdges(mesh.tetrahedra);
   body.edgeColours = colourEdges(body.edges, mesh.positions.size());
   body.drawn = makeIcosphere(slime.level, slime.radius, slime.position);
@@ -158,27 +143,9 @@ void applyBulkMaterial(BulkBody& body, const SlimeSettings& slime) {
 
 void bulkInternalForces(const BulkBody& body, const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v,
                         std::vector<glm::dvec3>& forces, bool dampers) {
-  forces.assign(x.size(), glm::dvec3(0.0));
-  const std::vector<Tetrahedron>& tetrahedra = body.mesh.tetrahedra;
-  // Elastic and Maxwell branches: f = −V0 P Dm⁻ᵀ on nodes 1..3, the opposite of their sum on node 0,
-  // a block of tetrahedra at a time: gather Ds into lanes, the stress, scatter in order.
-  for (std::size_t block = 0; block < body.restBlocks.size(); ++block) {
-    const std::size_t first = block * kTetLanes;
-    const std::size_t count = std::min(kTetLanes, tetrahedra.size() - first);
-    alignas(64) double shape[9][kTetLanes];
-    alignas(64) double h[9][kTetLanes];
-    gatherShapes(tetrahedra, x, block, shape);
-    blockStressForces(body.material, body.restBlocks[block], shape, body.maxwell[block].inverse, count, h);
-    for (std::size_t lane = 0; lane < count; ++lane) {
-      const Tetrahedron& t = tetrahedra[first + lane];
-      const glm::dvec3 h0(h[0][lane], h[1][lane], h[2][lane]), h1(h[3][lane], h[4][lane], h[5][lane]),
-          h2(h[6][lane], h[7][lane], h[8][lane]);
-      forces[t.y] += h0;
-      forces[t.z] += h1;
-      forces[t.w] += h2;
-      forces[t.x] -= h0 + h1 + h2;
-    }
-  }
+  // Elastic and Maxwell branches: f = −V0 P Dm⁻ᵀ on nodes 1..3, the opposite of their sum on node 0
+  // (element_pass.h: gathered, stressed and scattered kLaneWidth tetrahedra at a time).
+  elementForces(body, x, forces);
   // The seed's damper along each edge: −k_d ((v_j − v_i)·u) u on i's side, u the unit edge.
   if (dampers) {
     for (std::size_t s = 0; s < body.edges.size(); ++s) {
@@ -275,12 +242,7 @@ double bulkElasticEnergy(const BulkBody& body, const std::vector<glm::dvec3>& x)
 
 void relaxBulk(BulkBody& body, double dt) {
   if (body.material.maxwellShear <= 0.0) return;
-  const double decay = std::exp(-dt / body.material.relaxationTime);
-  for (std::size_t block = 0; block < body.restBlocks.size(); ++block) {
-    alignas(64) double shape[9][kTetLanes];
-    gatherShapes(body.mesh.tetrahedra, body.state.positions, block, shape);
-    blockRelax(body.restBlocks[block], shape, decay, body.maxwell[block]);
-  }
+  relaxElements(body, std::exp(-dt / body.material.relaxationTime));
 }
 
 std::size_t resolveDrawnFloorContact(BulkBody& body, double friction) {

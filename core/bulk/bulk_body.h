@@ -42,6 +42,11 @@ constexpr std::size_t kTetLanes = 64;
 struct TetBlock {
   alignas(64) double restInverse[9][kTetLanes] = {};  // Dm⁻¹
   alignas(64) double forceMap[9][kTetLanes] = {};     // −V0 Dm⁻ᵀ
+  // The element pass's own (element_pass.h): the four nodes, K0 = −V0 Dm⁻¹Dm⁻ᵀ (six entries,
+  // tet_lanes.h's kSymmetricEntry) and 1/det Dm; node 0 and zeros past the last tetrahedron.
+  alignas(64) std::uint32_t nodes[4][kTetLanes] = {};
+  alignas(64) double stiffnessMap[6][kTetLanes] = {};
+  alignas(64) double volumeScale[kTetLanes] = {};
 };
 
 // The Maxwell branches' rest states (viscoelastic.h's MaxwellRest) of a block's tetrahedra, laid
@@ -51,6 +56,12 @@ struct MaxwellBlock {
   alignas(64) double metric[9][kTetLanes] = {};   // G_v = B_v⁻¹, which the flow blends
 };
 
+// M = −V0 Dm⁻¹ B_v Dm⁻ᵀ of a block's tetrahedra (six entries, element_pass.h), which follows B_v: kept
+// apart from MaxwellBlock so that the guard's saved states do not copy it (refreshed on a rollback).
+struct MaxwellMapBlock {
+  alignas(64) double forceMap[6][kTetLanes] = {};
+};
+
 struct BulkBody {
   TetMesh mesh;                           // at rest at slime.position
   ParticleState state;
@@ -58,6 +69,7 @@ struct BulkBody {
   std::vector<TetRest> rest;              // per tetrahedron
   std::vector<TetBlock> restBlocks;       // the same by kTetLanes, for the force loop
   std::vector<MaxwellBlock> maxwell;      // per block of kTetLanes tetrahedra, B_v and G_v
+  std::vector<MaxwellMapBlock> maxwellMaps;  // M per block, from maxwell (refreshMaxwellForceMaps)
   std::vector<glm::u32vec2> edges;        // every tetrahedron edge once
   std::vector<double> edgeDamping;        // k_d per edge, N·s/m
   EdgeColours edgeColours;                // the order dampEdges takes the edges in

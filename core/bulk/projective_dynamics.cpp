@@ -1,5 +1,6 @@
 #include "core/bulk/projective_dynamics.h"
 
+#include "core/bulk/element_pass.h"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Dense>
@@ -166,6 +167,7 @@ void ProjectiveSolver::storeMaxwell(BulkBody& body) const {
         body.maxwell[block].inverse[entry][lane] = b[entry / 3][entry % 3];
       }
     }
+  refreshMaxwellForceMaps(body);  // the explicit step's forces read M (element_pass.h)
 }
 
 void ProjectiveSolver::factor(const BulkBody& body, double h) {

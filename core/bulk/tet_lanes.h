@@ -104,6 +104,63 @@ template <std::size_t N>
   }
 }
 
+// The same nodal forces from Ds itself, without forming F (issue 27, the element pass): with
+// S = −V0 Dm⁻¹ (μ∞ I + μ1 B_v) Dm⁻ᵀ (symmetric) and cof(F)·(−V0 Dm⁻ᵀ) = −V0 det(Dm⁻¹) cof(Ds) = −cof(Ds)/6
+// (cof(AB) = cof A cof B, V0 = det Dm / 6),
+//   H = P·(−V0 Dm⁻ᵀ) = Ds·S + k cof(Ds),  k = (μ1 − λ'(J − α))/6,  J = det(Ds)/det(Dm).
+// S = μ∞ K0 + μ1 M with K0 = −V0 Dm⁻¹Dm⁻ᵀ (TetBlock::stiffnessMap) and M = −V0 Dm⁻¹ B_v Dm⁻ᵀ
+// (MaxwellBlock::forceMap, refreshed when B_v flows), six entries each in kSymmetricEntry's order;
+// `volumeScale` is 1/det(Dm). Ds and H are lanes [3·column + row]; 6 + 1 loads instead of 27.
+constexpr int kSymmetricEntry[3][3] = {{0, 3, 4}, {3, 1, 5}, {4, 5, 2}};  // (row, column) → 00 11 22 01 02 12
+
+template <std::size_t N>
+[[gnu::always_inline]] inline void shapeForceLanes(double longTermShear, double maxwellShear, double lambdaPrime,
+                                                    double restVolumeRatio, const Lanes (&ds)[9],
+                                                    const double (&stiffnessMap)[6][N],
+                                                    const double (&maxwellMap)[6][N], const double (&volumeScale)[N],
+                                                    std::size_t o, Lanes (&h)[9]) {
+  Lanes s[6];
+  for (int e = 0; e < 6; ++e) s[e] = longTermShear * loadLanes(&stiffnessMap[e][o]);
+  if (maxwellShear > 0.0)
+    for (int e = 0; e < 6; ++e) s[e] += maxwellShear * loadLanes(&maxwellMap[e][o]);
+  Lanes cof[9];  // columns d1×d2, d2×d0, d0×d1 of Ds
+  for (int c = 0; c < 3; ++c) {
+    const int a = 3 * ((c + 1) % 3), b = 3 * ((c + 2) % 3);
+    cof[3 * c + 0] = ds[a + 1] * ds[b + 2] - ds[a + 2] * ds[b + 1];
+    cof[3 * c + 1] = ds[a + 2] * ds[b + 0] - ds[a + 0] * ds[b + 2];
+    cof[3 * c + 2] = ds[a + 0] * ds[b + 1] - ds[a + 1] * ds[b + 0];
+  }
+  const Lanes j = (ds[0] * cof[0] + ds[1] * cof[1] + ds[2] * cof[2]) * loadLanes(&volumeScale[o]);
+  const Lanes k = (maxwellShear - lambdaPrime * (j - restVolumeRatio)) * (1.0 / 6.0);
+  for (int c = 0; c < 3; ++c) {
+    const Lanes s0 = s[kSymmetricEntry[0][c]], s1 = s[kSymmetricEntry[1][c]], s2 = s[kSymmetricEntry[2][c]];
+    for (int r = 0; r < 3; ++r) h[3 * c + r] = ds[r] * s0 + ds[3 + r] * s1 + ds[6 + r] * s2 + k * cof[3 * c + r];
+  }
+}
+
+// Dm⁻¹·B·forceMap = −V0 Dm⁻¹ B Dm⁻ᵀ (symmetric, six entries as above) of kLaneWidth tetrahedra from
+// offset `o`: shapeForceLanes' K0 (B = I, `inverse` null) or M (B = B_v).
+template <std::size_t N>
+[[gnu::always_inline]] inline void congruenceLanes(const double (&restInverse)[9][N], const double (&forceMap)[9][N],
+                                                    const double (*inverse)[N], std::size_t o, double (&out)[6][N]) {
+  Lanes t[9];  // B·forceMap
+  for (int e = 0; e < 9; ++e) t[e] = loadLanes(&forceMap[e][o]);
+  if (inverse != nullptr) {
+    Lanes b[9];
+    for (int e = 0; e < 9; ++e) b[e] = loadLanes(&inverse[e][o]);
+    Lanes bt[9];
+    for (int c = 0; c < 3; ++c)
+      for (int r = 0; r < 3; ++r) bt[3 * c + r] = b[r] * t[3 * c] + b[3 + r] * t[3 * c + 1] + b[6 + r] * t[3 * c + 2];
+    for (int e = 0; e < 9; ++e) t[e] = bt[e];
+  }
+  for (int r = 0; r < 3; ++r)
+    for (int c = r; c < 3; ++c) {
+      const Lanes value = loadLanes(&restInverse[r][o]) * t[3 * c] + loadLanes(&restInverse[3 + r][o]) * t[3 * c + 1] +
+                          loadLanes(&restInverse[6 + r][o]) * t[3 * c + 2];
+      storeLanes(&out[kSymmetricEntry[r][c]][o], value);
+    }
+}
+
 // The Maxwell flow of kLaneWidth tetrahedra from offset `o` (viscoelastic.h's relaxMaxwellBranch):
 // G = C + (G_v − C)·decay, C = FᵀF; G_v ← G det(G)^(−1/3), B_v ← adj(G) det(G)^(−2/3). A lane whose det(G)
 // is not in [2^−126, 2^126] (inverted, or its volume changed 10^19-fold) keeps its rest state.

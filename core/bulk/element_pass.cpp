@@ -1,0 +1,167 @@
+#include "core/bulk/element_pass.h"
+
+#include "core/bulk/tet_lanes.h"
+
+#include <algorithm>
+
+namespace slime {
+namespace {
+
+// One node's x, y, z and a zero, in one 32-byte vector.
+using Quad = double __attribute__((vector_size(4 * sizeof(double))));
+
+// The padded copies, per thread (a simulation steps on one thread; benches may run several at once).
+struct NodeQuads {
+  std::vector<Quad> positions;
+  std::vector<Quad> forces;
+};
+NodeQuads& nodeQuads() {
+  thread_local NodeQuads quads;
+  return quads;
+}
+
+void copyToQuads(const std::vector<glm::dvec3>& x, std::vector<Quad>& quads) {
+  quads.resize(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) quads[i] = Quad{x[i].x, x[i].y, x[i].z, 0.0};
+}
+
+#if !defined(__AVX512F__)
+static_assert(kLaneWidth == 4, "the transposes below take four tetrahedra");
+// Four tetrahedra's vectors (x, y, z, ·) into x, y and z lanes.
+[[gnu::always_inline]] inline void transposeIn(const Quad& a, const Quad& b, const Quad& c, const Quad& d, Lanes& x,
+                                               Lanes& y, Lanes& z) {
+  const Quad t0 = __builtin_shufflevector(a, b, 0, 4, 2, 6);  // a0 b0 a2 b2
+  const Quad t1 = __builtin_shufflevector(a, b, 1, 5, 3, 7);  // a1 b1 a3 b3
+  const Quad t2 = __builtin_shufflevector(c, d, 0, 4, 2, 6);
+  const Quad t3 = __builtin_shufflevector(c, d, 1, 5, 3, 7);
+  x = __builtin_shufflevector(t0, t2, 0, 1, 4, 5);
+  y = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
+  z = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
+}
+// And back: x, y, z lanes into four tetrahedra's vectors (x, y, z, 0).
+[[gnu::always_inline]] inline void transposeOut(const Lanes& x, const Lanes& y, const Lanes& z, Quad (&out)[4]) {
+  const Quad zero{};
+  const Quad t0 = __builtin_shufflevector(x, y, 0, 4, 2, 6);     // x0 y0 x2 y2
+  const Quad t1 = __builtin_shufflevector(x, y, 1, 5, 3, 7);     // x1 y1 x3 y3
+  const Quad t2 = __builtin_shufflevector(z, zero, 0, 4, 2, 6);  // z0 0 z2 0
+  const Quad t3 = __builtin_shufflevector(z, zero, 1, 5, 3, 7);  // z1 0 z3 0
+  out[0] = __builtin_shufflevector(t0, t2, 0, 1, 4, 5);
+  out[1] = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
+  out[2] = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
+  out[3] = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
+}
+#endif
+
+// Ds = [x1 − x0, x2 − x0, x3 − x0] of kLaneWidth tetrahedra from offset `o`, lanes [3·column + row].
+[[gnu::always_inline]] inline void gatherLanes(const TetBlock& block, const std::vector<Quad>& x, std::size_t o,
+                                               Lanes (&ds)[9]) {
+#if !defined(__AVX512F__)
+  Quad edge[3][4];
+  for (std::size_t l = 0; l < 4; ++l) {
+    const Quad origin = x[block.nodes[0][o + l]];
+    for (int c = 0; c < 3; ++c) edge[c][l] = x[block.nodes[c + 1][o + l]] - origin;
+  }
+  for (int c = 0; c < 3; ++c) transposeIn(edge[c][0], edge[c][1], edge[c][2], edge[c][3], ds[3 * c], ds[3 * c + 1], ds[3 * c + 2]);
+#else
+  alignas(64) double entries[9][kLaneWidth];
+  for (std::size_t l = 0; l < kLaneWidth; ++l) {
+    const Quad origin = x[block.nodes[0][o + l]];
+    for (int c = 0; c < 3; ++c) {
+      const Quad edge = x[block.nodes[c + 1][o + l]] - origin;
+      for (int r = 0; r < 3; ++r) entries[3 * c + r][l] = edge[r];
+    }
+  }
+  for (int e = 0; e < 9; ++e) ds[e] = loadLanes(entries[e]);
+#endif
+}
+
+// Adds H's columns to nodes 1..3 and minus their sum to node 0 (lanes past the last tetrahedron hold
+// zero forces on node 0).
+[[gnu::always_inline]] inline void scatterLanes(const TetBlock& block, const Lanes (&h)[9], std::size_t o,
+                                                std::vector<Quad>& forces) {
+#if !defined(__AVX512F__)
+  Quad columns[3][4];
+  for (int c = 0; c < 3; ++c) transposeOut(h[3 * c], h[3 * c + 1], h[3 * c + 2], columns[c]);
+  for (std::size_t l = 0; l < 4; ++l) {
+    forces[block.nodes[1][o + l]] += columns[0][l];
+    forces[block.nodes[2][o + l]] += columns[1][l];
+    forces[block.nodes[3][o + l]] += columns[2][l];
+    forces[block.nodes[0][o + l]] -= columns[0][l] + columns[1][l] + columns[2][l];
+  }
+#else
+  alignas(64) double entries[9][kLaneWidth];
+  for (int e = 0; e < 9; ++e) storeLanes(entries[e], h[e]);
+  for (std::size_t l = 0; l < kLaneWidth; ++l) {
+    Quad column[3];
+    for (int c = 0; c < 3; ++c) column[c] = Quad{entries[3 * c][l], entries[3 * c + 1][l], entries[3 * c + 2][l], 0.0};
+    for (int c = 0; c < 3; ++c) forces[block.nodes[c + 1][o + l]] += column[c];
+    forces[block.nodes[0][o + l]] -= column[0] + column[1] + column[2];
+  }
+#endif
+}
+
+}  // namespace
+
+void fillElementBlocks(BulkBody& body) {
+  const std::vector<Tetrahedron>& tetrahedra = body.mesh.tetrahedra;
+  for (std::size_t e = 0; e < tetrahedra.size(); ++e) {
+    TetBlock& block = body.restBlocks[e / kTetLanes];
+    for (int corner = 0; corner < 4; ++corner) block.nodes[corner][e % kTetLanes] = tetrahedra[e][corner];
+    block.volumeScale[e % kTetLanes] = 1.0 / (6.0 * body.rest[e].volume);  // 1/det Dm
+  }
+  for (TetBlock& block : body.restBlocks)
+    for (std::size_t o = 0; o < kTetLanes; o += kLaneWidth)
+      congruenceLanes<kTetLanes>(block.restInverse, block.forceMap, nullptr, o, block.stiffnessMap);
+  refreshMaxwellForceMaps(body);
+}
+
+void refreshMaxwellForceMaps(BulkBody& body) {
+  body.maxwellMaps.resize(body.maxwell.size());
+  for (std::size_t b = 0; b < body.maxwell.size() && b < body.restBlocks.size(); ++b)
+    for (std::size_t o = 0; o < kTetLanes; o += kLaneWidth)
+      congruenceLanes(body.restBlocks[b].restInverse, body.restBlocks[b].forceMap, body.maxwell[b].inverse, o,
+                      body.maxwellMaps[b].forceMap);
+}
+
+void elementForces(const BulkBody& body, const std::vector<glm::dvec3>& x, std::vector<glm::dvec3>& forces) {
+  NodeQuads& quads = nodeQuads();
+  copyToQuads(x, quads.positions);
+  quads.forces.assign(x.size(), Quad{});
+  const ViscoelasticMaterial& material = body.material;
+  const double lambdaPrime = volumetricModulus(material), alpha = restVolumeRatio(material);
+  const std::size_t tetrahedra = body.mesh.tetrahedra.size();
+  for (std::size_t b = 0; b < body.restBlocks.size(); ++b) {
+    const TetBlock& block = body.restBlocks[b];
+    const std::size_t count = std::min(kTetLanes, tetrahedra - b * kTetLanes);
+    for (std::size_t o = 0; o < count; o += kLaneWidth) {
+      Lanes ds[9], h[9];
+      gatherLanes(block, quads.positions, o, ds);
+      shapeForceLanes(material.longTermShear, material.maxwellShear, lambdaPrime, alpha, ds, block.stiffnessMap,
+                      body.maxwellMaps[b].forceMap, block.volumeScale, o, h);
+      scatterLanes(block, h, o, quads.forces);
+    }
+  }
+  forces.resize(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) forces[i] = glm::dvec3(quads.forces[i][0], quads.forces[i][1], quads.forces[i][2]);
+}
+
+void relaxElements(BulkBody& body, double decay) {
+  NodeQuads& quads = nodeQuads();
+  copyToQuads(body.state.positions, quads.positions);
+  for (std::size_t b = 0; b < body.restBlocks.size(); ++b) {
+    const TetBlock& block = body.restBlocks[b];
+    MaxwellBlock& maxwell = body.maxwell[b];
+    alignas(64) double shape[9][kTetLanes];
+    for (std::size_t o = 0; o < kTetLanes; o += kLaneWidth) {
+      Lanes ds[9];
+      gatherLanes(block, quads.positions, o, ds);
+      for (int e = 0; e < 9; ++e) storeLanes(&shape[e][o], ds[e]);
+    }
+    for (std::size_t o = 0; o < kTetLanes; o += kLaneWidth) {
+      relaxLanes(shape, block.restInverse, decay, o, maxwell.metric, maxwell.inverse);
+      congruenceLanes(block.restInverse, block.forceMap, maxwell.inverse, o, body.maxwellMaps[b].forceMap);
+    }
+  }
+}
+
+}  // namespace slime

@@ -1,0 +1,32 @@
+// The bulk body's element pass (issue 27): every tetrahedron's elastic and Maxwell nodal forces in one
+// sweep, kLaneWidth tetrahedra at a time, gathered from and scattered to padded node copies
+// (x, y, z, 0 in one vector) so that a tetrahedron's corners are one load each and its shape Ds never
+// goes through memory; and the Maxwell branches' flow, which refreshes the map M the forces use.
+// The stress is viscoelastic.h's, rewritten on Ds (tet_lanes.h's shapeForceLanes): the same forces
+// to rounding.
+#pragma once
+
+#include "core/bulk/bulk_body.h"
+
+#include <glm/vec3.hpp>
+
+#include <vector>
+
+namespace slime {
+
+// The per-block data the pass reads (TetBlock's nodes, stiffnessMap, volumeScale), from the body's
+// tetrahedra and restBlocks' restInverse and forceMap; then every block's M (refreshMaxwellForceMaps).
+void fillElementBlocks(BulkBody& body);
+
+// M = −V0 Dm⁻¹ B_v Dm⁻ᵀ of every block from its B_v: after anything that sets B_v other than
+// relaxElements (building the body, the projective solver's storeMaxwell, the guard's rollback).
+void refreshMaxwellForceMaps(BulkBody& body);
+
+// Elastic and Maxwell nodal forces at x; `forces` is resized and overwritten.
+void elementForces(const BulkBody& body, const std::vector<glm::dvec3>& x, std::vector<glm::dvec3>& forces);
+
+// The Maxwell branches' flow with decay = exp(−Δt/τ) at the body's positions (relaxMaxwellBranch per
+// tetrahedron, tet_lanes.h's relaxLanes), then M.
+void relaxElements(BulkBody& body, double decay);
+
+}  // namespace slime
