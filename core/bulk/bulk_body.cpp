@@ -200,19 +200,9 @@ void projectBulkVolume(const BulkBody& body, double h, BulkScratch& scratch, Par
   // surface triangles hold only the surface nodes 0..N_s−1), one over those nodes for Σ w|∇V|².
   const std::size_t surfaceNodes = body.mesh.surfaceNodes;
   std::vector<glm::dvec3>& gradient = scratch.volumeGradient;  // 6∇V
-  gradient.assign(surfaceNodes, glm::dvec3(0.0));
   std::vector<glm::dvec3>& x = state.positions;
   if (surfaceNodes == 0) return;
-  const glm::dvec3 origin = x[0];
-  double sixTimesVolume = 0.0;
-  for (const Triangle& t : body.mesh.surface) {
-    const glm::dvec3 a = x[t.x] - origin, b = x[t.y] - origin, c = x[t.z] - origin;
-    const glm::dvec3 bc = glm::cross(b, c);
-    sixTimesVolume += glm::dot(a, bc);
-    gradient[t.x] += bc;
-    gradient[t.y] += glm::cross(c, a);
-    gradient[t.z] += glm::cross(a, b);
-  }
+  const double sixTimesVolume = sixTimesVolumeGradient(x, body.mesh.surface, surfaceNodes, gradient);
   // A node lying on the floor is held by it (as a pinned node is by the hand): it does not move.
   const std::vector<double>& w = state.inverseMasses;
   double resistance = 0.0;  // Σ w_i |6∇_i V|²

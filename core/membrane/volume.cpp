@@ -21,10 +21,10 @@ double enclosedVolume(const std::vector<glm::dvec3>& positions,
   return sixTimesVolume / 6.0;
 }
 
-double volumeGradient(const std::vector<glm::dvec3>& positions,
-                      const std::vector<glm::u32vec3>& triangles, std::vector<glm::dvec3>& gradient) {
-  gradient.assign(positions.size(), glm::dvec3(0.0));
-  if (positions.empty()) return 0.0;
+double sixTimesVolumeGradient(const std::vector<glm::dvec3>& positions, const std::vector<glm::u32vec3>& triangles,
+                              std::size_t count, std::vector<glm::dvec3>& gradient) {
+  gradient.assign(count, glm::dvec3(0.0));
+  if (positions.empty() || count == 0) return 0.0;
   const glm::dvec3 origin = positions[0];
   double sixTimesVolume = 0.0;
   for (const glm::u32vec3& t : triangles) {
@@ -35,6 +35,12 @@ double volumeGradient(const std::vector<glm::dvec3>& positions,
     gradient[t.y] += glm::cross(c, a);
     gradient[t.z] += glm::cross(a, b);
   }
+  return sixTimesVolume;
+}
+
+double volumeGradient(const std::vector<glm::dvec3>& positions,
+                      const std::vector<glm::u32vec3>& triangles, std::vector<glm::dvec3>& gradient) {
+  const double sixTimesVolume = sixTimesVolumeGradient(positions, triangles, positions.size(), gradient);
   for (glm::dvec3& g : gradient) g /= 6.0;
   return sixTimesVolume / 6.0;
 }

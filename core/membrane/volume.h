@@ -17,6 +17,12 @@ namespace slime {
 double enclosedVolume(const std::vector<glm::dvec3>& positions,
                       const std::vector<glm::u32vec3>& triangles);
 
+// Writes 6∇_i V for the first `count` vertices into `gradient` (resized to count; the triangles may
+// use no other vertex); returns 6V. The sums about the first vertex, no division: the bulk body's
+// volume projection takes them as they are.
+double sixTimesVolumeGradient(const std::vector<glm::dvec3>& positions, const std::vector<glm::u32vec3>& triangles,
+                              std::size_t count, std::vector<glm::dvec3>& gradient);
+
 // Writes ∇_i V for every vertex into `gradient` (resized to positions.size()); returns V.
 double volumeGradient(const std::vector<glm::dvec3>& positions,
                       const std::vector<glm::u32vec3>& triangles, std::vector<glm::dvec3>& gradient);
