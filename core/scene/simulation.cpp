@@ -264,7 +264,7 @@ void Simulation::step() {
       if (projectiveActive_) projective_.storeMaxwell(bulkBody_);
       else relaxBulk(bulkBody_, flowInterval * settings_.sim.dt);
     }
-    const bool touching = drawnTouching_;
+    const bool touching = resolveDrawnFloorContact(bulkBody_, settings_.slime.friction) > 0;
     // The floor's rolling resistance acts on the bulk slime too: Coulomb friction lets a ball roll,
     // and the bulk's own viscosity barely slows a bun rolling on its patch (a yanked slime rolled 3 m).
     if (stepCount_ % kRollingInterval == 0)
@@ -333,10 +333,8 @@ void Simulation::bulkAccelerations(const std::vector<glm::dvec3>& x, const std::
 
 // The bulk body's substep. symplectic_euler: v += h a(x), the dampers exactly, x += h v; explicit_euler
 // and rk4 integrate the same accelerations, dampers included, through integrators.h. Then the floor on
-// every node, the volume projection, which leaves the nodes on the floor where they are, and the drawn
-// surface's own contact after it. (Once a step, after several substeps, that contact squeezed the body
-// by 0.7 % and the next step's projections gave it back as speed: at sim.dt 4 ms a resting slime kept
-// shimmering, 1.1e-5 J.)
+// every node and the volume projection, which leaves the nodes on the floor where they are (the drawn
+// surface's own contact follows once per step).
 void Simulation::bulkSubstep(double h) {
   ParticleState& state = bulkBody_.state;
   // The sticky floor reads a stuck node's pull from the kick-drift step's Δx = h²F/m; the projective
@@ -397,7 +395,6 @@ void Simulation::bulkSubstep(double h) {
     for (std::size_t i = 0; i < state.size(); ++i)
       if (state.inverseMasses[i] > 0.0) resolveFloorContactAt(state.positions[i], state.velocities[i], friction);
   projectBulkVolume(bulkBody_, h, bulkScratch_, state);
-  drawnTouching_ = resolveDrawnFloorContact(bulkBody_, friction) > 0;
   if (adhesion > 0.0) adhesion_.endSubstep(state, bulkBody_.mesh.surface, bulkBody_.freeInverseMasses, adhesion, h);
 }
 

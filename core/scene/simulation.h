@@ -174,7 +174,6 @@ class Simulation {
   int refinement_ = 1;  // extra substeps the divergence guard asked for
   int travelSubsteps_ = 1;  // bulk, explicit: what the fastest node's speed asks for this step
   double shortestEdge_ = 0.0;  // bulk: the tetrahedra's shortest rest edge, m
-  bool drawnTouching_ = false;  // bulk: a drawn vertex touched the floor in the last substep
   int cleanSteps_ = 0;  // steps since the last rollback or coarsening
   int lastSolverIterations_ = 0;
   std::vector<DivergenceEvent> divergences_;
