@@ -3,6 +3,7 @@
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace slime {
@@ -37,6 +38,13 @@ double energyDensity(const ViscoelasticMaterial& material, const glm::dmat3& f, 
   return 0.5 * material.longTermShear * (traceC - 3.0) +
          0.5 * lambdaPrime * (volumeTerm * volumeTerm - restVolumeTerm * restVolumeTerm) +
          material.maxwellShear * (0.5 * (traceCB - 3.0) - (j - 1.0));
+}
+
+int maxwellFlowInterval(double relaxationTime, double dt, int fewest) {
+  constexpr double kFlowsPerRelaxationTime = 60.0;
+  constexpr int kMostSteps = 16;
+  const double steps = std::floor(relaxationTime / (kFlowsPerRelaxationTime * dt));
+  return static_cast<int>(std::clamp(steps, static_cast<double>(fewest), static_cast<double>(kMostSteps)));
 }
 
 }  // namespace slime

@@ -24,18 +24,9 @@ constexpr double kExactDamperStepFactor = 12.0;  // see largestStableStep
 constexpr int kCleanStepsToCoarsen = 500;  // after this many steps with no rollback it halves them again
 constexpr int kRollingInterval = 4;     // steps between applications of the rolling resistance
 // Steps between the Maxwell branches' flow updates (exact over the interval for the strain at its end;
-// 4 ms against relaxation times of 10 ms and more). Every step it cost a quarter of the step.
+// 4 ms against relaxation times of 10 ms and more). Every step it cost a quarter of the step. The explicit
+// step's interval also follows τ (maxwellFlowInterval, viscoelastic.h), never below this.
 constexpr int kRelaxInterval = 4;
-// The explicit step's flow interval also follows τ (issue 27): up to τ/kFlowsPerRelaxationTime (10
-// steps of 1 ms at the default τ = 0.6 s), never fewer steps than kRelaxInterval and at most
-// kMaxRelaxInterval. A flow lags the strain by up to one interval, an error ~ interval/τ: the measured
-// creep time at the default changed by under 1 % (docs/performance.md, issue 27's element pass).
-constexpr double kFlowsPerRelaxationTime = 60.0;
-constexpr int kMaxRelaxInterval = 16;
-int maxwellFlowInterval(double relaxationTime, double dt) {
-  const double steps = std::floor(relaxationTime / (kFlowsPerRelaxationTime * dt));
-  return static_cast<int>(std::clamp(steps, static_cast<double>(kRelaxInterval), static_cast<double>(kMaxRelaxInterval)));
-}
 // An explicit bulk substep moves no node farther than this share of the body's shortest rest edge
 // (a collision's CFL rule: the stability bound of largestStableStep is for small vibrations, and a
 // landing at 4.4 m/s pushed the lowest layer 4.4 mm — 40 % of an element — into the floor in one
@@ -258,8 +249,9 @@ void Simulation::step() {
   ++stepCount_;
   if (bulk_) {
     // projective flows its Maxwell branches every substep; the body's metrics follow as a copy.
-    const int flowInterval =
-        projectiveActive_ ? kRelaxInterval : maxwellFlowInterval(settings_.slime.relaxation, settings_.sim.dt);
+    const int flowInterval = projectiveActive_
+                                 ? kRelaxInterval
+                                 : maxwellFlowInterval(settings_.slime.relaxation, settings_.sim.dt, kRelaxInterval);
     if (stepCount_ % flowInterval == 0) {
       if (projectiveActive_) projective_.storeMaxwell(bulkBody_);
       else relaxBulk(bulkBody_, flowInterval * settings_.sim.dt);
