@@ -1,9 +1,9 @@
 #include "core/bulk/damper_lanes.h"
 
-#include "core/bulk/quad_lanes.h"
-
 #include <stdexcept>
 #include <string>
+
+#include "core/bulk/quad_lanes.h"
 
 namespace slime {
 namespace {
@@ -52,8 +52,8 @@ void dampPairLanes(const DamperLanes& lanes, const std::vector<glm::dvec3>& posi
   DamperNodes& nodes = damperNodes();
   const std::size_t n = lanes.nodeCount;
   if (positions.size() != n || velocities.size() != n || inverseMasses.size() != n)
-    throw std::invalid_argument("dampPairLanes: the dampers were packed for " + std::to_string(n) + " nodes, not " +
-                                std::to_string(positions.size()));
+    throw std::invalid_argument("dampPairLanes: the dampers were packed for " + std::to_string(n) +
+                                " nodes, not " + std::to_string(positions.size()));
   nodes.positions.resize(n + 1);
   nodes.velocities.resize(n + 1);
   for (std::size_t i = 0; i < n; ++i) {

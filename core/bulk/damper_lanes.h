@@ -4,11 +4,10 @@
 // arithmetic per pair as the pair-by-pair loop (to the rounding of fused multiply-adds).
 #pragma once
 
-#include <glm/vec2.hpp>
-#include <glm/vec3.hpp>
-
 #include <cstddef>
 #include <cstdint>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 #include <vector>
 
 namespace slime {
@@ -23,8 +22,8 @@ struct DamperQuad {
 };
 
 struct DamperLanes {
-  std::vector<DamperQuad> quads;        // colour after colour
-  std::vector<std::uint32_t> colours;   // colour c is quads[colours[c], colours[c + 1])
+  std::vector<DamperQuad> quads;       // colour after colour
+  std::vector<std::uint32_t> colours;  // colour c is quads[colours[c], colours[c + 1])
   std::size_t nodeCount = 0;
 };
 
@@ -33,8 +32,8 @@ struct DamperLanes {
 DamperLanes packDamperLanes(const std::vector<glm::u32vec2>& pairs, const std::vector<double>& decay,
                             const std::vector<std::uint32_t>& starts, std::size_t nodeCount);
 
-// Δv_i = w_i a ((v_j − v_i)·d) d, Δv_j = −w_j a ((v_j − v_i)·d) d, a = decay/(|d|² (w_i + w_j)), d = x_j − x_i,
-// quad after quad; a pair with w_i + w_j = 0 or |d| = 0 is left alone.
+// Δv_i = w_i a ((v_j − v_i)·d) d, Δv_j = −w_j a ((v_j − v_i)·d) d, a = decay/(|d|² (w_i + w_j)), d = x_j −
+// x_i, quad after quad; a pair with w_i + w_j = 0 or |d| = 0 is left alone.
 void dampPairLanes(const DamperLanes& lanes, const std::vector<glm::dvec3>& positions,
                    std::vector<glm::dvec3>& velocities, const std::vector<double>& inverseMasses);
 

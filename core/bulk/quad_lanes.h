@@ -8,8 +8,8 @@ namespace slime {
 using Quad = double __attribute__((vector_size(4 * sizeof(double))));
 
 // Four quads (x, y, z, ·) into x, y and z lanes.
-[[gnu::always_inline]] inline void transposeIn(const Quad& a, const Quad& b, const Quad& c, const Quad& d, Quad& x,
-                                               Quad& y, Quad& z) {
+[[gnu::always_inline]] inline void transposeIn(const Quad& a, const Quad& b, const Quad& c, const Quad& d,
+                                               Quad& x, Quad& y, Quad& z) {
   const Quad t0 = __builtin_shufflevector(a, b, 0, 4, 2, 6);  // a0 b0 a2 b2
   const Quad t1 = __builtin_shufflevector(a, b, 1, 5, 3, 7);  // a1 b1 a3 b3
   const Quad t2 = __builtin_shufflevector(c, d, 0, 4, 2, 6);
@@ -20,8 +20,8 @@ using Quad = double __attribute__((vector_size(4 * sizeof(double))));
 }
 
 // The same with the fourth entries as a fourth lane vector w.
-[[gnu::always_inline]] inline void transposeIn(const Quad& a, const Quad& b, const Quad& c, const Quad& d, Quad& x,
-                                               Quad& y, Quad& z, Quad& w) {
+[[gnu::always_inline]] inline void transposeIn(const Quad& a, const Quad& b, const Quad& c, const Quad& d,
+                                               Quad& x, Quad& y, Quad& z, Quad& w) {
   const Quad t0 = __builtin_shufflevector(a, b, 0, 4, 2, 6);
   const Quad t1 = __builtin_shufflevector(a, b, 1, 5, 3, 7);
   const Quad t2 = __builtin_shufflevector(c, d, 0, 4, 2, 6);
