@@ -173,18 +173,26 @@ void dampEdges(const BulkBody& body, double h, BulkScratch& scratch, ParticleSta
       scratch.dampedPairs[k] = body.edges[s];
       scratch.edgeDecay[k] = 1.0 - std::exp(-body.edgeDamping[s] * (w[body.edges[s].x] + w[body.edges[s].y]) * h);
     }
-    // Colour after colour (each edge its own colour without a colouring), four pairs at a time.
-    std::vector<std::uint32_t> starts = body.edgeColours.starts;
-    if (!coloured || starts.empty()) {
-      starts.resize(count + 1);
-      for (std::size_t k = 0; k <= count; ++k) starts[k] = static_cast<std::uint32_t>(k);
-    }
-    scratch.damperLanes = packDamperLanes(scratch.dampedPairs, scratch.edgeDecay, starts, state.size());
     scratch.decayStep = h;
   }
-  // Four pairs of one colour at a time (damper_lanes.h): within a colour no two pairs share a node, so
-  // no pair waits on another; the change is (w_i, −w_j)·a·((v_j − v_i)·d) d with a = decay/(|d|² (w_i + w_j)).
-  dampPairLanes(scratch.damperLanes, state.positions, state.velocities, w);
+  // Pair after pair, colour after colour. Within a colour no two pairs share a node, so no pair waits
+  // on the one before it; the change is (w_i, w_j)·a·((v_j − v_i)·d) d with a = decay/(|d|² (w_i + w_j)).
+  const glm::u32vec2* pairs = scratch.dampedPairs.data();
+  const double* decay = scratch.edgeDecay.data();
+  const glm::dvec3* x = state.positions.data();
+  glm::dvec3* v = state.velocities.data();
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::uint32_t i = pairs[k].x, j = pairs[k].y;
+    const double inverseMassSum = w[i] + w[j];
+    if (inverseMassSum <= 0.0) continue;
+    const glm::dvec3 d = x[j] - x[i];
+    const double lengthSquared = glm::dot(d, d);
+    if (lengthSquared <= 0.0) continue;
+    const double share = decay[k] / (lengthSquared * inverseMassSum);
+    const double relativeSpeed = glm::dot(v[j] - v[i], d);
+    v[i] += (w[i] * share * relativeSpeed) * d;
+    v[j] -= (w[j] * share * relativeSpeed) * d;
+  }
 }
 
 void projectBulkVolume(const BulkBody& body, double h, BulkScratch& scratch, ParticleState& state) {

@@ -22,7 +22,6 @@
 #include "core/scene/icosphere.h"
 #include "core/integrators/particle_state.h"
 #include "core/settings/settings.h"
-#include "core/bulk/damper_lanes.h"
 #include "core/bulk/edge_colours.h"
 #include "core/bulk/surface_embedding.h"
 #include "core/bulk/tet_mesh.h"
@@ -101,7 +100,6 @@ struct BulkScratch {
   // for the step decayStep.
   std::vector<glm::u32vec2> dampedPairs;
   std::vector<double> edgeDecay;
-  DamperLanes damperLanes;  // the same four pairs of a colour at a time (damper_lanes.h)
   double decayStep = -1.0;
   std::vector<glm::dvec3> volumeGradient;
   std::vector<glm::dvec3> positions;  // the frequency estimate's displaced shape

@@ -1,6 +1,5 @@
 #include "core/bulk/element_pass.h"
 
-#include "core/bulk/quad_lanes.h"
 #include "core/bulk/tet_lanes.h"
 
 #include <algorithm>
@@ -8,8 +7,10 @@
 namespace slime {
 namespace {
 
-// The padded node copies (quad_lanes.h), per thread (a simulation steps on one thread; benches may run
-// several at once).
+// One node's x, y, z and a zero, in one 32-byte vector.
+using Quad = double __attribute__((vector_size(4 * sizeof(double))));
+
+// The padded copies, per thread (a simulation steps on one thread; benches may run several at once).
 struct NodeQuads {
   std::vector<Quad> positions;
   std::vector<Quad> forces;
@@ -25,7 +26,30 @@ void copyToQuads(const std::vector<glm::dvec3>& x, std::vector<Quad>& quads) {
 }
 
 #if !defined(__AVX512F__)
-static_assert(kLaneWidth == 4, "the transposes (quad_lanes.h) take four tetrahedra");
+static_assert(kLaneWidth == 4, "the transposes below take four tetrahedra");
+// Four tetrahedra's vectors (x, y, z, ·) into x, y and z lanes.
+[[gnu::always_inline]] inline void transposeIn(const Quad& a, const Quad& b, const Quad& c, const Quad& d, Lanes& x,
+                                               Lanes& y, Lanes& z) {
+  const Quad t0 = __builtin_shufflevector(a, b, 0, 4, 2, 6);  // a0 b0 a2 b2
+  const Quad t1 = __builtin_shufflevector(a, b, 1, 5, 3, 7);  // a1 b1 a3 b3
+  const Quad t2 = __builtin_shufflevector(c, d, 0, 4, 2, 6);
+  const Quad t3 = __builtin_shufflevector(c, d, 1, 5, 3, 7);
+  x = __builtin_shufflevector(t0, t2, 0, 1, 4, 5);
+  y = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
+  z = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
+}
+// And back: x, y, z lanes into four tetrahedra's vectors (x, y, z, 0).
+[[gnu::always_inline]] inline void transposeOut(const Lanes& x, const Lanes& y, const Lanes& z, Quad (&out)[4]) {
+  const Quad zero{};
+  const Quad t0 = __builtin_shufflevector(x, y, 0, 4, 2, 6);     // x0 y0 x2 y2
+  const Quad t1 = __builtin_shufflevector(x, y, 1, 5, 3, 7);     // x1 y1 x3 y3
+  const Quad t2 = __builtin_shufflevector(z, zero, 0, 4, 2, 6);  // z0 0 z2 0
+  const Quad t3 = __builtin_shufflevector(z, zero, 1, 5, 3, 7);  // z1 0 z3 0
+  out[0] = __builtin_shufflevector(t0, t2, 0, 1, 4, 5);
+  out[1] = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
+  out[2] = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
+  out[3] = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
+}
 #endif
 
 // Ds = [x1 − x0, x2 − x0, x3 − x0] of kLaneWidth tetrahedra from offset `o`, lanes [3·column + row].
