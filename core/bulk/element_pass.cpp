@@ -29,6 +29,9 @@ void copyToQuads(const std::vector<glm::dvec3>& x, std::vector<Quad>& quads) {
 // the flow reads 42 rows of 512 bytes, more streams than the hardware prefetcher follows, so each new
 // line was a demand miss once the blocks no longer fit in L2; resolution 3's flow ran at 4× resolution
 // 2's cost per tetrahedron).
+// Only for bodies whose blocks outgrow L2 (resolution 3 has 260 blocks, resolution 2 35, whose passes
+// ran no faster with it: ~2 extra loads a tetrahedron for lines already cached).
+constexpr std::size_t kPrefetchFromBlocks = 128;
 template <int Write>
 [[gnu::always_inline]] inline void prefetchBytes(const void* p, std::size_t bytes) {
   const char* c = static_cast<const char*>(p);
@@ -140,9 +143,10 @@ void elementForces(const BulkBody& body, const std::vector<glm::dvec3>& x, std::
   const ViscoelasticMaterial& material = body.material;
   const double lambdaPrime = volumetricModulus(material), alpha = restVolumeRatio(material);
   const std::size_t tetrahedra = body.mesh.tetrahedra.size();
+  const bool prefetch = body.restBlocks.size() >= kPrefetchFromBlocks;
   for (std::size_t b = 0; b < body.restBlocks.size(); ++b) {
     const TetBlock& block = body.restBlocks[b];
-    if (b + 1 < body.restBlocks.size()) {
+    if (prefetch && b + 1 < body.restBlocks.size()) {
       const TetBlock& next = body.restBlocks[b + 1];
       prefetchBytes<0>(next.nodes, sizeof next.nodes);
       prefetchBytes<0>(next.stiffnessMap, sizeof next.stiffnessMap + sizeof next.volumeScale);
@@ -164,10 +168,11 @@ void elementForces(const BulkBody& body, const std::vector<glm::dvec3>& x, std::
 void relaxElements(BulkBody& body, double decay) {
   NodeQuads& quads = nodeQuads();
   copyToQuads(body.state.positions, quads.positions);
+  const bool prefetch = body.restBlocks.size() >= kPrefetchFromBlocks;
   for (std::size_t b = 0; b < body.restBlocks.size(); ++b) {
     const TetBlock& block = body.restBlocks[b];
     MaxwellBlock& maxwell = body.maxwell[b];
-    if (b + 1 < body.restBlocks.size()) {
+    if (prefetch && b + 1 < body.restBlocks.size()) {
       const TetBlock& next = body.restBlocks[b + 1];
       prefetchBytes<0>(next.nodes, sizeof next.nodes);
       prefetchBytes<0>(next.restInverse, sizeof next.restInverse + sizeof next.forceMap);
