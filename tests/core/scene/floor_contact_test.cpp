@@ -69,13 +69,13 @@ TEST(FloorContact, ARestingPointDoesNotJitter) {
 
 // Four points of unequal mass, a tetrahedron standing on the floor with one corner, moving as a
 // rigid body: translation u plus turning ω about the centre of mass, plus a breathing stretch.
-struct Tetrahedron {
+struct TestTetrahedron {
   ParticleState state;
   glm::dvec3 centre{0.0};
 };
 
-Tetrahedron spinningTetrahedron(glm::dvec3 translation, glm::dvec3 turning, double breathing, double lift) {
-  Tetrahedron t;
+TestTetrahedron spinningTetrahedron(glm::dvec3 translation, glm::dvec3 turning, double breathing, double lift) {
+  TestTetrahedron t;
   t.state.positions = {{0.0, 0.0, lift}, {0.05, 0.0, lift + 0.04}, {-0.02, 0.04, lift + 0.05}, {0.0, -0.03, lift + 0.06}};
   t.state.inverseMasses = {10.0, 5.0, 20.0, 8.0};
   double mass = 0.0;
@@ -98,7 +98,7 @@ glm::dvec3 momentum(const ParticleState& s) {
 
 TEST(RollingResistance, TurningDecaysExactlyOnTheFloor) {
   const glm::dvec3 u{0.3, -0.1, 0.2}, omega{1.0, -2.0, 0.5};
-  Tetrahedron t = spinningTetrahedron(u, omega, 0.0, 0.0);
+  TestTetrahedron t = spinningTetrahedron(u, omega, 0.0, 0.0);
   const glm::dvec3 before = momentum(t.state);
   ASSERT_TRUE(dampTurningOnFloor(t.state, 5.0, 0.1));
   const double keep = std::exp(-0.5);
@@ -110,18 +110,18 @@ TEST(RollingResistance, TurningDecaysExactlyOnTheFloor) {
 }
 
 TEST(RollingResistance, LeavesSlidingAndStretchingAlone) {
-  Tetrahedron t = spinningTetrahedron({0.3, -0.1, 0.2}, glm::dvec3(0.0), 0.7, 0.0);
+  TestTetrahedron t = spinningTetrahedron({0.3, -0.1, 0.2}, glm::dvec3(0.0), 0.7, 0.0);
   const std::vector<glm::dvec3> before = t.state.velocities;
   ASSERT_TRUE(dampTurningOnFloor(t.state, 50.0, 0.01));
   for (std::size_t i = 0; i < 4; ++i) EXPECT_LT(glm::length(t.state.velocities[i] - before[i]), 1e-12);
 }
 
 TEST(RollingResistance, NothingOffTheFloorOrForKinematicPoints) {
-  Tetrahedron flying = spinningTetrahedron({0.0, 0.0, 0.0}, {1.0, 2.0, 3.0}, 0.0, 0.001);
+  TestTetrahedron flying = spinningTetrahedron({0.0, 0.0, 0.0}, {1.0, 2.0, 3.0}, 0.0, 0.001);
   const std::vector<glm::dvec3> before = flying.state.velocities;
   EXPECT_FALSE(dampTurningOnFloor(flying.state, 5.0, 0.1));
   EXPECT_EQ(flying.state.velocities, before);
-  Tetrahedron held = spinningTetrahedron({0.0, 0.0, 0.0}, {1.0, 2.0, 3.0}, 0.0, 0.0);
+  TestTetrahedron held = spinningTetrahedron({0.0, 0.0, 0.0}, {1.0, 2.0, 3.0}, 0.0, 0.0);
   held.state.inverseMasses[2] = 0.0;  // grabbed: driven, not damped
   const glm::dvec3 driven = held.state.velocities[2];
   dampTurningOnFloor(held.state, 5.0, 0.1);
