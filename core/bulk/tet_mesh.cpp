@@ -31,11 +31,20 @@ TetMesh makeBallTetMesh(int resolution, double radius, const glm::dvec3& center)
   mesh.shellLevel = resolution;
   const int divisions = 1 << resolution;  // K: the radius in K equal steps, as fine as the shell edges
   mesh.surfaceNodes = perShell;
-  // Shells at R·k/K for k = K down to K/2 (the outer half of the radius, where the n = 2 modes and
-  // the contact deform it most); the centre is coned to the innermost one.
-  const int innermost = std::max(1, divisions / 2);
+  // K/2 + 1 shells evenly spaced from R down to r_in (the outer part of the radius, where the n = 2
+  // modes and the contact deform it most); the centre is coned to the innermost one. r_in was R/2 (the
+  // radial step R/K): the innermost shell's triangles then had half the surface's edge, its elements were
+  // the thinnest and set ω_max, the explicit step's limit. Even spacing is best once that shell's edge
+  // r_in·e_s matches the radial step, r_in ≈ 0.64 R (issue 27, branches mesh2 and mesh3;
+  // docs/performance.md): ω_max −20 % at resolutions 3 and 4. Resolutions 1 and 2 keep R/2: there the
+  // bigger one-element-deep core cone changed what the tests measure (at 0.6 R the torture's yank and
+  // fling with explicit_euler and rk4 rolled back at resolution 1; at 0.55 R a press through to the floor
+  // did not come back at resolution 2, at 0.64 R the landing's volume and the pinch's creep failed).
+  const double innerRadius[] = {0.5, 0.5, 0.64, 0.64};
+  const int steps = std::max(1, divisions / 2);
   std::vector<double> radii;
-  for (int k = divisions; k >= innermost; --k) radii.push_back(radius * k / divisions);
+  for (int k = 0; k <= steps; ++k)
+    radii.push_back(radius * (1.0 - (1.0 - innerRadius[resolution - 1]) * k / steps));
   for (double r : radii)
     for (const glm::dvec3& direction : unit.positions) mesh.positions.push_back(center + r * direction);
   const auto centreNode = static_cast<std::uint32_t>(mesh.positions.size());

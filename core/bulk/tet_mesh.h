@@ -1,9 +1,11 @@
 // The slime's body as a tetrahedral mesh of a ball, made by our own generator (no TetGen, no CGAL:
-// their licences would decide the product's). Concentric icosphere shells of one level s at the radii
-// R·k/K for k = K, K−1, ..., K/2 (K = 2^s, so the radial step R/K matches the shells' edge), joined by
+// their licences would decide the product's). K/2 + 1 concentric icosphere shells of one level s
+// (K = 2^s) evenly spaced from R down to r_in = 0.5 / 0.5 / 0.64 / 0.64 R at resolutions 1 to 4 (until
+// issue 27's branch mesh3 at R·k/K down to R/2, whose innermost triangles, of half the outer edge, set
+// the explicit step limit; tet_mesh.cpp), joined by
 // prisms over each shell triangle, each prism cut into three tetrahedra by the global vertex order (so
 // neighbouring prisms cut their shared quad along the same diagonal and the mesh is conforming), and a
-// centre point coned to the innermost shell. The shells fill the outer half of the radius, where the
+// centre point coned to the innermost shell. The shells fill the outer part of the radius, where the
 // n = 2 modes, the floor and the hand deform the ball; the cone keeps the core's elements few and its
 // highest frequency low. Refining s halves every spacing of the shells.
 // Resolution 1: 85 nodes, 320 tetrahedra; 2: 487, 2,240; 3: 3,211, 16,640; 4: 23,059, 128,000.
