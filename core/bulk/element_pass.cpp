@@ -82,6 +82,16 @@ template <class Real>
 template <class Real>
 [[gnu::always_inline]] inline void gatherLanes(const TetBlock& block, const std::vector<Quad>& x, std::size_t o,
                                                LanesOf<Real> (&ds)[9]) {
+  if constexpr (kLanesOf<Real> == 4) {  // four doubles (AVX2): straight into the lanes
+    Quad edge[3][4];
+    for (std::size_t l = 0; l < 4; ++l) {
+      const Quad origin = x[block.nodes[0][o + l]];
+      for (int c = 0; c < 3; ++c) edge[c][l] = x[block.nodes[c + 1][o + l]] - origin;
+    }
+    for (int c = 0; c < 3; ++c)
+      transposeIn(edge[c][0], edge[c][1], edge[c][2], edge[c][3], ds[3 * c], ds[3 * c + 1], ds[3 * c + 2]);
+    return;
+  }
   alignas(64) Real entries[9][kLanesOf<Real>];
   for (std::size_t g = 0; g < kLanesOf<Real>; g += 4) {
     Quad edge[3][4];
@@ -107,9 +117,13 @@ template <class Real>
   for (int e = 0; e < 9; ++e) storeLanes<Real>(entries[e], h[e]);
   for (std::size_t g = 0; g < kLanesOf<Real>; g += 4) {
     Quad columns[3][4];
-    for (int c = 0; c < 3; ++c)
-      transposeOut(loadQuad(&entries[3 * c][g]), loadQuad(&entries[3 * c + 1][g]), loadQuad(&entries[3 * c + 2][g]),
-                   columns[c]);
+    for (int c = 0; c < 3; ++c) {
+      if constexpr (kLanesOf<Real> == 4)  // four doubles (AVX2): straight from the lanes
+        transposeOut(h[3 * c], h[3 * c + 1], h[3 * c + 2], columns[c]);
+      else
+        transposeOut(loadQuad(&entries[3 * c][g]), loadQuad(&entries[3 * c + 1][g]), loadQuad(&entries[3 * c + 2][g]),
+                     columns[c]);
+    }
     for (std::size_t l = 0; l < 4; ++l) {
       forces[block.nodes[1][o + g + l]] += columns[0][l];
       forces[block.nodes[2][o + g + l]] += columns[1][l];
