@@ -1,7 +1,7 @@
 // The bulk body's per-element arithmetic written once for a whole vector of tetrahedra (GCC/Clang vector
 // extensions, no intrinsics): the nodal forces H = P·(−V0 Dm⁻ᵀ) of the stress (viscoelastic.h's
-// firstPiolaStress) and the Maxwell branches' flow (relaxMaxwellBranch), kLaneWidth tetrahedra per
-// instruction. GCC left the per-lane glm loops scalar on an AVX2 processor (perf, issue 27: the force loop
+// firstPiolaStress) and the Maxwell branches' flow (relaxMaxwellBranch), kLanesOf<Real> tetrahedra per
+// instruction (Real: ElementReal for the step, element_real.h; double for the frequency estimate). GCC left the per-lane glm loops scalar on an AVX2 processor (perf, issue 27: the force loop
 // was 51 % of a step and the flow 14 %, all vmulsd/vfmaddsd), so the lanes are spelt out here.
 // Entries are stored [3·column + row][lane] as in TetBlock (bulk_body.h). The same operations in the same
 // order for every lane, so the result does not depend on where a tetrahedron sits in its block.
