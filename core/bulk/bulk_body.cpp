@@ -25,12 +25,12 @@ std::size_t edgeIndex(const std::vector<glm::u32vec2>& edges, std::uint32_t a, s
 }
 
 // One lane's 3×3 matrix from entries stored [3·column + row][lane], and back.
-inline glm::dmat3 laneMatrix(const double (&entries)[9][kTetLanes], std::size_t lane) {
+inline glm::dmat3 laneMatrix(const ElementReal (&entries)[9][kTetLanes], std::size_t lane) {
   return glm::dmat3(entries[0][lane], entries[1][lane], entries[2][lane], entries[3][lane], entries[4][lane],
                     entries[5][lane], entries[6][lane], entries[7][lane], entries[8][lane]);
 }
-inline void setLaneMatrix(double (&entries)[9][kTetLanes], std::size_t lane, const glm::dmat3& m) {
-  for (int entry = 0; entry < 9; ++entry) entries[entry][lane] = m[entry / 3][entry % 3];
+inline void setLaneMatrix(ElementReal (&entries)[9][kTetLanes], std::size_t lane, const glm::dmat3& m) {
+  for (int entry = 0; entry < 9; ++entry) entries[entry][lane] = static_cast<ElementReal>(m[entry / 3][entry % 3]);
 }
 
 }  // namespace
@@ -63,8 +63,8 @@ BulkBody buildBulkBody(const SlimeSettings& slime) {
   for (std::size_t e = 0; e < mesh.tetrahedra.size(); ++e) {
     TetBlock& block = body.restBlocks[e / kTetLanes];
     for (int entry = 0; entry < 9; ++entry) {
-      block.restInverse[entry][e % kTetLanes] = body.rest[e].restInverse[entry / 3][entry % 3];
-      block.forceMap[entry][e % kTetLanes] = body.rest[e].forceMap[entry / 3][entry % 3];
+      block.restInverse[entry][e % kTetLanes] = static_cast<ElementReal>(body.rest[e].restInverse[entry / 3][entry % 3]);
+      block.forceMap[entry][e % kTetLanes] = static_cast<ElementReal>(body.rest[e].forceMap[entry / 3][entry % 3]);
     }
   }
   body.maxwell.resize(body.restBlocks.size());
@@ -284,9 +284,9 @@ double bulkHighestFrequencyAt(const BulkBody& body, const std::vector<glm::dvec3
                               int iterations) {
   // Power iteration on M⁻¹K, K applied as −(f(x + εu) − f(x))/ε at the shape x.
   const std::size_t n = rest.size();
-  const std::vector<glm::dvec3> still(n, glm::dvec3(0.0));
   std::vector<glm::dvec3> base, probe, direction(n);
-  bulkInternalForces(body, rest, still, base, false);
+  // In double lanes: the probe moves each node by ~ε/√n, below float's rounding of an element's edge.
+  elementForcesInDouble(body, rest, base);
   for (std::size_t i = 0; i < n; ++i)  // a deterministic start that excites every node
     direction[i] = glm::dvec3(std::sin(1.0 + 3.0 * i), std::cos(2.0 + 5.0 * i), std::sin(3.0 + 7.0 * i));
   const double epsilon = 1e-8;  // m, along a unit vector over all nodes
@@ -302,7 +302,7 @@ double bulkHighestFrequencyAt(const BulkBody& body, const std::vector<glm::dvec3
       direction[i] /= norm;
       displaced[i] = rest[i] + epsilon * direction[i];
     }
-    bulkInternalForces(body, displaced, still, probe, false);
+    elementForcesInDouble(body, displaced, probe);
     double rayleigh = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
       const glm::dvec3 next = -(probe[i] - base[i]) / epsilon * body.freeInverseMasses[i];

@@ -23,6 +23,7 @@
 #include "core/integrators/particle_state.h"
 #include "core/settings/settings.h"
 #include "core/bulk/edge_colours.h"
+#include "core/bulk/element_real.h"
 #include "core/bulk/surface_embedding.h"
 #include "core/bulk/tet_mesh.h"
 #include "core/bulk/viscoelastic.h"
@@ -38,28 +39,29 @@ namespace slime {
 constexpr std::size_t kTetLanes = 64;
 
 // The rest data of kTetLanes tetrahedra with each matrix entry's lanes side by side (structure of
-// arrays within the block), entry [3·column + row]. Lanes past the last tetrahedron hold zeros.
+// arrays within the block), entry [3·column + row], in ElementReal (element_real.h). Lanes past the
+// last tetrahedron hold zeros.
 struct TetBlock {
-  alignas(64) double restInverse[9][kTetLanes] = {};  // Dm⁻¹
-  alignas(64) double forceMap[9][kTetLanes] = {};     // −V0 Dm⁻ᵀ
+  alignas(64) ElementReal restInverse[9][kTetLanes] = {};  // Dm⁻¹
+  alignas(64) ElementReal forceMap[9][kTetLanes] = {};     // −V0 Dm⁻ᵀ
   // The element pass's own (element_pass.h): the four nodes, K0 = −V0 Dm⁻¹Dm⁻ᵀ (six entries,
   // tet_lanes.h's kSymmetricEntry) and 1/det Dm; node 0 and zeros past the last tetrahedron.
   alignas(64) std::uint32_t nodes[4][kTetLanes] = {};
-  alignas(64) double stiffnessMap[6][kTetLanes] = {};
-  alignas(64) double volumeScale[kTetLanes] = {};
+  alignas(64) ElementReal stiffnessMap[6][kTetLanes] = {};
+  alignas(64) ElementReal volumeScale[kTetLanes] = {};
 };
 
 // The Maxwell branches' rest states (viscoelastic.h's MaxwellRest) of a block's tetrahedra, laid
 // out as TetBlock; identity at rest.
 struct MaxwellBlock {
-  alignas(64) double inverse[9][kTetLanes] = {};  // B_v
-  alignas(64) double metric[9][kTetLanes] = {};   // G_v = B_v⁻¹, which the flow blends
+  alignas(64) ElementReal inverse[9][kTetLanes] = {};  // B_v
+  alignas(64) ElementReal metric[9][kTetLanes] = {};   // G_v = B_v⁻¹, which the flow blends
 };
 
 // M = −V0 Dm⁻¹ B_v Dm⁻ᵀ of a block's tetrahedra (six entries, element_pass.h), which follows B_v: kept
 // apart from MaxwellBlock so that the guard's saved states do not copy it (refreshed on a rollback).
 struct MaxwellMapBlock {
-  alignas(64) double forceMap[6][kTetLanes] = {};
+  alignas(64) ElementReal forceMap[6][kTetLanes] = {};
 };
 
 struct BulkBody {

@@ -3,6 +3,7 @@
 #include "core/bulk/tet_lanes.h"
 
 #include <algorithm>
+#include <cstring>
 
 namespace slime {
 namespace {
@@ -38,11 +39,9 @@ template <int Write>
   for (std::size_t offset = 0; offset < bytes; offset += 64) __builtin_prefetch(c + offset, Write, 3);
 }
 
-#if !defined(__AVX512F__)
-static_assert(kLaneWidth == 4, "the transposes below take four tetrahedra");
-// Four tetrahedra's vectors (x, y, z, ·) into x, y and z lanes.
-[[gnu::always_inline]] inline void transposeIn(const Quad& a, const Quad& b, const Quad& c, const Quad& d, Lanes& x,
-                                               Lanes& y, Lanes& z) {
+// Four tetrahedra's vectors (x, y, z, ·) into x, y and z of the four.
+[[gnu::always_inline]] inline void transposeIn(const Quad& a, const Quad& b, const Quad& c, const Quad& d, Quad& x,
+                                               Quad& y, Quad& z) {
   const Quad t0 = __builtin_shufflevector(a, b, 0, 4, 2, 6);  // a0 b0 a2 b2
   const Quad t1 = __builtin_shufflevector(a, b, 1, 5, 3, 7);  // a1 b1 a3 b3
   const Quad t2 = __builtin_shufflevector(c, d, 0, 4, 2, 6);
@@ -51,8 +50,8 @@ static_assert(kLaneWidth == 4, "the transposes below take four tetrahedra");
   y = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
   z = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
 }
-// And back: x, y, z lanes into four tetrahedra's vectors (x, y, z, 0).
-[[gnu::always_inline]] inline void transposeOut(const Lanes& x, const Lanes& y, const Lanes& z, Quad (&out)[4]) {
+// And back: x, y, z of four tetrahedra into their vectors (x, y, z, 0).
+[[gnu::always_inline]] inline void transposeOut(const Quad& x, const Quad& y, const Quad& z, Quad (&out)[4]) {
   const Quad zero{};
   const Quad t0 = __builtin_shufflevector(x, y, 0, 4, 2, 6);     // x0 y0 x2 y2
   const Quad t1 = __builtin_shufflevector(x, y, 1, 5, 3, 7);     // x1 y1 x3 y3
@@ -63,80 +62,80 @@ static_assert(kLaneWidth == 4, "the transposes below take four tetrahedra");
   out[2] = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
   out[3] = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
 }
-#endif
+// Four Reals to and from a Quad.
+template <class Real>
+[[gnu::always_inline]] inline void storeQuad(Real* p, const Quad& q) {
+  using RealQuad = typename VectorOf<Real, 4 * sizeof(Real)>::type;
+  const RealQuad v = __builtin_convertvector(q, RealQuad);
+  std::memcpy(p, &v, sizeof v);
+}
+template <class Real>
+[[gnu::always_inline]] inline Quad loadQuad(const Real* p) {
+  using RealQuad = typename VectorOf<Real, 4 * sizeof(Real)>::type;
+  RealQuad v;
+  std::memcpy(&v, p, sizeof v);
+  return __builtin_convertvector(v, Quad);
+}
 
-// Ds = [x1 − x0, x2 − x0, x3 − x0] of kLaneWidth tetrahedra from offset `o`, lanes [3·column + row].
+// Ds = [x1 − x0, x2 − x0, x3 − x0] of kLanesOf<Real> tetrahedra from offset `o`, lanes [3·column + row]:
+// the differences in double (positions far from the origin keep their edges' digits), then rounded to Real.
+template <class Real>
 [[gnu::always_inline]] inline void gatherLanes(const TetBlock& block, const std::vector<Quad>& x, std::size_t o,
-                                               Lanes (&ds)[9]) {
-#if !defined(__AVX512F__)
-  Quad edge[3][4];
-  for (std::size_t l = 0; l < 4; ++l) {
-    const Quad origin = x[block.nodes[0][o + l]];
-    for (int c = 0; c < 3; ++c) edge[c][l] = x[block.nodes[c + 1][o + l]] - origin;
+                                               LanesOf<Real> (&ds)[9]) {
+  if constexpr (kLanesOf<Real> == 4) {  // four doubles (AVX2): straight into the lanes
+    Quad edge[3][4];
+    for (std::size_t l = 0; l < 4; ++l) {
+      const Quad origin = x[block.nodes[0][o + l]];
+      for (int c = 0; c < 3; ++c) edge[c][l] = x[block.nodes[c + 1][o + l]] - origin;
+    }
+    for (int c = 0; c < 3; ++c)
+      transposeIn(edge[c][0], edge[c][1], edge[c][2], edge[c][3], ds[3 * c], ds[3 * c + 1], ds[3 * c + 2]);
+    return;
   }
-  for (int c = 0; c < 3; ++c) transposeIn(edge[c][0], edge[c][1], edge[c][2], edge[c][3], ds[3 * c], ds[3 * c + 1], ds[3 * c + 2]);
-#else
-  alignas(64) double entries[9][kLaneWidth];
-  for (std::size_t l = 0; l < kLaneWidth; ++l) {
-    const Quad origin = x[block.nodes[0][o + l]];
+  alignas(64) Real entries[9][kLanesOf<Real>];
+  for (std::size_t g = 0; g < kLanesOf<Real>; g += 4) {
+    Quad edge[3][4];
+    for (std::size_t l = 0; l < 4; ++l) {
+      const Quad origin = x[block.nodes[0][o + g + l]];
+      for (int c = 0; c < 3; ++c) edge[c][l] = x[block.nodes[c + 1][o + g + l]] - origin;
+    }
     for (int c = 0; c < 3; ++c) {
-      const Quad edge = x[block.nodes[c + 1][o + l]] - origin;
-      for (int r = 0; r < 3; ++r) entries[3 * c + r][l] = edge[r];
+      Quad xyz[3];
+      transposeIn(edge[c][0], edge[c][1], edge[c][2], edge[c][3], xyz[0], xyz[1], xyz[2]);
+      for (int r = 0; r < 3; ++r) storeQuad(&entries[3 * c + r][g], xyz[r]);
     }
   }
-  for (int e = 0; e < 9; ++e) ds[e] = loadLanes(entries[e]);
-#endif
+  for (int e = 0; e < 9; ++e) ds[e] = loadLanes<Real>(entries[e]);
 }
 
-// Adds H's columns to nodes 1..3 and minus their sum to node 0 (lanes past the last tetrahedron hold
-// zero forces on node 0).
-[[gnu::always_inline]] inline void scatterLanes(const TetBlock& block, const Lanes (&h)[9], std::size_t o,
+// Adds H's columns to nodes 1..3 and minus their sum to node 0, in double (lanes past the last
+// tetrahedron hold zero forces on node 0).
+template <class Real>
+[[gnu::always_inline]] inline void scatterLanes(const TetBlock& block, const LanesOf<Real> (&h)[9], std::size_t o,
                                                 std::vector<Quad>& forces) {
-#if !defined(__AVX512F__)
-  Quad columns[3][4];
-  for (int c = 0; c < 3; ++c) transposeOut(h[3 * c], h[3 * c + 1], h[3 * c + 2], columns[c]);
-  for (std::size_t l = 0; l < 4; ++l) {
-    forces[block.nodes[1][o + l]] += columns[0][l];
-    forces[block.nodes[2][o + l]] += columns[1][l];
-    forces[block.nodes[3][o + l]] += columns[2][l];
-    forces[block.nodes[0][o + l]] -= columns[0][l] + columns[1][l] + columns[2][l];
+  alignas(64) Real entries[9][kLanesOf<Real>];
+  for (int e = 0; e < 9; ++e) storeLanes<Real>(entries[e], h[e]);
+  for (std::size_t g = 0; g < kLanesOf<Real>; g += 4) {
+    Quad columns[3][4];
+    for (int c = 0; c < 3; ++c) {
+      if constexpr (kLanesOf<Real> == 4)  // four doubles (AVX2): straight from the lanes
+        transposeOut(h[3 * c], h[3 * c + 1], h[3 * c + 2], columns[c]);
+      else
+        transposeOut(loadQuad(&entries[3 * c][g]), loadQuad(&entries[3 * c + 1][g]), loadQuad(&entries[3 * c + 2][g]),
+                     columns[c]);
+    }
+    for (std::size_t l = 0; l < 4; ++l) {
+      forces[block.nodes[1][o + g + l]] += columns[0][l];
+      forces[block.nodes[2][o + g + l]] += columns[1][l];
+      forces[block.nodes[3][o + g + l]] += columns[2][l];
+      forces[block.nodes[0][o + g + l]] -= columns[0][l] + columns[1][l] + columns[2][l];
+    }
   }
-#else
-  alignas(64) double entries[9][kLaneWidth];
-  for (int e = 0; e < 9; ++e) storeLanes(entries[e], h[e]);
-  for (std::size_t l = 0; l < kLaneWidth; ++l) {
-    Quad column[3];
-    for (int c = 0; c < 3; ++c) column[c] = Quad{entries[3 * c][l], entries[3 * c + 1][l], entries[3 * c + 2][l], 0.0};
-    for (int c = 0; c < 3; ++c) forces[block.nodes[c + 1][o + l]] += column[c];
-    forces[block.nodes[0][o + l]] -= column[0] + column[1] + column[2];
-  }
-#endif
 }
 
-}  // namespace
-
-void fillElementBlocks(BulkBody& body) {
-  const std::vector<Tetrahedron>& tetrahedra = body.mesh.tetrahedra;
-  for (std::size_t e = 0; e < tetrahedra.size(); ++e) {
-    TetBlock& block = body.restBlocks[e / kTetLanes];
-    for (int corner = 0; corner < 4; ++corner) block.nodes[corner][e % kTetLanes] = tetrahedra[e][corner];
-    block.volumeScale[e % kTetLanes] = 1.0 / (6.0 * body.rest[e].volume);  // 1/det Dm
-  }
-  for (TetBlock& block : body.restBlocks)
-    for (std::size_t o = 0; o < kTetLanes; o += kLaneWidth)
-      congruenceLanes<kTetLanes>(block.restInverse, block.forceMap, nullptr, o, block.stiffnessMap);
-  refreshMaxwellForceMaps(body);
-}
-
-void refreshMaxwellForceMaps(BulkBody& body) {
-  body.maxwellMaps.resize(body.maxwell.size());
-  for (std::size_t b = 0; b < body.maxwell.size() && b < body.restBlocks.size(); ++b)
-    for (std::size_t o = 0; o < kTetLanes; o += kLaneWidth)
-      congruenceLanes(body.restBlocks[b].restInverse, body.restBlocks[b].forceMap, body.maxwell[b].inverse, o,
-                      body.maxwellMaps[b].forceMap);
-}
-
-void elementForces(const BulkBody& body, const std::vector<glm::dvec3>& x, std::vector<glm::dvec3>& forces) {
+// elementForces in Real lanes.
+template <class Real>
+void elementForcesIn(const BulkBody& body, const std::vector<glm::dvec3>& x, std::vector<glm::dvec3>& forces) {
   NodeQuads& quads = nodeQuads();
   copyToQuads(x, quads.positions);
   quads.forces.assign(x.size(), Quad{});
@@ -153,16 +152,47 @@ void elementForces(const BulkBody& body, const std::vector<glm::dvec3>& x, std::
       prefetchBytes<0>(body.maxwellMaps[b + 1].forceMap, sizeof body.maxwellMaps[b + 1].forceMap);
     }
     const std::size_t count = std::min(kTetLanes, tetrahedra - b * kTetLanes);
-    for (std::size_t o = 0; o < count; o += kLaneWidth) {
-      Lanes ds[9], h[9];
-      gatherLanes(block, quads.positions, o, ds);
-      shapeForceLanes(material.longTermShear, material.maxwellShear, lambdaPrime, alpha, ds, block.stiffnessMap,
-                      body.maxwellMaps[b].forceMap, block.volumeScale, o, h);
-      scatterLanes(block, h, o, quads.forces);
+    for (std::size_t o = 0; o < count; o += kLanesOf<Real>) {
+      LanesOf<Real> ds[9], h[9];
+      gatherLanes<Real>(block, quads.positions, o, ds);
+      shapeForceLanes<Real>(material.longTermShear, material.maxwellShear, lambdaPrime, alpha, ds, block.stiffnessMap,
+                            body.maxwellMaps[b].forceMap, block.volumeScale, o, h);
+      scatterLanes<Real>(block, h, o, quads.forces);
     }
   }
   forces.resize(x.size());
   for (std::size_t i = 0; i < x.size(); ++i) forces[i] = glm::dvec3(quads.forces[i][0], quads.forces[i][1], quads.forces[i][2]);
+}
+
+}  // namespace
+
+void fillElementBlocks(BulkBody& body) {
+  const std::vector<Tetrahedron>& tetrahedra = body.mesh.tetrahedra;
+  for (std::size_t e = 0; e < tetrahedra.size(); ++e) {
+    TetBlock& block = body.restBlocks[e / kTetLanes];
+    for (int corner = 0; corner < 4; ++corner) block.nodes[corner][e % kTetLanes] = tetrahedra[e][corner];
+    block.volumeScale[e % kTetLanes] = static_cast<ElementReal>(1.0 / (6.0 * body.rest[e].volume));  // 1/det Dm
+  }
+  for (TetBlock& block : body.restBlocks)
+    for (std::size_t o = 0; o < kTetLanes; o += kLanesOf<double>)
+      congruenceLanes<double, ElementReal, kTetLanes>(block.restInverse, block.forceMap, nullptr, o, block.stiffnessMap);
+  refreshMaxwellForceMaps(body);
+}
+
+void refreshMaxwellForceMaps(BulkBody& body) {
+  body.maxwellMaps.resize(body.maxwell.size());
+  for (std::size_t b = 0; b < body.maxwell.size() && b < body.restBlocks.size(); ++b)
+    for (std::size_t o = 0; o < kTetLanes; o += kLaneWidth)
+      congruenceLanes<ElementReal>(body.restBlocks[b].restInverse, body.restBlocks[b].forceMap, body.maxwell[b].inverse, o,
+                      body.maxwellMaps[b].forceMap);
+}
+
+void elementForces(const BulkBody& body, const std::vector<glm::dvec3>& x, std::vector<glm::dvec3>& forces) {
+  elementForcesIn<ElementReal>(body, x, forces);
+}
+
+void elementForcesInDouble(const BulkBody& body, const std::vector<glm::dvec3>& x, std::vector<glm::dvec3>& forces) {
+  elementForcesIn<double>(body, x, forces);
 }
 
 void relaxElements(BulkBody& body, double decay) {
@@ -179,15 +209,15 @@ void relaxElements(BulkBody& body, double decay) {
       prefetchBytes<1>(&body.maxwell[b + 1], sizeof(MaxwellBlock));
       prefetchBytes<1>(&body.maxwellMaps[b + 1], sizeof(MaxwellMapBlock));
     }
-    alignas(64) double shape[9][kTetLanes];
+    alignas(64) ElementReal shape[9][kTetLanes];
     for (std::size_t o = 0; o < kTetLanes; o += kLaneWidth) {
       Lanes ds[9];
-      gatherLanes(block, quads.positions, o, ds);
-      for (int e = 0; e < 9; ++e) storeLanes(&shape[e][o], ds[e]);
+      gatherLanes<ElementReal>(block, quads.positions, o, ds);
+      for (int e = 0; e < 9; ++e) storeLanes<ElementReal>(&shape[e][o], ds[e]);
     }
     for (std::size_t o = 0; o < kTetLanes; o += kLaneWidth) {
-      relaxLanes(shape, block.restInverse, decay, o, maxwell.metric, maxwell.inverse);
-      congruenceLanes(block.restInverse, block.forceMap, maxwell.inverse, o, body.maxwellMaps[b].forceMap);
+      relaxLanes<ElementReal>(shape, block.restInverse, decay, o, maxwell.metric, maxwell.inverse);
+      congruenceLanes<ElementReal>(block.restInverse, block.forceMap, maxwell.inverse, o, body.maxwellMaps[b].forceMap);
     }
   }
 }

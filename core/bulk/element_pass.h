@@ -22,8 +22,12 @@ void fillElementBlocks(BulkBody& body);
 // relaxElements (building the body, the projective solver's storeMaxwell, the guard's rollback).
 void refreshMaxwellForceMaps(BulkBody& body);
 
-// Elastic and Maxwell nodal forces at x; `forces` is resized and overwritten.
+// Elastic and Maxwell nodal forces at x, in ElementReal lanes (element_real.h) summed in double;
+// `forces` is resized and overwritten.
 void elementForces(const BulkBody& body, const std::vector<glm::dvec3>& x, std::vector<glm::dvec3>& forces);
+// The same in double lanes from the same stored data: for finite differences of the forces (the
+// frequency estimate moves the nodes by ~1e-10 m, below float's rounding of an edge).
+void elementForcesInDouble(const BulkBody& body, const std::vector<glm::dvec3>& x, std::vector<glm::dvec3>& forces);
 
 // The Maxwell branches' flow with decay = exp(−Δt/τ) at the body's positions (relaxMaxwellBranch per
 // tetrahedron, tet_lanes.h's relaxLanes), then M.

@@ -1,11 +1,13 @@
 // The bulk body's per-element arithmetic written once for a whole vector of tetrahedra (GCC/Clang vector
 // extensions, no intrinsics): the nodal forces H = P·(−V0 Dm⁻ᵀ) of the stress (viscoelastic.h's
-// firstPiolaStress) and the Maxwell branches' flow (relaxMaxwellBranch), kLaneWidth tetrahedra per
-// instruction. GCC left the per-lane glm loops scalar on an AVX2 processor (perf, issue 27: the force loop
+// firstPiolaStress) and the Maxwell branches' flow (relaxMaxwellBranch), kLanesOf<Real> tetrahedra per
+// instruction (Real: ElementReal for the step, element_real.h; double for the frequency estimate). GCC left the per-lane glm loops scalar on an AVX2 processor (perf, issue 27: the force loop
 // was 51 % of a step and the flow 14 %, all vmulsd/vfmaddsd), so the lanes are spelt out here.
 // Entries are stored [3·column + row][lane] as in TetBlock (bulk_body.h). The same operations in the same
 // order for every lane, so the result does not depend on where a tetrahedron sits in its block.
 #pragma once
+
+#include "core/bulk/element_real.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -13,30 +15,53 @@
 
 namespace slime {
 
+// One vector register: 64 bytes with AVX-512, 32 with AVX2 (and two SSE2 registers without it).
 #if defined(__AVX512F__)
-constexpr std::size_t kLaneWidth = 8;  // doubles per vector register
+constexpr std::size_t kVectorBytes = 64;
 #else
-constexpr std::size_t kLaneWidth = 4;  // AVX2 (and two SSE2 registers without it)
+constexpr std::size_t kVectorBytes = 32;
 #endif
-using Lanes = double __attribute__((vector_size(kLaneWidth * sizeof(double))));
-using IntLanes = std::int64_t __attribute__((vector_size(kLaneWidth * sizeof(double))));
-using FloatLanes = float __attribute__((vector_size(kLaneWidth * sizeof(float))));
-using Int32Lanes = std::int32_t __attribute__((vector_size(kLaneWidth * sizeof(float))));
+// The lanes of one register of `Real`: the step's arithmetic is in ElementReal (bulk_body.h), the
+// frequency estimate's finite differences in double (element_pass.h).
+template <class Real>
+constexpr std::size_t kLanesOf = kVectorBytes / sizeof(Real);
+// A vector of `Bytes` bytes of T (a member typedef: GCC drops vector_size on an alias template's type).
+template <class T, std::size_t Bytes>
+struct VectorOf {
+  typedef T type __attribute__((vector_size(Bytes)));
+};
+template <class Real>
+using LanesOf = typename VectorOf<Real, kVectorBytes>::type;
+using Lanes = LanesOf<ElementReal>;
+constexpr std::size_t kLaneWidth = kLanesOf<ElementReal>;
 
-[[gnu::always_inline]] inline Lanes loadLanes(const double* p) {
-  Lanes v;
+// kLanesOf<Real> values from `p` (of any stored type), converted to Real.
+template <class Real, class Stored>
+[[gnu::always_inline]] inline LanesOf<Real> loadLanes(const Stored* p) {
+  using StoredLanes = typename VectorOf<Stored, kLanesOf<Real> * sizeof(Stored)>::type;
+  StoredLanes v;
   std::memcpy(&v, p, sizeof v);
-  return v;
+  return __builtin_convertvector(v, LanesOf<Real>);
 }
-[[gnu::always_inline]] inline void storeLanes(double* p, const Lanes& v) { std::memcpy(p, &v, sizeof v); }
+template <class Real, class Stored>
+[[gnu::always_inline]] inline void storeLanes(Stored* p, const LanesOf<Real>& v) {
+  using StoredLanes = typename VectorOf<Stored, kLanesOf<Real> * sizeof(Stored)>::type;
+  const StoredLanes stored = __builtin_convertvector(v, StoredLanes);
+  std::memcpy(p, &stored, sizeof stored);
+}
 
 // x^(−1/3) per lane for x in [2^−126, 2^126] (cube_root.h's method with a single-precision first guess,
-// since AVX2 has no 64-bit integer ↔ double conversion): the float bit trick (3.4 %), then three
-// fourth-order steps r ← r (1 + e/3 + 2e²/9 + 14e³/81), e = 1 − x r³ (3.4 % → 1e-5 → 1e-19 → rounding),
-// within a few ulp. Lanes outside that range give meaningless values; the caller masks them.
-[[gnu::always_inline]] inline void inverseCubeRootLanes(const Lanes& x, Lanes& root) {
-  const Lanes low = x < 0x1p-126 ? Lanes{} + 0x1p-126 : x;
-  const Lanes clamped = low > 0x1p126 ? Lanes{} + 0x1p126 : low;
+// since AVX2 has no 64-bit integer ↔ double conversion): the float bit trick (3.4 %), then fourth-order
+// steps r ← r (1 + e/3 + 2e²/9 + 14e³/81), e = 1 − x r³ (3.4 % → 1e-5 → 1e-19 → rounding: three in
+// double, two in float), within a few ulp. Lanes outside that range give meaningless values; the caller
+// masks them.
+template <class Real>
+[[gnu::always_inline]] inline void inverseCubeRootLanes(const LanesOf<Real>& x, LanesOf<Real>& root) {
+  using FloatLanes = typename VectorOf<float, kLanesOf<Real> * sizeof(float)>::type;
+  using Int32Lanes = typename VectorOf<std::int32_t, kLanesOf<Real> * sizeof(float)>::type;
+  using Lanes = LanesOf<Real>;
+  const Lanes low = x < Real(0x1p-126) ? Lanes{} + Real(0x1p-126) : x;
+  const Lanes clamped = low > Real(0x1p126) ? Lanes{} + Real(0x1p126) : low;
   const FloatLanes single = __builtin_convertvector(clamped, FloatLanes);
   Int32Lanes bits;
   std::memcpy(&bits, &single, sizeof bits);
@@ -46,37 +71,40 @@ using Int32Lanes = std::int32_t __attribute__((vector_size(kLaneWidth * sizeof(f
   FloatLanes guess;
   std::memcpy(&guess, &guessBits, sizeof guess);
   Lanes r = __builtin_convertvector(guess, Lanes);
-  for (int step = 0; step < 3; ++step) {
-    const Lanes e = 1.0 - clamped * (r * r * r);
-    r += r * e * (1.0 / 3.0 + e * (2.0 / 9.0 + e * (14.0 / 81.0)));
+  constexpr int steps = sizeof(Real) == sizeof(float) ? 2 : 3;
+  for (int step = 0; step < steps; ++step) {
+    const Lanes e = Real(1) - clamped * (r * r * r);
+    r += r * e * (Real(1.0 / 3.0) + e * (Real(2.0 / 9.0) + e * Real(14.0 / 81.0)));
   }
   root = r;
 }
 
-// F = Ds Dm⁻¹ of kLaneWidth tetrahedra from offset `o`, column-major (f[3c + r] = F_rc).
-template <std::size_t N>
-[[gnu::always_inline]] inline void deformationGradientLanes(const double (&shape)[9][N], const double (&restInverse)[9][N],
-                                                            std::size_t o, Lanes (&f)[9]) {
+// F = Ds Dm⁻¹ of kLanesOf<Real> tetrahedra from offset `o`, column-major (f[3c + r] = F_rc).
+template <class Real, class Shape, class Stored, std::size_t N>
+[[gnu::always_inline]] inline void deformationGradientLanes(const Shape (&shape)[9][N], const Stored (&restInverse)[9][N],
+                                                            std::size_t o, LanesOf<Real> (&f)[9]) {
+  using Lanes = LanesOf<Real>;
   Lanes ds[9];
-  for (int e = 0; e < 9; ++e) ds[e] = loadLanes(&shape[e][o]);
+  for (int e = 0; e < 9; ++e) ds[e] = loadLanes<Real>(&shape[e][o]);
   for (int c = 0; c < 3; ++c) {
-    const Lanes d0 = loadLanes(&restInverse[3 * c][o]), d1 = loadLanes(&restInverse[3 * c + 1][o]),
-                d2 = loadLanes(&restInverse[3 * c + 2][o]);
+    const Lanes d0 = loadLanes<Real>(&restInverse[3 * c][o]), d1 = loadLanes<Real>(&restInverse[3 * c + 1][o]),
+                d2 = loadLanes<Real>(&restInverse[3 * c + 2][o]);
     for (int r = 0; r < 3; ++r) f[3 * c + r] = ds[r] * d0 + ds[3 + r] * d1 + ds[6 + r] * d2;
   }
 }
 
-// Nodal forces of kLaneWidth tetrahedra from offset `o` of a block's [9][kTetLanes] arrays:
+// Nodal forces of kLanesOf<Real> tetrahedra from offset `o` of a block's [9][kTetLanes] arrays:
 //   F = Ds Dm⁻¹,  P = μ∞ F + λ'(J − α) cof F + μ1 (F B_v − cof F),  H = P · forceMap
 // (viscoelastic.h; μ1 = 0 leaves the Maxwell term out).
-template <std::size_t N>
+template <class Real, class Stored, std::size_t N>
 [[gnu::always_inline]] inline void stressForceLanes(double longTermShear, double maxwellShear, double lambdaPrime,
-                                                     double restVolumeRatio, const double (&shape)[9][N],
-                                                     const double (&restInverse)[9][N], const double (&forceMap)[9][N],
-                                                     const double (&maxwellInverse)[9][N], std::size_t o,
-                                                     double (&forces)[9][N]) {
+                                                     double restVolumeRatio, const Stored (&shape)[9][N],
+                                                     const Stored (&restInverse)[9][N], const Stored (&forceMap)[9][N],
+                                                     const Stored (&maxwellInverse)[9][N], std::size_t o,
+                                                     Stored (&forces)[9][N]) {
+  using Lanes = LanesOf<Real>;
   Lanes f[9];
-  deformationGradientLanes(shape, restInverse, o, f);
+  deformationGradientLanes<Real>(shape, restInverse, o, f);
   // cof F: columns f1×f2, f2×f0, f0×f1.
   Lanes cof[9];
   for (int c = 0; c < 3; ++c) {
@@ -86,21 +114,21 @@ template <std::size_t N>
     cof[3 * c + 2] = f[a + 0] * f[b + 1] - f[a + 1] * f[b + 0];
   }
   const Lanes j = f[0] * cof[0] + f[1] * cof[1] + f[2] * cof[2];
-  const Lanes volumetric = lambdaPrime * (j - restVolumeRatio);
+  const Lanes volumetric = Real(lambdaPrime) * (j - Real(restVolumeRatio));
   Lanes p[9];
-  for (int e = 0; e < 9; ++e) p[e] = longTermShear * f[e] + volumetric * cof[e];
+  for (int e = 0; e < 9; ++e) p[e] = Real(longTermShear) * f[e] + volumetric * cof[e];
   if (maxwellShear > 0.0) {
     for (int c = 0; c < 3; ++c) {
-      const Lanes b0 = loadLanes(&maxwellInverse[3 * c][o]), b1 = loadLanes(&maxwellInverse[3 * c + 1][o]),
-                  b2 = loadLanes(&maxwellInverse[3 * c + 2][o]);
+      const Lanes b0 = loadLanes<Real>(&maxwellInverse[3 * c][o]), b1 = loadLanes<Real>(&maxwellInverse[3 * c + 1][o]),
+                  b2 = loadLanes<Real>(&maxwellInverse[3 * c + 2][o]);
       for (int r = 0; r < 3; ++r)
-        p[3 * c + r] += maxwellShear * (f[r] * b0 + f[3 + r] * b1 + f[6 + r] * b2 - cof[3 * c + r]);
+        p[3 * c + r] += Real(maxwellShear) * (f[r] * b0 + f[3 + r] * b1 + f[6 + r] * b2 - cof[3 * c + r]);
     }
   }
   for (int c = 0; c < 3; ++c) {
-    const Lanes m0 = loadLanes(&forceMap[3 * c][o]), m1 = loadLanes(&forceMap[3 * c + 1][o]),
-                m2 = loadLanes(&forceMap[3 * c + 2][o]);
-    for (int r = 0; r < 3; ++r) storeLanes(&forces[3 * c + r][o], p[r] * m0 + p[3 + r] * m1 + p[6 + r] * m2);
+    const Lanes m0 = loadLanes<Real>(&forceMap[3 * c][o]), m1 = loadLanes<Real>(&forceMap[3 * c + 1][o]),
+                m2 = loadLanes<Real>(&forceMap[3 * c + 2][o]);
+    for (int r = 0; r < 3; ++r) storeLanes<Real>(&forces[3 * c + r][o], p[r] * m0 + p[3 + r] * m1 + p[6 + r] * m2);
   }
 }
 
@@ -113,16 +141,17 @@ template <std::size_t N>
 // `volumeScale` is 1/det(Dm). Ds and H are lanes [3·column + row]; 6 + 1 loads instead of 27.
 constexpr int kSymmetricEntry[3][3] = {{0, 3, 4}, {3, 1, 5}, {4, 5, 2}};  // (row, column) → 00 11 22 01 02 12
 
-template <std::size_t N>
+template <class Real, class Stored, std::size_t N>
 [[gnu::always_inline]] inline void shapeForceLanes(double longTermShear, double maxwellShear, double lambdaPrime,
-                                                    double restVolumeRatio, const Lanes (&ds)[9],
-                                                    const double (&stiffnessMap)[6][N],
-                                                    const double (&maxwellMap)[6][N], const double (&volumeScale)[N],
-                                                    std::size_t o, Lanes (&h)[9]) {
+                                                    double restVolumeRatio, const LanesOf<Real> (&ds)[9],
+                                                    const Stored (&stiffnessMap)[6][N],
+                                                    const Stored (&maxwellMap)[6][N], const Stored (&volumeScale)[N],
+                                                    std::size_t o, LanesOf<Real> (&h)[9]) {
+  using Lanes = LanesOf<Real>;
   Lanes s[6];
-  for (int e = 0; e < 6; ++e) s[e] = longTermShear * loadLanes(&stiffnessMap[e][o]);
+  for (int e = 0; e < 6; ++e) s[e] = Real(longTermShear) * loadLanes<Real>(&stiffnessMap[e][o]);
   if (maxwellShear > 0.0)
-    for (int e = 0; e < 6; ++e) s[e] += maxwellShear * loadLanes(&maxwellMap[e][o]);
+    for (int e = 0; e < 6; ++e) s[e] += Real(maxwellShear) * loadLanes<Real>(&maxwellMap[e][o]);
   Lanes cof[9];  // columns d1×d2, d2×d0, d0×d1 of Ds
   for (int c = 0; c < 3; ++c) {
     const int a = 3 * ((c + 1) % 3), b = 3 * ((c + 2) % 3);
@@ -130,24 +159,25 @@ template <std::size_t N>
     cof[3 * c + 1] = ds[a + 2] * ds[b + 0] - ds[a + 0] * ds[b + 2];
     cof[3 * c + 2] = ds[a + 0] * ds[b + 1] - ds[a + 1] * ds[b + 0];
   }
-  const Lanes j = (ds[0] * cof[0] + ds[1] * cof[1] + ds[2] * cof[2]) * loadLanes(&volumeScale[o]);
-  const Lanes k = (maxwellShear - lambdaPrime * (j - restVolumeRatio)) * (1.0 / 6.0);
+  const Lanes j = (ds[0] * cof[0] + ds[1] * cof[1] + ds[2] * cof[2]) * loadLanes<Real>(&volumeScale[o]);
+  const Lanes k = (Real(maxwellShear) - Real(lambdaPrime) * (j - Real(restVolumeRatio))) * Real(1.0 / 6.0);
   for (int c = 0; c < 3; ++c) {
     const Lanes s0 = s[kSymmetricEntry[0][c]], s1 = s[kSymmetricEntry[1][c]], s2 = s[kSymmetricEntry[2][c]];
     for (int r = 0; r < 3; ++r) h[3 * c + r] = ds[r] * s0 + ds[3 + r] * s1 + ds[6 + r] * s2 + k * cof[3 * c + r];
   }
 }
 
-// Dm⁻¹·B·forceMap = −V0 Dm⁻¹ B Dm⁻ᵀ (symmetric, six entries as above) of kLaneWidth tetrahedra from
+// Dm⁻¹·B·forceMap = −V0 Dm⁻¹ B Dm⁻ᵀ (symmetric, six entries as above) of kLanesOf<Real> tetrahedra from
 // offset `o`: shapeForceLanes' K0 (B = I, `inverse` null) or M (B = B_v).
-template <std::size_t N>
-[[gnu::always_inline]] inline void congruenceLanes(const double (&restInverse)[9][N], const double (&forceMap)[9][N],
-                                                    const double (*inverse)[N], std::size_t o, double (&out)[6][N]) {
+template <class Real, class Stored, std::size_t N>
+[[gnu::always_inline]] inline void congruenceLanes(const Stored (&restInverse)[9][N], const Stored (&forceMap)[9][N],
+                                                    const Stored (*inverse)[N], std::size_t o, Stored (&out)[6][N]) {
+  using Lanes = LanesOf<Real>;
   Lanes t[9];  // B·forceMap
-  for (int e = 0; e < 9; ++e) t[e] = loadLanes(&forceMap[e][o]);
+  for (int e = 0; e < 9; ++e) t[e] = loadLanes<Real>(&forceMap[e][o]);
   if (inverse != nullptr) {
     Lanes b[9];
-    for (int e = 0; e < 9; ++e) b[e] = loadLanes(&inverse[e][o]);
+    for (int e = 0; e < 9; ++e) b[e] = loadLanes<Real>(&inverse[e][o]);
     Lanes bt[9];
     for (int c = 0; c < 3; ++c)
       for (int r = 0; r < 3; ++r) bt[3 * c + r] = b[r] * t[3 * c] + b[3 + r] * t[3 * c + 1] + b[6 + r] * t[3 * c + 2];
@@ -155,38 +185,41 @@ template <std::size_t N>
   }
   for (int r = 0; r < 3; ++r)
     for (int c = r; c < 3; ++c) {
-      const Lanes value = loadLanes(&restInverse[r][o]) * t[3 * c] + loadLanes(&restInverse[3 + r][o]) * t[3 * c + 1] +
-                          loadLanes(&restInverse[6 + r][o]) * t[3 * c + 2];
-      storeLanes(&out[kSymmetricEntry[r][c]][o], value);
+      const Lanes value = loadLanes<Real>(&restInverse[r][o]) * t[3 * c] +
+                          loadLanes<Real>(&restInverse[3 + r][o]) * t[3 * c + 1] +
+                          loadLanes<Real>(&restInverse[6 + r][o]) * t[3 * c + 2];
+      storeLanes<Real>(&out[kSymmetricEntry[r][c]][o], value);
     }
 }
 
-// The Maxwell flow of kLaneWidth tetrahedra from offset `o` (viscoelastic.h's relaxMaxwellBranch):
+// The Maxwell flow of kLanesOf<Real> tetrahedra from offset `o` (viscoelastic.h's relaxMaxwellBranch):
 // G = C + (G_v − C)·decay, C = FᵀF; G_v ← G det(G)^(−1/3), B_v ← adj(G) det(G)^(−2/3). A lane whose det(G)
 // is not in [2^−126, 2^126] (inverted, or its volume changed 10^19-fold) keeps its rest state.
-template <std::size_t N>
-[[gnu::always_inline]] inline void relaxLanes(const double (&shape)[9][N], const double (&restInverse)[9][N],
-                                               double decay, std::size_t o, double (&metric)[9][N],
-                                               double (&inverse)[9][N]) {
+template <class Real, class Shape, class Stored, std::size_t N>
+[[gnu::always_inline]] inline void relaxLanes(const Shape (&shape)[9][N], const Stored (&restInverse)[9][N],
+                                               double decay, std::size_t o, Stored (&metric)[9][N],
+                                               Stored (&inverse)[9][N]) {
+  using Lanes = LanesOf<Real>;
   Lanes f[9];
-  deformationGradientLanes(shape, restInverse, o, f);
+  deformationGradientLanes<Real>(shape, restInverse, o, f);
   const auto dot = [&](int a, int b) { return f[3 * a] * f[3 * b] + f[3 * a + 1] * f[3 * b + 1] + f[3 * a + 2] * f[3 * b + 2]; };
   const Lanes c00 = dot(0, 0), c11 = dot(1, 1), c22 = dot(2, 2), c01 = dot(0, 1), c02 = dot(0, 2), c12 = dot(1, 2);
-  const auto blend = [&](const Lanes& c, int entry) { return c + (loadLanes(&metric[entry][o]) - c) * decay; };
+  const Real memory = Real(decay);
+  const auto blend = [&](const Lanes& c, int entry) { return c + (loadLanes<Real>(&metric[entry][o]) - c) * memory; };
   const Lanes m00 = blend(c00, 0), m11 = blend(c11, 4), m22 = blend(c22, 8);
   const Lanes m01 = blend(c01, 3), m02 = blend(c02, 6), m12 = blend(c12, 7);
   const Lanes a00 = m11 * m22 - m12 * m12, a11 = m00 * m22 - m02 * m02, a22 = m00 * m11 - m01 * m01;
   const Lanes a01 = m02 * m12 - m01 * m22, a02 = m01 * m12 - m02 * m11, a12 = m01 * m02 - m00 * m12;
   const Lanes det = m00 * a00 + m01 * a01 + m02 * a02;
   Lanes scale;
-  inverseCubeRootLanes(det, scale);
+  inverseCubeRootLanes<Real>(det, scale);
   const Lanes inverseScale = scale * scale;
-  const IntLanes flows = (det >= 0x1p-126) & (det <= 0x1p126);  // per lane, all bits set where it flows
+  const auto flows = (det >= Real(0x1p-126)) & (det <= Real(0x1p126));  // per lane, all bits set where it flows
   const Lanes metricFlowed[9] = {m00, m01, m02, m01, m11, m12, m02, m12, m22};
   const Lanes inverseFlowed[9] = {a00, a01, a02, a01, a11, a12, a02, a12, a22};
   for (int e = 0; e < 9; ++e) {
-    storeLanes(&metric[e][o], flows ? metricFlowed[e] * scale : loadLanes(&metric[e][o]));
-    storeLanes(&inverse[e][o], flows ? inverseFlowed[e] * inverseScale : loadLanes(&inverse[e][o]));
+    storeLanes<Real>(&metric[e][o], flows ? metricFlowed[e] * scale : loadLanes<Real>(&metric[e][o]));
+    storeLanes<Real>(&inverse[e][o], flows ? inverseFlowed[e] * inverseScale : loadLanes<Real>(&inverse[e][o]));
   }
 }
 

@@ -9,7 +9,9 @@
 #include <glm/matrix.hpp>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace slime {
 namespace {
@@ -30,6 +32,25 @@ glm::dmat3 getLane(const double (&entries)[9][kTetLanes], std::size_t lane) {
   return m;
 }
 
+double largestEntry(const glm::dmat3& m) {
+  double largest = 0.0;
+  for (int c = 0; c < 3; ++c)
+    for (int r = 0; r < 3; ++r) largest = std::max(largest, std::abs(m[c][r]));
+  return largest;
+}
+
+// The size of the largest term that H = P·forceMap sums before the terms cancel, (λ'(|J| + α) + μ∞ +
+// μ1 (1 + 3|B_v|)) · max(|F|, |cof F|) · 3|forceMap|: rounding errors are relative to it, not to H, whose
+// entries the terms cancel down to.
+double forceTermScale(const ViscoelasticMaterial& material, const glm::dmat3& f, const glm::dmat3& maxwell,
+                      const glm::dmat3& forceMap) {
+  const double j = glm::determinant(f);
+  const glm::dmat3 cofactor = j * glm::transpose(glm::inverse(f));
+  const double moduli = volumetricModulus(material) * (std::abs(j) + restVolumeRatio(material)) +
+                        material.longTermShear + material.maxwellShear * (1.0 + 3.0 * largestEntry(maxwell));
+  return moduli * std::max(largestEntry(f), largestEntry(cofactor)) * 3.0 * largestEntry(forceMap);
+}
+
 TEST(TetLanes, ForcesMatchTheScalarStressLaneByLane) {
   ViscoelasticMaterial material;
   material.longTermShear = 480.0;
@@ -38,14 +59,14 @@ TEST(TetLanes, ForcesMatchTheScalarStressLaneByLane) {
   alignas(64) double shape[9][kTetLanes], restInverse[9][kTetLanes], forceMap[9][kTetLanes], maxwell[9][kTetLanes],
       forces[9][kTetLanes];
   for (std::size_t lane = 0; lane < kTetLanes; ++lane) {
-    setLane(shape, lane, laneShape(lane, 0.0));
+    setLane(shape, lane, laneShape(lane, 0.0) * 0.01);  // Ds of the same size: F = O(1)
     const glm::dmat3 rest = laneShape(lane, 1.0) * 0.01;  // Dm, 1 cm edges
     setLane(restInverse, lane, glm::inverse(rest));
     setLane(forceMap, lane, -glm::determinant(rest) / 6.0 * glm::transpose(glm::inverse(rest)));
     setLane(maxwell, lane, glm::inverse(glm::transpose(laneShape(lane, 2.0)) * laneShape(lane, 2.0)));
   }
-  for (std::size_t o = 0; o < kTetLanes; o += kLaneWidth)
-    stressForceLanes(material.longTermShear, material.maxwellShear, volumetricModulus(material),
+  for (std::size_t o = 0; o < kTetLanes; o += kLanesOf<double>)
+    stressForceLanes<double>(material.longTermShear, material.maxwellShear, volumetricModulus(material),
                      restVolumeRatio(material), shape, restInverse, forceMap, maxwell, o, forces);
   for (std::size_t lane = 0; lane < kTetLanes; ++lane) {
     const glm::dmat3 f = getLane(shape, lane) * getLane(restInverse, lane);
@@ -53,8 +74,51 @@ TEST(TetLanes, ForcesMatchTheScalarStressLaneByLane) {
     const glm::dmat3 got = getLane(forces, lane);
     for (int c = 0; c < 3; ++c)
       for (int r = 0; r < 3; ++r)
-        EXPECT_NEAR(got[c][r], expected[c][r], 1e-12 * (1.0 + std::abs(expected[c][r])) + 1e-9 * 1e-3)
+        EXPECT_NEAR(got[c][r], expected[c][r],
+                    64.0 * std::numeric_limits<double>::epsilon() *
+                        forceTermScale(material, f, getLane(maxwell, lane), getLane(forceMap, lane)))
             << "lane " << lane << " entry " << c << "," << r;
+  }
+}
+
+// The step's own precision (element_real.h): the same kernel in ElementReal lanes on data stored in
+// ElementReal keeps the stress to that type's rounding of the largest force term (forceTermScale).
+TEST(TetLanes, ForcesInElementRealKeepTheScalarStressToItsRounding) {
+  ViscoelasticMaterial material;
+  material.longTermShear = 480.0;
+  material.maxwellShear = 720.0;
+  material.lameLambda = lameLambdaFor(1200.0, 0.4);
+  alignas(64) ElementReal shape[9][kTetLanes], restInverse[9][kTetLanes], forceMap[9][kTetLanes],
+      maxwell[9][kTetLanes], forces[9][kTetLanes];
+  const auto setStored = [](ElementReal(&entries)[9][kTetLanes], std::size_t lane, const glm::dmat3& m) {
+    for (int e = 0; e < 9; ++e) entries[e][lane] = static_cast<ElementReal>(m[e / 3][e % 3]);
+  };
+  const auto getStored = [](const ElementReal(&entries)[9][kTetLanes], std::size_t lane) {
+    glm::dmat3 m;
+    for (int e = 0; e < 9; ++e) m[e / 3][e % 3] = entries[e][lane];
+    return m;
+  };
+  for (std::size_t lane = 0; lane < kTetLanes; ++lane) {
+    setStored(shape, lane, laneShape(lane, 0.0) * 0.01);
+    const glm::dmat3 rest = laneShape(lane, 1.0) * 0.01;  // Dm, 1 cm edges
+    setStored(restInverse, lane, glm::inverse(rest));
+    const glm::dmat3 map = -glm::determinant(rest) / 6.0 * glm::transpose(glm::inverse(rest));
+    setStored(forceMap, lane, map);
+    setStored(maxwell, lane, glm::inverse(glm::transpose(laneShape(lane, 2.0)) * laneShape(lane, 2.0)));
+  }
+  for (std::size_t o = 0; o < kTetLanes; o += kLaneWidth)
+    stressForceLanes<ElementReal>(material.longTermShear, material.maxwellShear, volumetricModulus(material),
+                                  restVolumeRatio(material), shape, restInverse, forceMap, maxwell, o, forces);
+  for (std::size_t lane = 0; lane < kTetLanes; ++lane) {
+    // The expected forces from the stored (rounded) data in double: what is left is the arithmetic's.
+    const glm::dmat3 f = getStored(shape, lane) * getStored(restInverse, lane);
+    const glm::dmat3 expected = firstPiolaStress(material, f, getStored(maxwell, lane)) * getStored(forceMap, lane);
+    const glm::dmat3 got = getStored(forces, lane);
+    const double tolerance = 64.0 * std::numeric_limits<ElementReal>::epsilon() *
+                             forceTermScale(material, f, getStored(maxwell, lane), getStored(forceMap, lane));
+    for (int c = 0; c < 3; ++c)
+      for (int r = 0; r < 3; ++r)
+        EXPECT_NEAR(got[c][r], expected[c][r], tolerance) << "lane " << lane << " entry " << c << "," << r;
   }
 }
 
@@ -73,7 +137,7 @@ TEST(TetLanes, FlowMatchesTheScalarFlowAndKeepsACollapsedElement) {
     setLane(inverse, lane, rests[lane].inverse);
   }
   const double decay = std::exp(-0.004 / 0.6);
-  for (std::size_t o = 0; o < kTetLanes; o += kLaneWidth) relaxLanes(shape, restInverse, decay, o, metric, inverse);
+  for (std::size_t o = 0; o < kTetLanes; o += kLanesOf<double>) relaxLanes<double>(shape, restInverse, decay, o, metric, inverse);
   for (std::size_t lane = 0; lane < kTetLanes; ++lane) {
     const MaxwellRest expected = relaxMaxwellBranch(getLane(shape, lane), rests[lane], decay);
     for (int c = 0; c < 3; ++c)
@@ -84,19 +148,55 @@ TEST(TetLanes, FlowMatchesTheScalarFlowAndKeepsACollapsedElement) {
   }
   // With no memory (decay 0) the collapsed element's blend C = 0 has det 0: it keeps its rest state.
   const glm::dmat3 before = getLane(metric, 5);
-  for (std::size_t o = 0; o < kTetLanes; o += kLaneWidth) relaxLanes(shape, restInverse, 0.0, o, metric, inverse);
+  for (std::size_t o = 0; o < kTetLanes; o += kLanesOf<double>) relaxLanes<double>(shape, restInverse, 0.0, o, metric, inverse);
   EXPECT_EQ(getLane(metric, 5), before);
   EXPECT_NEAR(glm::determinant(getLane(metric, 4)), 1.0, 1e-13);
 }
 
+// The flow in ElementReal lanes on ElementReal storage: G_v and B_v to that type's rounding (entries O(1)),
+// and det G_v = 1 to it (the cube root's two steps in float).
+TEST(TetLanes, FlowInElementRealKeepsTheScalarFlowToItsRounding) {
+  alignas(64) ElementReal shape[9][kTetLanes], restInverse[9][kTetLanes], metric[9][kTetLanes], inverse[9][kTetLanes];
+  MaxwellRest rests[kTetLanes];
+  const auto setStored = [](ElementReal(&entries)[9][kTetLanes], std::size_t lane, const glm::dmat3& m) {
+    for (int e = 0; e < 9; ++e) entries[e][lane] = static_cast<ElementReal>(m[e / 3][e % 3]);
+  };
+  const auto getStored = [](const ElementReal(&entries)[9][kTetLanes], std::size_t lane) {
+    glm::dmat3 m;
+    for (int e = 0; e < 9; ++e) m[e / 3][e % 3] = entries[e][lane];
+    return m;
+  };
+  for (std::size_t lane = 0; lane < kTetLanes; ++lane) {
+    setStored(shape, lane, laneShape(lane, 3.0));
+    setStored(restInverse, lane, glm::dmat3(1.0));
+    const glm::dmat3 g = glm::transpose(laneShape(lane, 4.0)) * laneShape(lane, 4.0);
+    setStored(metric, lane, g / std::cbrt(glm::determinant(g)));
+    setStored(inverse, lane, glm::inverse(g / std::cbrt(glm::determinant(g))));
+    rests[lane].metric = getStored(metric, lane);  // the stored, rounded state
+    rests[lane].inverse = getStored(inverse, lane);
+  }
+  const double decay = std::exp(-0.004 / 0.6);
+  for (std::size_t o = 0; o < kTetLanes; o += kLaneWidth) relaxLanes<ElementReal>(shape, restInverse, decay, o, metric, inverse);
+  const double tolerance = 64.0 * std::numeric_limits<ElementReal>::epsilon();
+  for (std::size_t lane = 0; lane < kTetLanes; ++lane) {
+    const MaxwellRest expected = relaxMaxwellBranch(getStored(shape, lane), rests[lane], decay);
+    for (int c = 0; c < 3; ++c)
+      for (int r = 0; r < 3; ++r) {
+        EXPECT_NEAR(getStored(metric, lane)[c][r], expected.metric[c][r], tolerance) << "lane " << lane;
+        EXPECT_NEAR(getStored(inverse, lane)[c][r], expected.inverse[c][r], tolerance) << "lane " << lane;
+      }
+    EXPECT_NEAR(glm::determinant(getStored(metric, lane)), 1.0, tolerance) << "lane " << lane;
+  }
+}
+
 TEST(TetLanes, InverseCubeRootWithinAFewUlpOverItsRange) {
-  alignas(64) double x[kLaneWidth], root[kLaneWidth];
+  alignas(64) double x[kLanesOf<double>], root[kLanesOf<double>];
   for (double exponent = -120.0; exponent <= 120.0; exponent += 0.37) {
-    for (std::size_t lane = 0; lane < kLaneWidth; ++lane) x[lane] = std::exp2(exponent + 0.05 * lane);
-    Lanes r;
-    inverseCubeRootLanes(loadLanes(x), r);
-    storeLanes(root, r);
-    for (std::size_t lane = 0; lane < kLaneWidth; ++lane) {
+    for (std::size_t lane = 0; lane < kLanesOf<double>; ++lane) x[lane] = std::exp2(exponent + 0.05 * lane);
+    LanesOf<double> r;
+    inverseCubeRootLanes<double>(loadLanes<double>(x), r);
+    storeLanes<double>(root, r);
+    for (std::size_t lane = 0; lane < kLanesOf<double>; ++lane) {
       const double expected = inverseCubeRootOfPositive(x[lane]);
       EXPECT_NEAR(root[lane], expected, 1e-15 * expected) << x[lane];  // ~4.5 ulp
     }
