@@ -447,6 +447,9 @@ void Simulation::setVelocities(const std::vector<glm::dvec3>& velocities) {
 std::size_t Simulation::elementCount() const {
   return bulk_ ? bulkBody_.mesh.tetrahedra.size() : body_.springs.size();
 }
+std::size_t Simulation::invertedElements() const {
+  return bulk_ ? invertedBulkElements(bulkBody_, bulkBody_.state.positions) : 0;
+}
 double Simulation::elasticEnergy() const {
   return bulk_ ? bulkElasticEnergy(bulkBody_, bulkBody_.state.positions) : 0.0;
 }
