@@ -230,13 +230,6 @@ double bulkElasticEnergy(const BulkBody& body, const std::vector<glm::dvec3>& x)
   return energy;
 }
 
-std::size_t invertedBulkElements(const BulkBody& body, const std::vector<glm::dvec3>& x) {
-  std::size_t inverted = 0;
-  for (const Tetrahedron& t : body.mesh.tetrahedra)
-    if (glm::determinant(glm::dmat3(x[t.y] - x[t.x], x[t.z] - x[t.x], x[t.w] - x[t.x])) <= 0.0) ++inverted;
-  return inverted;
-}
-
 void relaxBulk(BulkBody& body, double dt) {
   if (body.material.maxwellShear <= 0.0) return;
   relaxElements(body, std::exp(-dt / body.material.relaxationTime));
@@ -330,6 +323,13 @@ double bulkHighestDampingRate(const BulkBody& body) {
   double highest = 0.0;
   for (std::size_t i = 0; i < rate.size(); ++i) highest = std::max(highest, rate[i] * body.freeInverseMasses[i]);
   return highest;
+}
+
+std::size_t invertedBulkElements(const BulkBody& body, const std::vector<glm::dvec3>& x) {
+  std::size_t inverted = 0;
+  for (const Tetrahedron& t : body.mesh.tetrahedra)
+    if (glm::determinant(glm::dmat3(x[t.y] - x[t.x], x[t.z] - x[t.x], x[t.w] - x[t.x])) <= 0.0) ++inverted;
+  return inverted;
 }
 
 }  // namespace slime
