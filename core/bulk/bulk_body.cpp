@@ -325,4 +325,11 @@ double bulkHighestDampingRate(const BulkBody& body) {
   return highest;
 }
 
+std::size_t invertedBulkElements(const BulkBody& body, const std::vector<glm::dvec3>& x) {
+  std::size_t inverted = 0;
+  for (const Tetrahedron& t : body.mesh.tetrahedra)
+    if (glm::determinant(glm::dmat3(x[t.y] - x[t.x], x[t.z] - x[t.x], x[t.w] - x[t.x])) <= 0.0) ++inverted;
+  return inverted;
+}
+
 }  // namespace slime

@@ -127,6 +127,10 @@ void projectBulkVolume(const BulkBody& body, double h, BulkScratch& scratch, Par
 // Elastic energy of both branches, J.
 double bulkElasticEnergy(const BulkBody& body, const std::vector<glm::dvec3>& positions);
 
+// How many tetrahedra are inverted or flat (det Ds ≤ 0) at `positions`: a healthy body has none; a
+// press that drives nodes through the material under them inverts some (docs/physics.md, known limits).
+std::size_t invertedBulkElements(const BulkBody& body, const std::vector<glm::dvec3>& positions);
+
 // The Maxwell branches' flow over dt (once per step).
 void relaxBulk(BulkBody& body, double dt);
 

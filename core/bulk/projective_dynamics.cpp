@@ -476,7 +476,7 @@ glm::dvec3 ProjectiveSolver::step(BulkBody& body, BulkScratch& scratch, const Pr
       const double mass = 1.0 / w, stiffness = mouse.shares[k] * mouse.stiffness, damping = mouse.shares[k] * mouse.damping;
       const glm::dvec3 v = state.velocities[i];
       const glm::dvec3 next =
-          (mass / h * v + stiffness * (mouse.target + mouse.offsets[k] - state.positions[i]) + damping * mouse.targetVelocity) /
+          (mass / h * v + stiffness * (springTarget(mouse, k) - state.positions[i]) + damping * springTargetVelocity(mouse, k)) /
           (mass / h + stiffness * h + damping);
       change[k] = next - v;
       hand += mass * change[k] / h;

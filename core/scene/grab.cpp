@@ -70,16 +70,16 @@ glm::dvec3 addMouseSpringForces(const MouseSpring& spring, const std::vector<glm
   glm::dvec3 total(0.0);
   for (std::size_t k = 0; k < spring.nodes.size(); ++k) {
     const std::uint32_t i = spring.nodes[k];
-    total += spring.shares[k] * (spring.stiffness * (spring.target + spring.offsets[k] - positions[i]) +
-                                 spring.damping * (spring.targetVelocity - velocities[i]));
+    total += spring.shares[k] * (spring.stiffness * (springTarget(spring, k) - positions[i]) +
+                                 spring.damping * (springTargetVelocity(spring, k) - velocities[i]));
   }
   const double magnitude = glm::length(total);
   const double scale = magnitude > spring.maxForce ? spring.maxForce / magnitude : 1.0;
   for (std::size_t k = 0; k < spring.nodes.size(); ++k) {
     const std::uint32_t i = spring.nodes[k];
     forces[i] += (scale * spring.shares[k]) *
-                 (spring.stiffness * (spring.target + spring.offsets[k] - positions[i]) +
-                  spring.damping * (spring.targetVelocity - velocities[i]));
+                 (spring.stiffness * (springTarget(spring, k) - positions[i]) +
+                  spring.damping * (springTargetVelocity(spring, k) - velocities[i]));
   }
   return scale * total;
 }
@@ -96,7 +96,7 @@ glm::dvec3 applyMouseSpringImplicitly(const MouseSpring& spring, const std::vect
     const double mass = 1.0 / w, stiffness = spring.shares[k] * spring.stiffness, damping = spring.shares[k] * spring.damping;
     const glm::dvec3 v = velocities[i];
     const glm::dvec3 next =
-        (mass / h * v + stiffness * (spring.target + spring.offsets[k] - positions[i]) + damping * spring.targetVelocity) /
+        (mass / h * v + stiffness * (springTarget(spring, k) - positions[i]) + damping * springTargetVelocity(spring, k)) /
         (mass / h + stiffness * h + damping);
     change[k] = next - v;
     hand += mass * change[k] / h;

@@ -447,6 +447,9 @@ void Simulation::setVelocities(const std::vector<glm::dvec3>& velocities) {
 std::size_t Simulation::elementCount() const {
   return bulk_ ? bulkBody_.mesh.tetrahedra.size() : body_.springs.size();
 }
+std::size_t Simulation::invertedElements() const {
+  return bulk_ ? invertedBulkElements(bulkBody_, bulkBody_.state.positions) : 0;
+}
 double Simulation::elasticEnergy() const {
   return bulk_ ? bulkElasticEnergy(bulkBody_, bulkBody_.state.positions) : 0.0;
 }
@@ -509,9 +512,14 @@ bool Simulation::grab(const glm::dvec3& point, double radius, int which) {
     MouseSpring& spring = hand.spring;
     spring = MouseSpring{};
     double mass = 0.0;
+    // The body's bottom: under a grabbed node lie z_i − bottom of material, which a press onto the floor
+    // squeezes no thinner than kPressStopFraction of that (grab.h), wherever the body is when grabbed.
+    double bottom = std::numeric_limits<double>::infinity();
+    for (const glm::dvec3& x : state.positions) bottom = std::min(bottom, x.z);
     for (std::uint32_t i : nodes) {
       spring.offsets.push_back(state.positions[i] - surface);
       spring.shares.push_back(1.0 / static_cast<double>(nodes.size()));
+      spring.lowest.push_back(kPressStopFraction * std::max(state.positions[i].z - bottom, 0.0));
       mass += 1.0 / bulkBody_.freeInverseMasses[i];
     }
     spring.nodes = nodes;

@@ -112,6 +112,7 @@ class Simulation {
   void setVelocities(const std::vector<glm::dvec3>& velocities);
   std::size_t elementCount() const;                         // tetrahedra (bulk) or springs (membrane)
   double elasticEnergy() const;                             // bulk: elastic and volume energy, J
+  std::size_t invertedElements() const;                     // bulk: tetrahedra with det Ds ≤ 0 (invertedBulkElements)
   const Settings& settings() const { return settings_; }
   double restVolume() const { return bulk_ ? bulkBody_.restVolume : body_.restVolume; }
   double volume() const;

@@ -62,6 +62,7 @@ struct Sample {
   // bulk: what the sticky floor has taken from the body since the start (FloorAdhesion::momentumTaken,
   // displacementTaken), kg·m/s and kg·m
   glm::dvec3 contactMomentum{0.0}, contactDisplacement{0.0};
+  std::size_t invertedElements = 0;  // bulk: tetrahedra with det Ds ≤ 0 after this step
 };
 
 struct TortureResult {
@@ -108,6 +109,7 @@ inline TortureResult simulate(const std::string& model, const std::string& integ
     }
     Sample sample{simulation.time(), simulation.grabbing(), glm::dvec3(0.0), simulation.grabTarget(),
                   simulation.handForce(), glm::dvec3(0.0), simulation.metrics().height, lowest, 0.0};
+    sample.invertedElements = simulation.invertedElements();
     if (bulk) {
       sample.body = centreOfMass(simulation);
       if (sample.grabbing) sample.grabbed = simulation.grabbedPoint();
