@@ -34,17 +34,14 @@ constexpr int kRelaxInterval = 4;
 constexpr double kTravelPerSubstep = 0.25;
 
 // Sets every drawn vertex below the floor (z < 0) on it. The physics holds the element map's vertices
-// on the floor (resolveDrawnFloorContact, 4 nodes a vertex); the smooth map of the same nodes, which
-// places the drawn surface, differs from it by millimetres (most at the contact's rim and under a
-// press) and may dip under the floor where the element map does not: those vertices are drawn on the
-// floor, as the contact patch is.
+// on the floor (resolveDrawnFloorContact); the smooth map that places the drawn surface differs by
+// millimetres (most at the contact's rim and under a press) and may dip under it: drawn on the floor.
 void liftOntoFloor(std::vector<glm::dvec3>& drawn) {
   for (glm::dvec3& p : drawn) p.z = std::max(p.z, 0.0);
 }
-// Steps between estimates of the bulk body's highest frequency about its current shape while a hand
-// holds it or it is still stretched: a power iteration of 41 force evaluations, so every 200 steps
-// (0.2 s at the defaults) it costs a fifth of a step's forces a step; every 50 it took 19 % of a
-// held slime's physics (perf, drag_top_in_circles_6s).
+// Steps between estimates of the bulk body's highest frequency while a hand holds it or it is still
+// stretched (Simulation::step): 41 force evaluations, a fifth of a step's forces a step every 200 steps;
+// every 50 took 19 % of a held slime's physics (perf, drag_top_in_circles_6s).
 constexpr int kFrequencyInterval = 200;
 
 }  // namespace
@@ -194,13 +191,10 @@ void Simulation::setAutomaticSubsteps(bool automatic) { automaticSubsteps_ = aut
 
 double Simulation::largestStableStep() const {
   const double step = slime::largestStableStep(integrator_, highestFrequency_, highestDampingRate_);
-  // The bulk's exact dampers are a contraction pair by pair, but applied one pair after another
-  // between the kicks they are not unconditionally stable: measured on the lightest slime
-  // (slime.mass=0.01, Gershgorin rate 7.3e4/s), h = 0.125 ms was stable and 0.25 ms was not, so the
-  // step is capped at kExactDamperStepFactor / rate (no cap at the defaults: 4.4 ms). Taken colour
-  // after colour (edge_colours.h) rather than chained along each node's edges, 0.2 ms held for 0.5 s
-  // and 0.225 ms rolled back (the chain's order: 0.125 ms held, 0.15 ms rolled back), so the factor is
-  // 12 (0.164 ms), no longer 8.
+  // The bulk's exact dampers are a contraction pair by pair, but one pair after another between the
+  // kicks not unconditionally stable: on the lightest slime (slime.mass=0.01, Gershgorin rate 7.3e4/s),
+  // colour after colour (edge_colours.h), 0.2 ms held and 0.225 ms rolled back, so the step is capped
+  // at kExactDamperStepFactor / rate = 12 / rate (0.164 ms there; no cap at the defaults: 4.4 ms).
   if (bulk_ && integrator_ == Integrator::SymplecticEuler && bulkDampingRate_ > 0.0)
     return std::min(step, kExactDamperStepFactor / bulkDampingRate_);
   return step;
@@ -226,18 +220,15 @@ int Simulation::bulkTravelSubsteps() const {
 
 void Simulation::step() {
   travelSubsteps_ = bulkTravelSubsteps();
-  // A body stretched under the hands has thinner elements, whose highest frequency ω ∝ 1/thickness
-  // rises with the stretch (×1.5 in a 5× strand): the explicit step limit 2/ω follows the shape, so
-  // the step stays stable instead of diverging and rolling back (issue 29, long strands).
-  // An inverted element's volumetric stress grows with |J − α|, and ω_max with it, within steps: flung
-  // up 25 cm in 50 ms by its top, a resolution-3 body inverted elements (J down to −2.5) and ω_max rose
-  // from 2,400 to 13,000 /s in 20 steps, past what the last estimate's substeps hold, and the guard
-  // rolled back (resolutions 3 and 4; the default landing's J stays above 0.1). So while a hand moves
-  // the body fast enough for the travel rule, an inverted element makes the estimate run that step.
-  const bool invertedWhileFlung = bulk_ && automaticSubsteps_ && !projectiveActive_ && travelSubsteps_ > 1 &&
-                                  invertedBulkElements(bulkBody_, bulkBody_.state.positions) > 0;
-  if (invertedWhileFlung || (bulk_ && automaticSubsteps_ && !projectiveActive_ && (anyGrabbing() || deformedFrequency_) &&
-                             stepCount_ % kFrequencyInterval == 0)) {
+  // The explicit step limit 2/ω_max follows the shape. A stretched body's thinner elements raise ω (×1.5
+  // in a 5× strand, issue 29): the estimate runs every 200 steps while held or deformed. An inverted
+  // element's volumetric stress raises it within steps (flung and slammed at resolution 3: J to −2.5, ω
+  // 2,400 → 13,000 /s in 20 steps, a rollback): it runs every step that one meets a body fast enough for
+  // the travel rule (a landing's J stays above 0.1).
+  const bool explicitBulk = bulk_ && automaticSubsteps_ && !projectiveActive_;
+  const bool invertedAndFast =
+      explicitBulk && travelSubsteps_ > 1 && invertedBulkElements(bulkBody_, bulkBody_.state.positions) > 0;
+  if (invertedAndFast || (explicitBulk && (anyGrabbing() || deformedFrequency_) && stepCount_ % kFrequencyInterval == 0)) {
     const double now = bulkHighestFrequencyAt(bulkBody_, bulkBody_.state.positions, bulkScratch_);
     highestFrequency_ = std::max(restFrequency_, now);
     deformedFrequency_ = now > restFrequency_;
