@@ -182,11 +182,14 @@ TEST(HeadlessViewer, FramesOverTheTargetWhileTheSlimeMovesAreTracedSmaller) {
   const std::filesystem::path report =
       std::filesystem::path(SLIME_TEST_OUTPUT_DIR) / "viewer_adaptive_report.json";
   options.reportPath = report.string();
-  SteppingHeadlessGl backend(320, 240, 1.0 / 30.0);
+  // 640×480, a 390-pixel image beside the panels: at 320×240 the image is 70 pixels wide, which an AVX-512
+  // F26 traced within the 4.2 ms budget, so whether a frame went over depended on the load (2026-11-28).
+  const int width = 640, height = 480;
+  SteppingHeadlessGl backend(width, height, 1.0 / 30.0);
   Settings settings = fixture::smallViewerScene();
   settings.render.targetFps = 240.0;  // a scene file's or --set's, as --target-fps sets it
   Viewer viewer(backend, settings, options);
-  const int fullWidth = 320 - static_cast<int>(std::lround(panelColumnWidth(320.0f)));
+  const int fullWidth = width - static_cast<int>(std::lround(panelColumnWidth(static_cast<float>(width))));
   int smallest = fullWidth;
   for (int frame = 0; frame < 30; ++frame) {  // the first second: it falls, lands and jiggles
     ASSERT_TRUE(viewer.frame());
@@ -195,8 +198,8 @@ TEST(HeadlessViewer, FramesOverTheTargetWhileTheSlimeMovesAreTracedSmaller) {
   EXPECT_LT(smallest, fullWidth);
   EXPECT_GE(smallest, static_cast<int>(AdaptiveResolution::kMinimumScale * fullWidth) - 1);
   EXPECT_GT(viewer.stats().reducedResolutionFrames, 0);
-  for (int frame = 0; frame < 150 && viewer.stats().renderScale < 1.0; ++frame) ASSERT_TRUE(viewer.frame());
-  EXPECT_EQ(viewer.stats().renderScale, 1.0) << "still reduced after 5 s: the slime rests by then";
+  for (int frame = 0; frame < 300 && viewer.stats().renderScale < 1.0; ++frame) ASSERT_TRUE(viewer.frame());
+  EXPECT_EQ(viewer.stats().renderScale, 1.0) << "still reduced after 10 s: the slime rests by then";
   EXPECT_EQ(viewer.stats().imageWidth, fullWidth);
 }
 
