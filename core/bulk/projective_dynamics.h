@@ -33,6 +33,7 @@
 #pragma once
 
 #include "core/bulk/bulk_body.h"
+#include "core/bulk/projective_factor.h"
 #include "core/scene/grab.h"
 
 #include <cstdint>
@@ -84,10 +85,8 @@ class ProjectiveSolver {
   template <bool Flows>
   void localPass(const BulkBody& body, double decay);
 
-  struct Factor;  // Eigen's SimplicialLDLT and the right-hand sides (Eigen stays out of this header)
-
   std::vector<ProjectiveBlock> blocks_;
-  std::unique_ptr<Factor> factor_;
+  ProjectiveFactor factor_;
   double factoredStep_ = -1.0;
   double factoredShear_ = 0.0, factoredLambda_ = 0.0;
   std::vector<double> factoredInverseMasses_;

@@ -1,0 +1,164 @@
+#include "core/bulk/projective_factor.h"
+
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
+
+#include <stdexcept>
+
+namespace slime {
+namespace {
+
+constexpr double kPinnedMassFactor = 1e6;  // a pinned node's mass in the matrix, × the body's mass
+
+using SparseMatrix = Eigen::SparseMatrix<double>;
+
+// L's strictly lower part with lines the columns of `matrix` (L itself: by columns; Lᵀ: by rows).
+template <typename Compressed>
+void compress(const SparseMatrix& matrix, Compressed& out) {
+  const int n = static_cast<int>(matrix.cols());
+  out.start.assign(static_cast<std::size_t>(n) + 1, 0);
+  out.index.clear();
+  out.values.clear();
+  out.index.reserve(static_cast<std::size_t>(matrix.nonZeros()));
+  out.values.reserve(static_cast<std::size_t>(matrix.nonZeros()));
+  for (int k = 0; k < n; ++k) {
+    for (SparseMatrix::InnerIterator it(matrix, k); it; ++it) {
+      out.index.push_back(static_cast<int>(it.row()));
+      out.values.push_back(it.value());
+    }
+    out.start[static_cast<std::size_t>(k) + 1] = static_cast<int>(out.index.size());
+  }
+}
+
+// out ← out·scale − Σ_p values[p] · work[index[p]] over one line of L, four coordinates wide. Four
+// accumulators, so that consecutive multiply-adds do not wait on each other.
+template <typename Node>
+inline void subtractLine(const double* __restrict values, const int* __restrict index, int count,
+                         const Node* __restrict work, double scale, double* __restrict out) {
+  double sum[4][4] = {};
+  int p = 0;
+  for (; p + 3 < count; p += 4) {
+    #pragma GCC unroll 4
+    for (int u = 0; u < 4; ++u) {
+      const double l = values[p + u];
+      const double* x = work[index[p + u]].v;
+      #pragma GCC unroll 4
+      for (int c = 0; c < 4; ++c) sum[u][c] += l * x[c];
+    }
+  }
+  for (; p < count; ++p) {
+    const double l = values[p];
+    const double* x = work[index[p]].v;
+    #pragma GCC unroll 4
+    for (int c = 0; c < 4; ++c) sum[0][c] += l * x[c];
+  }
+  #pragma GCC unroll 4
+  for (int c = 0; c < 4; ++c) out[c] = out[c] * scale - ((sum[0][c] + sum[1][c]) + (sum[2][c] + sum[3][c]));
+}
+
+}  // namespace
+
+std::vector<MatrixEntry> projectiveMatrix(const BulkBody& body, double h, std::vector<double>& masses) {
+  const ViscoelasticMaterial& m = body.material;
+  const double mu = m.longTermShear + m.maxwellShear, lambda = m.lameLambda;
+  const std::size_t n = body.state.size();
+  std::vector<MatrixEntry> entries;
+  entries.reserve(n + 16 * body.mesh.tetrahedra.size());
+  masses.resize(n);
+  const std::vector<double>& w = body.state.inverseMasses;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double mass = w[i] > 0.0 ? 1.0 / w[i] : kPinnedMassFactor * body.totalMass;
+    masses[i] = mass / (h * h);
+    entries.push_back({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(i), masses[i]});
+  }
+  // w_e D_eᵀD_e with D_e x = F: Q = Dm⁻¹Dm⁻ᵀ on nodes 1..3, node 0 the negative sums.
+  for (std::size_t e = 0; e < body.mesh.tetrahedra.size(); ++e) {
+    const Tetrahedron& t = body.mesh.tetrahedra[e];
+    const TetRest& rest = body.rest[e];
+    const double weight = rest.volume * (2.0 * mu + 3.0 * lambda);
+    double k[4][4] = {};
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) {
+        double q = 0.0;  // (Dm⁻¹Dm⁻ᵀ)_ab, glm [column][row]
+        for (int c = 0; c < 3; ++c) q += rest.restInverse[c][a] * rest.restInverse[c][b];
+        k[a + 1][b + 1] = weight * q;
+      }
+    for (int b = 1; b < 4; ++b) {
+      k[0][b] = -(k[1][b] + k[2][b] + k[3][b]);
+      k[b][0] = k[0][b];
+    }
+    k[0][0] = -(k[0][1] + k[0][2] + k[0][3]);
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b) entries.push_back({t[a], t[b], k[a][b]});
+  }
+  return entries;
+}
+
+void ProjectiveFactor::factor(std::size_t n, const std::vector<MatrixEntry>& entries) {
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(entries.size());
+  for (const MatrixEntry& e : entries)
+    triplets.emplace_back(static_cast<int>(e.row), static_cast<int>(e.column), e.value);
+  SparseMatrix matrix(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+  matrix.setFromTriplets(triplets.begin(), triplets.end());
+  const Eigen::SimplicialLDLT<SparseMatrix> ldlt(matrix);
+  if (ldlt.info() != Eigen::Success || (ldlt.vectorD().array() <= 0.0).any())
+    throw std::runtime_error("projective solver: the global matrix is not positive definite");
+  const SparseMatrix& lower = ldlt.matrixL().nestedExpression();
+  compress(lower, byColumn_);
+  compress(SparseMatrix(lower.transpose()), byRow_);
+  inverseDiagonal_.resize(n);
+  permutation_.resize(n);
+  for (std::size_t j = 0; j < n; ++j) {
+    inverseDiagonal_[j] = 1.0 / ldlt.vectorD()(static_cast<Eigen::Index>(j));
+    permutation_[j] = ldlt.permutationP().indices()(static_cast<Eigen::Index>(j));
+  }
+  work_.assign(n, Node{});
+}
+
+// x = A⁻¹ b = Pᵀ L⁻ᵀ D⁻¹ L⁻¹ P b: forward along L's rows, then D⁻¹ and back along its columns.
+void ProjectiveFactor::solve(const std::vector<glm::dvec3>& b, std::vector<glm::dvec3>& x) {
+  const std::size_t n = work_.size();
+  Node* work = work_.data();
+  for (std::size_t i = 0; i < n; ++i) work[permutation_[i]] = Node{{b[i].x, b[i].y, b[i].z, 0.0}};
+  const Compressed& rows = byRow_;
+  for (std::size_t i = 0; i < n; ++i) {
+    const int first = rows.start[i];
+    subtractLine(rows.values.data() + first, rows.index.data() + first, rows.start[i + 1] - first, work, 1.0, work[i].v);
+  }
+  const Compressed& columns = byColumn_;
+  for (std::size_t j = n; j-- > 0;) {
+    const int first = columns.start[j];
+    subtractLine(columns.values.data() + first, columns.index.data() + first, columns.start[j + 1] - first, work,
+                 inverseDiagonal_[j], work[j].v);
+  }
+  x.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double* v = work[permutation_[i]].v;
+    x[i] = glm::dvec3(v[0], v[1], v[2]);
+  }
+}
+
+// One coordinate; forward by columns so that the zeros of L⁻¹e_node (every entry off the elimination
+// tree's path from the node up) are skipped.
+void ProjectiveFactor::column(std::size_t node, std::vector<double>& x) const {
+  const std::size_t n = work_.size();
+  const Compressed& columns = byColumn_;
+  std::vector<double> v(n, 0.0);
+  v[static_cast<std::size_t>(permutation_[node])] = 1.0;
+  for (std::size_t j = 0; j < n; ++j) {
+    const double xj = v[j];
+    if (xj == 0.0) continue;
+    for (int p = columns.start[j]; p < columns.start[j + 1]; ++p) v[static_cast<std::size_t>(columns.index[p])] -= columns.values[p] * xj;
+  }
+  for (std::size_t j = 0; j < n; ++j) v[j] *= inverseDiagonal_[j];
+  for (std::size_t j = n; j-- > 0;) {
+    double sum = v[j];
+    for (int p = columns.start[j]; p < columns.start[j + 1]; ++p) sum -= columns.values[p] * v[static_cast<std::size_t>(columns.index[p])];
+    v[j] = sum;
+  }
+  x.resize(n);
+  for (std::size_t i = 0; i < n; ++i) x[i] = v[static_cast<std::size_t>(permutation_[i])];
+}
+
+}  // namespace slime

@@ -1,0 +1,58 @@
+// The global matrix of sim.integrator=projective, A = M/h² + Σ w_e D_eᵀD_e (projective_dynamics.h),
+// and its sparse factor P A Pᵀ = L D Lᵀ (Eigen's SimplicialLDLT with its AMD ordering), kept as plain
+// arrays for the solve that every global step makes.
+//
+// The solve carries x, y and z together, padded to four doubles per node, and walks L twice in
+// gather form: forward by L's rows, backward by its columns (Lᵀ's rows). Each entry of L is then one
+// four-wide multiply-add into a register accumulator (one 256-bit FMA on AVX2), with no store per
+// entry; Eigen's solve with three right-hand sides walks L three times, and the earlier scatter
+// form stored every entry's row. Only Eigen's factorisation (once per matrix) is used.
+#pragma once
+
+#include "core/bulk/bulk_body.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace slime {
+
+struct MatrixEntry {
+  std::uint32_t row = 0, column = 0;
+  double value = 0.0;
+};
+
+// A's entries (repeated (row, column) pairs add up) for a step h; `masses` gets its mass term m_i/h²
+// per node (a pinned node: kPinnedMassFactor × the body's mass).
+std::vector<MatrixEntry> projectiveMatrix(const BulkBody& body, double h, std::vector<double>& masses);
+
+class ProjectiveFactor {
+ public:
+  // Factors the symmetric positive definite n × n matrix given by `entries`; throws
+  // std::runtime_error if it is not positive definite.
+  void factor(std::size_t n, const std::vector<MatrixEntry>& entries);
+  // x = A⁻¹ b for the three coordinates at once.
+  void solve(const std::vector<glm::dvec3>& b, std::vector<glm::dvec3>& x);
+  // x = A⁻¹ e_node (one column of the inverse, for the floor's active set).
+  void column(std::size_t node, std::vector<double>& x) const;
+  std::size_t size() const { return inverseDiagonal_.size(); }
+  // Entries of L strictly below its diagonal (the solve's work is twice this, per coordinate).
+  std::size_t nonZeros() const { return byColumn_.values.size(); }
+
+ private:
+  struct alignas(32) Node {
+    double v[4];  // x, y, z, 0
+  };
+  // Strictly lower L in compressed form: entry p of line k is (index[p], values[p]) for p in
+  // [start[k], start[k + 1]).
+  struct Compressed {
+    std::vector<int> start, index;
+    std::vector<double> values;
+  };
+  Compressed byRow_, byColumn_;
+  std::vector<double> inverseDiagonal_;
+  std::vector<int> permutation_;  // (P b)[permutation_[i]] = b[i]
+  std::vector<Node> work_;
+};
+
+}  // namespace slime
