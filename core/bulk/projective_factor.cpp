@@ -30,32 +30,6 @@ void compress(const SparseMatrix& matrix, Compressed& out) {
   }
 }
 
-// out ← out·scale − Σ_p values[p] · work[index[p]] over one line of L, four coordinates wide. Four
-// accumulators, so that consecutive multiply-adds do not wait on each other.
-template <typename Node>
-inline void subtractLine(const double* __restrict values, const int* __restrict index, int count,
-                         const Node* __restrict work, double scale, double* __restrict out) {
-  double sum[4][4] = {};
-  int p = 0;
-  for (; p + 3 < count; p += 4) {
-    #pragma GCC unroll 4
-    for (int u = 0; u < 4; ++u) {
-      const double l = values[p + u];
-      const double* x = work[index[p + u]].v;
-      #pragma GCC unroll 4
-      for (int c = 0; c < 4; ++c) sum[u][c] += l * x[c];
-    }
-  }
-  for (; p < count; ++p) {
-    const double l = values[p];
-    const double* x = work[index[p]].v;
-    #pragma GCC unroll 4
-    for (int c = 0; c < 4; ++c) sum[0][c] += l * x[c];
-  }
-  #pragma GCC unroll 4
-  for (int c = 0; c < 4; ++c) out[c] = out[c] * scale - ((sum[0][c] + sum[1][c]) + (sum[2][c] + sum[3][c]));
-}
-
 }  // namespace
 
 std::vector<MatrixEntry> projectiveMatrix(const BulkBody& body, double h, std::vector<double>& masses) {
@@ -116,25 +90,43 @@ void ProjectiveFactor::factor(std::size_t n, const std::vector<MatrixEntry>& ent
   work_.assign(n, Node{});
 }
 
+// out ← out·scale − Σ_p values[p] · work[index[p]] over one line of L, four coordinates wide (one 256-bit
+// multiply-add with AVX2, two 128-bit ones without; left to the vectoriser, GCC 12 kept one of the
+// four accumulators scalar). Four accumulators, so that
+// consecutive multiply-adds do not wait on each other.
+inline void ProjectiveFactor::subtractLine(const double* __restrict values, const int* __restrict index, int count,
+                                           const Node* work, double scale, Node& out) {
+  Lanes sum0 = {}, sum1 = {}, sum2 = {}, sum3 = {};
+  int p = 0;
+  for (; p + 3 < count; p += 4) {
+    sum0 += values[p] * work[index[p]].lanes;
+    sum1 += values[p + 1] * work[index[p + 1]].lanes;
+    sum2 += values[p + 2] * work[index[p + 2]].lanes;
+    sum3 += values[p + 3] * work[index[p + 3]].lanes;
+  }
+  for (; p < count; ++p) sum0 += values[p] * work[index[p]].lanes;
+  out.lanes = out.lanes * scale - ((sum0 + sum1) + (sum2 + sum3));
+}
+
 // x = A⁻¹ b = Pᵀ L⁻ᵀ D⁻¹ L⁻¹ P b: forward along L's rows, then D⁻¹ and back along its columns.
 void ProjectiveFactor::solve(const std::vector<glm::dvec3>& b, std::vector<glm::dvec3>& x) {
   const std::size_t n = work_.size();
   Node* work = work_.data();
-  for (std::size_t i = 0; i < n; ++i) work[permutation_[i]] = Node{{b[i].x, b[i].y, b[i].z, 0.0}};
+  for (std::size_t i = 0; i < n; ++i) work[permutation_[i]].lanes = Lanes{b[i].x, b[i].y, b[i].z, 0.0};
   const Compressed& rows = byRow_;
   for (std::size_t i = 0; i < n; ++i) {
     const int first = rows.start[i];
-    subtractLine(rows.values.data() + first, rows.index.data() + first, rows.start[i + 1] - first, work, 1.0, work[i].v);
+    subtractLine(rows.values.data() + first, rows.index.data() + first, rows.start[i + 1] - first, work, 1.0, work[i]);
   }
   const Compressed& columns = byColumn_;
   for (std::size_t j = n; j-- > 0;) {
     const int first = columns.start[j];
     subtractLine(columns.values.data() + first, columns.index.data() + first, columns.start[j + 1] - first, work,
-                 inverseDiagonal_[j], work[j].v);
+                 inverseDiagonal_[j], work[j]);
   }
   x.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    const double* v = work[permutation_[i]].v;
+    const Lanes& v = work[permutation_[i]].lanes;
     x[i] = glm::dvec3(v[0], v[1], v[2]);
   }
 }

@@ -40,9 +40,12 @@ class ProjectiveFactor {
   std::size_t nonZeros() const { return byColumn_.values.size(); }
 
  private:
-  struct alignas(32) Node {
-    double v[4];  // x, y, z, 0
+  // x, y, z and a zero: four doubles, one 256-bit register with AVX2 (GCC's and Clang's vector type).
+  using Lanes = double __attribute__((vector_size(32)));
+  struct Node {
+    Lanes lanes;
   };
+  static void subtractLine(const double* values, const int* index, int count, const Node* work, double scale, Node& out);
   // Strictly lower L in compressed form: entry p of line k is (index[p], values[p]) for p in
   // [start[k], start[k + 1]).
   struct Compressed {
