@@ -380,11 +380,14 @@ glm::dvec3 ProjectiveSolver::step(BulkBody& body, BulkScratch& scratch, const Pr
     for (std::size_t k = 0; k < mouse.nodes.size(); ++k) state.velocities[mouse.nodes[k]] += scale * change[k];
     hand *= scale;
   }
-  start_ = state.positions;
+  start_.resize(n);
   predicted_.resize(n);
-  for (std::size_t i = 0; i < n; ++i)
-    predicted_[i] = state.positions[i] + h * state.velocities[i] + (state.inverseMasses[i] > 0.0 ? h * h : 0.0) * options.gravity;
-  state.positions = predicted_;
+  for (std::size_t i = 0; i < n; ++i) {  // one pass, not a loop and two copies
+    const glm::dvec3 x = state.positions[i];
+    start_[i] = x;
+    predicted_[i] = x + h * state.velocities[i] + (state.inverseMasses[i] > 0.0 ? h * h : 0.0) * options.gravity;
+    state.positions[i] = predicted_[i];
+  }
   for (int iteration = 0; iteration < std::max(1, options.iterations); ++iteration) {
     localStep(body, h, iteration == 0);
     for (std::size_t i = 0; i < n; ++i) targets_[i] += masses_[i] * predicted_[i];  // the right-hand side
