@@ -261,15 +261,28 @@ void ProjectiveSolver::localPass(const BulkBody& body, double decay) {
   }
 }
 
-const std::vector<double>* ProjectiveSolver::column(std::uint32_t node) {
-  int& index = columnOf_[node];
-  if (index < 0) {
-    if ((columns_.size() + 1) * columnOf_.size() > kColumnBudget) return nullptr;
+void ProjectiveSolver::keepColumns(const std::vector<std::uint32_t>& nodes) {
+  std::uint32_t batch[4];
+  std::vector<double>* out[4];
+  std::size_t count = 0;
+  const auto solveBatch = [&] {
+    factor_.columns(batch, count, out);
+    count = 0;
+  };
+  for (const std::uint32_t node : nodes) {
+    int& index = columnOf_[node];
+    if (index >= 0) continue;
+    if ((columns_.size() + 1) * columnOf_.size() > kColumnBudget) break;
     index = static_cast<int>(columns_.size());
     columns_.emplace_back();
-    factor_.column(node, columns_.back());
+    batch[count++] = node;
+    if (count == 4) {
+      for (std::size_t k = 0; k < 4; ++k) out[k] = &columns_[static_cast<std::size_t>(columnOf_[batch[k]])];
+      solveBatch();
+    }
   }
-  return &columns_[static_cast<std::size_t>(index)];
+  for (std::size_t k = 0; k < count; ++k) out[k] = &columns_[static_cast<std::size_t>(columnOf_[batch[k]])];
+  if (count > 0) solveBatch();
 }
 
 // The floor as a constraint of the global solve: minimise ½ zᵀAz − bᵀz subject to z_i ≥ 0. With z0 =
@@ -284,8 +297,9 @@ void ProjectiveSolver::holdOnFloor(const std::vector<double>& inverseMasses) {
   for (std::size_t i = 0; i < n; ++i) freeZ_[i] = solved_[i].z;
   contact_.clear();
   for (std::size_t i = 0; i < n; ++i)
-    if (inverseMasses[i] > 0.0 && freeZ_[i] < 0.0 && column(static_cast<std::uint32_t>(i)) != nullptr)
-      contact_.push_back(static_cast<std::uint32_t>(i));
+    if (inverseMasses[i] > 0.0 && freeZ_[i] < 0.0) contact_.push_back(static_cast<std::uint32_t>(i));
+  keepColumns(contact_);
+  std::erase_if(contact_, [&](std::uint32_t i) { return columnOf_[i] < 0; });
   if (contact_.empty()) return;
   Eigen::VectorXd lambda;
   heldZ_ = freeZ_;
@@ -319,10 +333,13 @@ void ProjectiveSolver::holdOnFloor(const std::vector<double>& inverseMasses) {
       if (lambda(static_cast<Eigen::Index>(b)) > 0.0) next.push_back(contact_[b]);
       else changed = true;
     }
-    for (std::size_t i = 0; i < n; ++i) {
-      if (inverseMasses[i] <= 0.0 || heldZ_[i] >= -1e-12 || inContact_[i]) continue;
-      if (column(static_cast<std::uint32_t>(i)) == nullptr) continue;
-      next.push_back(static_cast<std::uint32_t>(i));
+    below_.clear();
+    for (std::size_t i = 0; i < n; ++i)
+      if (inverseMasses[i] > 0.0 && !(heldZ_[i] >= -1e-12) && !inContact_[i]) below_.push_back(static_cast<std::uint32_t>(i));
+    keepColumns(below_);
+    for (const std::uint32_t i : below_) {
+      if (columnOf_[i] < 0) continue;  // past the column budget
+      next.push_back(i);
       changed = true;
     }
     if (!changed) {

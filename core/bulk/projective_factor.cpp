@@ -12,7 +12,7 @@ constexpr double kPinnedMassFactor = 1e6;  // a pinned node's mass in the matrix
 
 using SparseMatrix = Eigen::SparseMatrix<double>;
 
-// L's strictly lower part with lines the columns of `matrix` (L itself: by columns; Lᵀ: by rows).
+// The strictly lower L by columns.
 template <typename Compressed>
 void compress(const SparseMatrix& matrix, Compressed& out) {
   const int n = static_cast<int>(matrix.cols());
@@ -80,7 +80,6 @@ void ProjectiveFactor::factor(std::size_t n, const std::vector<MatrixEntry>& ent
     throw std::runtime_error("projective solver: the global matrix is not positive definite");
   const SparseMatrix& lower = ldlt.matrixL().nestedExpression();
   compress(lower, byColumn_);
-  compress(SparseMatrix(lower.transpose()), byRow_);
   inverseDiagonal_.resize(n);
   permutation_.resize(n);
   for (std::size_t j = 0; j < n; ++j) {
@@ -108,17 +107,17 @@ inline void ProjectiveFactor::subtractLine(const double* __restrict values, cons
   out.lanes = out.lanes * scale - ((sum0 + sum1) + (sum2 + sum3));
 }
 
-// x = A⁻¹ b = Pᵀ L⁻ᵀ D⁻¹ L⁻¹ P b: forward along L's rows, then D⁻¹ and back along its columns.
+// x = A⁻¹ b = Pᵀ L⁻ᵀ D⁻¹ L⁻¹ P b, both ways along L's columns: forward each column's x_j taken
+// from the rows below it, back each x_j gathered from them.
 void ProjectiveFactor::solve(const std::vector<glm::dvec3>& b, std::vector<glm::dvec3>& x) {
   const std::size_t n = work_.size();
   Node* work = work_.data();
   for (std::size_t i = 0; i < n; ++i) work[permutation_[i]].lanes = Lanes{b[i].x, b[i].y, b[i].z, 0.0};
-  const Compressed& rows = byRow_;
-  for (std::size_t i = 0; i < n; ++i) {
-    const int first = rows.start[i];
-    subtractLine(rows.values.data() + first, rows.index.data() + first, rows.start[i + 1] - first, work, 1.0, work[i]);
-  }
   const Compressed& columns = byColumn_;
+  for (std::size_t j = 0; j < n; ++j) {
+    const Lanes xj = work[j].lanes;
+    for (int p = columns.start[j]; p < columns.start[j + 1]; ++p) work[columns.index[p]].lanes -= columns.values[p] * xj;
+  }
   for (std::size_t j = n; j-- > 0;) {
     const int first = columns.start[j];
     subtractLine(columns.values.data() + first, columns.index.data() + first, columns.start[j + 1] - first, work,
@@ -131,26 +130,32 @@ void ProjectiveFactor::solve(const std::vector<glm::dvec3>& b, std::vector<glm::
   }
 }
 
-// One coordinate; forward by columns so that the zeros of L⁻¹e_node (every entry off the elimination
-// tree's path from the node up) are skipped.
-void ProjectiveFactor::column(std::size_t node, std::vector<double>& x) const {
+// Four unit right-hand sides in the four lanes of one solve. Forward by L's columns, so that the
+// zeros of L⁻¹e (every entry off the elimination tree's paths from the nodes up) are skipped.
+void ProjectiveFactor::columns(const std::uint32_t* nodes, std::size_t count, std::vector<double>* const* x) {
+  if (count > 4) throw std::invalid_argument("ProjectiveFactor::columns: at most four at once");
   const std::size_t n = work_.size();
+  Node* work = work_.data();
+  for (std::size_t j = 0; j < n; ++j) work[j].lanes = Lanes{0.0, 0.0, 0.0, 0.0};
+  for (std::size_t k = 0; k < count; ++k) work[permutation_[nodes[k]]].lanes[k] = 1.0;
   const Compressed& columns = byColumn_;
-  std::vector<double> v(n, 0.0);
-  v[static_cast<std::size_t>(permutation_[node])] = 1.0;
+  const Lanes zero = {0.0, 0.0, 0.0, 0.0};
   for (std::size_t j = 0; j < n; ++j) {
-    const double xj = v[j];
-    if (xj == 0.0) continue;
-    for (int p = columns.start[j]; p < columns.start[j + 1]; ++p) v[static_cast<std::size_t>(columns.index[p])] -= columns.values[p] * xj;
+    const Lanes xj = work[j].lanes;
+    const auto nonzero = xj != zero;  // −1 per lane that is not zero
+    if (!(nonzero[0] | nonzero[1] | nonzero[2] | nonzero[3])) continue;
+    for (int p = columns.start[j]; p < columns.start[j + 1]; ++p) work[columns.index[p]].lanes -= columns.values[p] * xj;
   }
-  for (std::size_t j = 0; j < n; ++j) v[j] *= inverseDiagonal_[j];
   for (std::size_t j = n; j-- > 0;) {
-    double sum = v[j];
-    for (int p = columns.start[j]; p < columns.start[j + 1]; ++p) sum -= columns.values[p] * v[static_cast<std::size_t>(columns.index[p])];
-    v[j] = sum;
+    const int first = columns.start[j];
+    subtractLine(columns.values.data() + first, columns.index.data() + first, columns.start[j + 1] - first, work,
+                 inverseDiagonal_[j], work[j]);
   }
-  x.resize(n);
-  for (std::size_t i = 0; i < n; ++i) x[i] = v[static_cast<std::size_t>(permutation_[i])];
+  for (std::size_t k = 0; k < count; ++k) {
+    std::vector<double>& out = *x[k];
+    out.resize(n);
+    for (std::size_t i = 0; i < n; ++i) out[i] = work[permutation_[i]].lanes[k];
+  }
 }
 
 }  // namespace slime
