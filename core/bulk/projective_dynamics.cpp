@@ -263,9 +263,10 @@ void ProjectiveSolver::localPass(const BulkBody& body, double decay) {
 
 void ProjectiveSolver::keepColumns(const std::vector<std::uint32_t>& nodes) {
   std::uint32_t batch[4];
-  std::vector<double>* out[4];
   std::size_t count = 0;
   const auto solveBatch = [&] {
+    std::vector<double>* out[4];
+    for (std::size_t k = 0; k < count; ++k) out[k] = &columns_[static_cast<std::size_t>(columnOf_[batch[k]])];
     factor_.columns(batch, count, out);
     count = 0;
   };
@@ -276,12 +277,8 @@ void ProjectiveSolver::keepColumns(const std::vector<std::uint32_t>& nodes) {
     index = static_cast<int>(columns_.size());
     columns_.emplace_back();
     batch[count++] = node;
-    if (count == 4) {
-      for (std::size_t k = 0; k < 4; ++k) out[k] = &columns_[static_cast<std::size_t>(columnOf_[batch[k]])];
-      solveBatch();
-    }
+    if (count == 4) solveBatch();
   }
-  for (std::size_t k = 0; k < count; ++k) out[k] = &columns_[static_cast<std::size_t>(columnOf_[batch[k]])];
   if (count > 0) solveBatch();
 }
 
