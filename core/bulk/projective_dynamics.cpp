@@ -5,8 +5,6 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
-#include <Eigen/Sparse>
-#include <Eigen/SparseCholesky>
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
@@ -17,7 +15,6 @@ namespace slime {
 namespace {
 
 constexpr int kPolarIterations = 2;        // Müller et al. 2016 sweeps per local step (warm-started)
-constexpr double kPinnedMassFactor = 1e6;  // a pinned node's mass in the matrix, × the body's mass
 constexpr int kContactRounds = 4;          // active-set rounds of the floor per global solve
 // Columns A⁻¹e_i kept for floor nodes, at most this many doubles in all (64 MB): resolution 3 keeps
 // every node's, resolution 4 about 350; a node past the budget is put on the floor after the solve.
@@ -37,88 +34,18 @@ constexpr int kSym[3][3] = {{0, 3, 4}, {3, 1, 5}, {4, 5, 2}};
 
 }  // namespace
 
-// P A Pᵀ = L D Lᵀ (Eigen's SimplicialLDLT), L kept as plain arrays so that one pass over it solves
-// the three coordinates together (Eigen's solve with three right-hand sides walks L three times).
-struct ProjectiveSolver::Factor {
-  std::vector<int> columnStart, rows;  // L strictly below the diagonal, by column
-  std::vector<double> values, inverseDiagonal;
-  std::vector<int> permutation;        // (P b)[permutation[i]] = b[i]
-  std::vector<glm::dvec3> work;
-
-  void take(const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>& ldlt) {
-    const Eigen::SparseMatrix<double>& l = ldlt.matrixL().nestedExpression();
-    const int n = static_cast<int>(l.cols());
-    rows.clear();
-    values.clear();
-    for (int j = 0; j < n; ++j)
-      for (Eigen::SparseMatrix<double>::InnerIterator it(l, j); it; ++it) {
-        rows.push_back(static_cast<int>(it.row()));
-        values.push_back(it.value());
-      }
-    columnStart.assign(static_cast<std::size_t>(n) + 1, 0);
-    for (int j = 0; j < n; ++j) {
-      int count = 0;
-      for (Eigen::SparseMatrix<double>::InnerIterator it(l, j); it; ++it) ++count;
-      columnStart[static_cast<std::size_t>(j) + 1] = columnStart[static_cast<std::size_t>(j)] + count;
-    }
-    inverseDiagonal.resize(static_cast<std::size_t>(n));
-    for (int j = 0; j < n; ++j) inverseDiagonal[static_cast<std::size_t>(j)] = 1.0 / ldlt.vectorD()(j);
-    permutation.resize(static_cast<std::size_t>(n));
-    for (int i = 0; i < n; ++i) permutation[static_cast<std::size_t>(i)] = ldlt.permutationP().indices()(i);
-    work.resize(static_cast<std::size_t>(n));
-  }
-
-  // x = A⁻¹ b = Pᵀ L⁻ᵀ D⁻¹ L⁻¹ P b.
-  void solve(const std::vector<glm::dvec3>& b, std::vector<glm::dvec3>& x) {
-    const std::size_t n = work.size();
-    for (std::size_t i = 0; i < n; ++i) work[static_cast<std::size_t>(permutation[i])] = b[i];
-    for (std::size_t j = 0; j < n; ++j) {
-      const glm::dvec3 xj = work[j];
-      for (int p = columnStart[j]; p < columnStart[j + 1]; ++p) work[static_cast<std::size_t>(rows[p])] -= values[p] * xj;
-    }
-    for (std::size_t j = 0; j < n; ++j) work[j] *= inverseDiagonal[j];
-    for (std::size_t j = n; j-- > 0;) {
-      glm::dvec3 sum = work[j];
-      for (int p = columnStart[j]; p < columnStart[j + 1]; ++p) sum -= values[p] * work[static_cast<std::size_t>(rows[p])];
-      work[j] = sum;
-    }
-    x.resize(n);
-    for (std::size_t i = 0; i < n; ++i) x[i] = work[static_cast<std::size_t>(permutation[i])];
-  }
-
-  // x = A⁻¹ e_i (one column of the inverse, for the floor's active set).
-  void column(std::size_t node, std::vector<double>& x) const {
-    const std::size_t n = work.size();
-    std::vector<double> v(n, 0.0);
-    v[static_cast<std::size_t>(permutation[node])] = 1.0;
-    for (std::size_t j = 0; j < n; ++j) {
-      const double xj = v[j];
-      if (xj == 0.0) continue;
-      for (int p = columnStart[j]; p < columnStart[j + 1]; ++p) v[static_cast<std::size_t>(rows[p])] -= values[p] * xj;
-    }
-    for (std::size_t j = 0; j < n; ++j) v[j] *= inverseDiagonal[j];
-    for (std::size_t j = n; j-- > 0;) {
-      double sum = v[j];
-      for (int p = columnStart[j]; p < columnStart[j + 1]; ++p) sum -= values[p] * v[static_cast<std::size_t>(rows[p])];
-      v[j] = sum;
-    }
-    x.resize(n);
-    for (std::size_t i = 0; i < n; ++i) x[i] = v[static_cast<std::size_t>(permutation[i])];
-  }
-};
-
 struct ProjectiveSolver::Contact {
   Eigen::LLT<Eigen::MatrixXd> llt;
 };
 
-ProjectiveSolver::ProjectiveSolver() : factor_(std::make_unique<Factor>()), contactFactor_(std::make_unique<Contact>()) {}
+ProjectiveSolver::ProjectiveSolver() : contactFactor_(std::make_unique<Contact>()) {}
 ProjectiveSolver::~ProjectiveSolver() = default;
 ProjectiveSolver::ProjectiveSolver(const ProjectiveSolver& other)
-    : blocks_(other.blocks_), factor_(std::make_unique<Factor>()), contactFactor_(std::make_unique<Contact>()) {}
+    : blocks_(other.blocks_), contactFactor_(std::make_unique<Contact>()) {}
 ProjectiveSolver& ProjectiveSolver::operator=(const ProjectiveSolver& other) {
   if (this != &other) {
     blocks_ = other.blocks_;
-    factor_ = std::make_unique<Factor>();
+    factor_ = ProjectiveFactor{};
     contactFactor_ = std::make_unique<Contact>();
     factoredStep_ = -1.0;
   }
@@ -172,48 +99,15 @@ void ProjectiveSolver::storeMaxwell(BulkBody& body) const {
 
 void ProjectiveSolver::factor(const BulkBody& body, double h) {
   const ViscoelasticMaterial& m = body.material;
-  const double mu = m.longTermShear + m.maxwellShear, lambda = m.lameLambda;
   const std::size_t n = body.state.size();
-  std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(n + 16 * body.mesh.tetrahedra.size());
-  masses_.resize(n);
-  const std::vector<double>& w = body.state.inverseMasses;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double mass = w[i] > 0.0 ? 1.0 / w[i] : kPinnedMassFactor * body.totalMass;
-    masses_[i] = mass / (h * h);
-    triplets.emplace_back(static_cast<int>(i), static_cast<int>(i), masses_[i]);
-  }
-  // w_e D_eᵀD_e with D_e x = F: Q = Dm⁻¹Dm⁻ᵀ on nodes 1..3, node 0 the negative sums.
-  for (std::size_t e = 0; e < body.mesh.tetrahedra.size(); ++e) {
-    const Tetrahedron& t = body.mesh.tetrahedra[e];
-    const TetRest& rest = body.rest[e];
-    const double weight = rest.volume * (2.0 * mu + 3.0 * lambda);
-    double k[4][4] = {};
-    for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b) {
-        double q = 0.0;  // (Dm⁻¹Dm⁻ᵀ)_ab, glm [column][row]
-        for (int c = 0; c < 3; ++c) q += rest.restInverse[c][a] * rest.restInverse[c][b];
-        k[a + 1][b + 1] = weight * q;
-      }
-    for (int b = 1; b < 4; ++b) {
-      k[0][b] = -(k[1][b] + k[2][b] + k[3][b]);
-      k[b][0] = k[0][b];
-    }
-    k[0][0] = -(k[0][1] + k[0][2] + k[0][3]);
-    for (int a = 0; a < 4; ++a)
-      for (int b = 0; b < 4; ++b) triplets.emplace_back(static_cast<int>(t[a]), static_cast<int>(t[b]), k[a][b]);
-  }
-  Eigen::SparseMatrix<double> matrix(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
-  matrix.setFromTriplets(triplets.begin(), triplets.end());
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(matrix);
-  factor_->take(ldlt);
+  factor_.factor(n, projectiveMatrix(body, h, masses_));
   columnOf_.assign(n, -1);
   columns_.clear();
   factoredContact_.clear();
   factoredStep_ = h;
-  factoredShear_ = mu;
-  factoredLambda_ = lambda;
-  factoredInverseMasses_ = w;
+  factoredShear_ = m.longTermShear + m.maxwellShear;
+  factoredLambda_ = m.lameLambda;
+  factoredInverseMasses_ = body.state.inverseMasses;
   ++factorisations_;
 }
 
@@ -367,15 +261,25 @@ void ProjectiveSolver::localPass(const BulkBody& body, double decay) {
   }
 }
 
-const std::vector<double>* ProjectiveSolver::column(std::uint32_t node) {
-  int& index = columnOf_[node];
-  if (index < 0) {
-    if ((columns_.size() + 1) * columnOf_.size() > kColumnBudget) return nullptr;
+void ProjectiveSolver::keepColumns(const std::vector<std::uint32_t>& nodes) {
+  std::uint32_t batch[4];
+  std::size_t count = 0;
+  const auto solveBatch = [&] {
+    std::vector<double>* out[4];
+    for (std::size_t k = 0; k < count; ++k) out[k] = &columns_[static_cast<std::size_t>(columnOf_[batch[k]])];
+    factor_.columns(batch, count, out);
+    count = 0;
+  };
+  for (const std::uint32_t node : nodes) {
+    int& index = columnOf_[node];
+    if (index >= 0) continue;
+    if ((columns_.size() + 1) * columnOf_.size() > kColumnBudget) break;
     index = static_cast<int>(columns_.size());
     columns_.emplace_back();
-    factor_->column(node, columns_.back());
+    batch[count++] = node;
+    if (count == 4) solveBatch();
   }
-  return &columns_[static_cast<std::size_t>(index)];
+  if (count > 0) solveBatch();
 }
 
 // The floor as a constraint of the global solve: minimise ½ zᵀAz − bᵀz subject to z_i ≥ 0. With z0 =
@@ -390,8 +294,9 @@ void ProjectiveSolver::holdOnFloor(const std::vector<double>& inverseMasses) {
   for (std::size_t i = 0; i < n; ++i) freeZ_[i] = solved_[i].z;
   contact_.clear();
   for (std::size_t i = 0; i < n; ++i)
-    if (inverseMasses[i] > 0.0 && freeZ_[i] < 0.0 && column(static_cast<std::uint32_t>(i)) != nullptr)
-      contact_.push_back(static_cast<std::uint32_t>(i));
+    if (inverseMasses[i] > 0.0 && freeZ_[i] < 0.0) contact_.push_back(static_cast<std::uint32_t>(i));
+  keepColumns(contact_);
+  std::erase_if(contact_, [&](std::uint32_t i) { return columnOf_[i] < 0; });
   if (contact_.empty()) return;
   Eigen::VectorXd lambda;
   heldZ_ = freeZ_;
@@ -425,10 +330,13 @@ void ProjectiveSolver::holdOnFloor(const std::vector<double>& inverseMasses) {
       if (lambda(static_cast<Eigen::Index>(b)) > 0.0) next.push_back(contact_[b]);
       else changed = true;
     }
-    for (std::size_t i = 0; i < n; ++i) {
-      if (inverseMasses[i] <= 0.0 || heldZ_[i] >= -1e-12 || inContact_[i]) continue;
-      if (column(static_cast<std::uint32_t>(i)) == nullptr) continue;
-      next.push_back(static_cast<std::uint32_t>(i));
+    below_.clear();
+    for (std::size_t i = 0; i < n; ++i)
+      if (inverseMasses[i] > 0.0 && !(heldZ_[i] >= -1e-12) && !inContact_[i]) below_.push_back(static_cast<std::uint32_t>(i));
+    keepColumns(below_);
+    for (const std::uint32_t i : below_) {
+      if (columnOf_[i] < 0) continue;  // past the column budget
+      next.push_back(i);
       changed = true;
     }
     if (!changed) {
@@ -486,15 +394,18 @@ glm::dvec3 ProjectiveSolver::step(BulkBody& body, BulkScratch& scratch, const Pr
     for (std::size_t k = 0; k < mouse.nodes.size(); ++k) state.velocities[mouse.nodes[k]] += scale * change[k];
     hand *= scale;
   }
-  start_ = state.positions;
+  start_.resize(n);
   predicted_.resize(n);
-  for (std::size_t i = 0; i < n; ++i)
-    predicted_[i] = state.positions[i] + h * state.velocities[i] + (state.inverseMasses[i] > 0.0 ? h * h : 0.0) * options.gravity;
-  state.positions = predicted_;
+  for (std::size_t i = 0; i < n; ++i) {  // one pass, not a loop and two copies
+    const glm::dvec3 x = state.positions[i];
+    start_[i] = x;
+    predicted_[i] = x + h * state.velocities[i] + (state.inverseMasses[i] > 0.0 ? h * h : 0.0) * options.gravity;
+    state.positions[i] = predicted_[i];
+  }
   for (int iteration = 0; iteration < std::max(1, options.iterations); ++iteration) {
     localStep(body, h, iteration == 0);
     for (std::size_t i = 0; i < n; ++i) targets_[i] += masses_[i] * predicted_[i];  // the right-hand side
-    factor_->solve(targets_, solved_);
+    factor_.solve(targets_, solved_);
     holdOnFloor(state.inverseMasses);
     for (std::size_t i = 0; i < n; ++i) state.positions[i] = state.inverseMasses[i] > 0.0 ? solved_[i] : predicted_[i];
   }

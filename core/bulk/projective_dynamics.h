@@ -33,6 +33,7 @@
 #pragma once
 
 #include "core/bulk/bulk_body.h"
+#include "core/bulk/projective_factor.h"
 #include "core/scene/grab.h"
 
 #include <cstdint>
@@ -79,15 +80,15 @@ class ProjectiveSolver {
   void factor(const BulkBody& body, double h);
   // The floor inside the global solve: z of solved_ with the active set of floor nodes held at 0.
   void holdOnFloor(const std::vector<double>& inverseMasses);
-  const std::vector<double>* column(std::uint32_t node);
+  // Computes the columns A⁻¹e_i of `nodes` not kept yet, four per solve, while the budget lasts
+  // (columnOf_ stays −1 for a node past it).
+  void keepColumns(const std::vector<std::uint32_t>& nodes);
   void localStep(const BulkBody& body, double h, bool flow);
   template <bool Flows>
   void localPass(const BulkBody& body, double decay);
 
-  struct Factor;  // Eigen's SimplicialLDLT and the right-hand sides (Eigen stays out of this header)
-
   std::vector<ProjectiveBlock> blocks_;
-  std::unique_ptr<Factor> factor_;
+  ProjectiveFactor factor_;
   double factoredStep_ = -1.0;
   double factoredShear_ = 0.0, factoredLambda_ = 0.0;
   std::vector<double> factoredInverseMasses_;
@@ -99,7 +100,7 @@ class ProjectiveSolver {
   // since the last factorisation, the active set, its reactions (N) and the factor of (A⁻¹)_CC.
   std::vector<int> columnOf_;                 // node → index into columns_, −1 none
   std::vector<std::vector<double>> columns_;
-  std::vector<std::uint32_t> contact_, factoredContact_;
+  std::vector<std::uint32_t> contact_, factoredContact_, below_;
   std::vector<double> reaction_, freeZ_, heldZ_;
   std::vector<char> inContact_;  // per node, whether it is in this round's active set
   struct Contact;  // the dense Cholesky factor of (A⁻¹)_CC (Eigen)
