@@ -195,7 +195,8 @@ void dampEdges(const BulkBody& body, double h, BulkScratch& scratch, ParticleSta
   }
 }
 
-void projectBulkVolume(const BulkBody& body, double h, BulkScratch& scratch, ParticleState& state) {
+void projectBulkVolume(const BulkBody& body, double h, BulkScratch& scratch, ParticleState& state,
+                       const std::vector<double>* floor) {
   // One pass over the surface triangles for 6V and 6∇V (volume.h's sums, about the first node; the
   // surface triangles hold only the surface nodes 0..N_s−1), one over those nodes for Σ w|∇V|².
   const std::size_t surfaceNodes = body.mesh.surfaceNodes;
@@ -205,15 +206,16 @@ void projectBulkVolume(const BulkBody& body, double h, BulkScratch& scratch, Par
   const double sixTimesVolume = sixTimesVolumeGradient(x, body.mesh.surface, surfaceNodes, gradient);
   // A node lying on the floor is held by it (as a pinned node is by the hand): it does not move.
   const std::vector<double>& w = state.inverseMasses;
+  const auto free = [&](std::size_t i) { return x[i].z > (floor != nullptr ? (*floor)[i] : 0.0); };
   double resistance = 0.0;  // Σ w_i |6∇_i V|²
   for (std::size_t i = 0; i < surfaceNodes; ++i)
-    resistance += (x[i].z > 0.0 ? w[i] : 0.0) * glm::dot(gradient[i], gradient[i]);
+    resistance += (free(i) ? w[i] : 0.0) * glm::dot(gradient[i], gradient[i]);
   if (resistance <= 0.0) return;
   // Δx_i = (V0 − V) w_i ∇_i V / Σ w|∇V|² = 6 (V0 − V) w_i (6∇_i V) / Σ w|6∇V|².
   const double multiplier = 6.0 * (body.restVolume - sixTimesVolume / 6.0) / resistance;
   const double inverseStep = 1.0 / h;
   for (std::size_t i = 0; i < surfaceNodes; ++i) {
-    if (!(x[i].z > 0.0)) continue;
+    if (!free(i)) continue;
     const glm::dvec3 move = (multiplier * w[i]) * gradient[i];
     x[i] += move;
     state.velocities[i] += move * inverseStep;
@@ -274,6 +276,28 @@ std::size_t resolveDrawnFloorContact(BulkBody& body, double friction) {
     }
   }
   return touched;
+}
+
+void drawnFloorHeights(const BulkBody& body, std::vector<double>& heights) {
+  const std::vector<glm::dvec3>& x = body.state.positions;
+  const SurfaceEmbedding& embedding = body.embedding;
+  heights.assign(x.size(), 0.0);
+  for (std::size_t s = 0; s < body.mesh.surface.size(); ++s) {
+    const Triangle& triangle = body.mesh.surface[s];
+    // As resolveDrawnFloorContact: only triangles within half their span of the floor carry a drawn
+    // vertex that can reach it within a step.
+    const double lowest = std::min({x[triangle.x].z, x[triangle.y].z, x[triangle.z].z});
+    const glm::dvec3 a = x[triangle.y] - x[triangle.x], b = x[triangle.z] - x[triangle.y], c = x[triangle.x] - x[triangle.z];
+    const double spanSquared = std::max({glm::dot(a, a), glm::dot(b, b), glm::dot(c, c)});
+    if (lowest > 0.0 && lowest * lowest > 0.25 * spanSquared) continue;
+    for (std::uint32_t vertex : embedding.verticesOfSurfaceTriangle[s]) {
+      const Tetrahedron& t = embedding.nodes[vertex];
+      const glm::dvec4& w = embedding.weights[vertex];
+      const double z = w.x * x[t.x].z + w.y * x[t.y].z + w.z * x[t.z].z + w.w * x[t.w].z;
+      for (int j = 0; j < 4; ++j)
+        if (w[j] > 0.0) heights[t[j]] = std::max(heights[t[j]], x[t[j]].z - std::max(z, 0.0) / w[j]);
+    }
+  }
 }
 
 double bulkHighestFrequency(const BulkBody& body, BulkScratch& scratch, int iterations) {

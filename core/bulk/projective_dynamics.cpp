@@ -12,6 +12,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace slime {
 namespace {
@@ -378,19 +380,20 @@ const std::vector<double>* ProjectiveSolver::column(std::uint32_t node) {
   return &columns_[static_cast<std::size_t>(index)];
 }
 
-// The floor as a constraint of the global solve: minimise ½ zᵀAz − bᵀz subject to z_i ≥ 0. With z0 =
-// A⁻¹b the free solve and C the active set, z = z0 + Σ_{c∈C} λ_c A⁻¹e_c with (A⁻¹)_CC λ = −z0_C, so
-// that z_C = 0 and λ_c (N) is the floor's reaction on node c. Active-set rounds: a node with λ < 0
+// The floor as a constraint of the global solve: minimise ½ zᵀAz − bᵀz subject to z_i ≥ f_i, f_i the
+// floor under node i (0, or where the drawn surface touches it: drawnFloorHeights, bulk_body.h). With
+// z0 = A⁻¹b the free solve and C the active set, z = z0 + Σ_{c∈C} λ_c A⁻¹e_c with (A⁻¹)_CC λ = f_C − z0_C,
+// so that z_C = f_C and λ_c (N) is the floor's reaction on node c. Active-set rounds: a node with λ < 0
 // (the floor pulling) leaves C, a node still below the floor joins it. The columns A⁻¹e_c are kept
 // until the matrix changes, and the small dense factor while C does not change (a slime at rest).
-void ProjectiveSolver::holdOnFloor(const std::vector<double>& inverseMasses) {
+void ProjectiveSolver::holdOnFloor(const std::vector<double>& inverseMasses, const std::vector<double>& floor) {
   const std::size_t n = solved_.size();
   reaction_.assign(n, 0.0);
   freeZ_.resize(n);
   for (std::size_t i = 0; i < n; ++i) freeZ_[i] = solved_[i].z;
   contact_.clear();
   for (std::size_t i = 0; i < n; ++i)
-    if (inverseMasses[i] > 0.0 && freeZ_[i] < 0.0 && column(static_cast<std::uint32_t>(i)) != nullptr)
+    if (inverseMasses[i] > 0.0 && freeZ_[i] < floor[i] && column(static_cast<std::uint32_t>(i)) != nullptr)
       contact_.push_back(static_cast<std::uint32_t>(i));
   if (contact_.empty()) return;
   Eigen::VectorXd lambda;
@@ -407,7 +410,7 @@ void ProjectiveSolver::holdOnFloor(const std::vector<double>& inverseMasses) {
       factoredContact_ = contact_;
     }
     Eigen::VectorXd rhs(static_cast<Eigen::Index>(k));
-    for (std::size_t a = 0; a < k; ++a) rhs(static_cast<Eigen::Index>(a)) = -freeZ_[contact_[a]];
+    for (std::size_t a = 0; a < k; ++a) rhs(static_cast<Eigen::Index>(a)) = floor[contact_[a]] - freeZ_[contact_[a]];
     lambda = contactFactor_->llt.solve(rhs);
     heldZ_ = freeZ_;
     for (std::size_t b = 0; b < k; ++b) {
@@ -426,7 +429,7 @@ void ProjectiveSolver::holdOnFloor(const std::vector<double>& inverseMasses) {
       else changed = true;
     }
     for (std::size_t i = 0; i < n; ++i) {
-      if (inverseMasses[i] <= 0.0 || heldZ_[i] >= -1e-12 || inContact_[i]) continue;
+      if (inverseMasses[i] <= 0.0 || heldZ_[i] >= floor[i] - 1e-12 || inContact_[i]) continue;
       if (column(static_cast<std::uint32_t>(i)) == nullptr) continue;
       next.push_back(static_cast<std::uint32_t>(i));
       changed = true;
@@ -434,7 +437,7 @@ void ProjectiveSolver::holdOnFloor(const std::vector<double>& inverseMasses) {
     if (!changed) {
       for (std::size_t b = 0; b < k; ++b) {
         reaction_[contact_[b]] = lambda(static_cast<Eigen::Index>(b));
-        heldZ_[contact_[b]] = 0.0;
+        heldZ_[contact_[b]] = floor[contact_[b]];
       }
       break;
     }
@@ -486,6 +489,11 @@ glm::dvec3 ProjectiveSolver::step(BulkBody& body, BulkScratch& scratch, const Pr
     for (std::size_t k = 0; k < mouse.nodes.size(); ++k) state.velocities[mouse.nodes[k]] += scale * change[k];
     hand *= scale;
   }
+  if (options.floor != nullptr && options.floor->size() != n)
+    throw std::invalid_argument("ProjectiveStep::floor has " + std::to_string(options.floor->size()) + " heights for " +
+                                std::to_string(n) + " nodes");
+  if (options.floor == nullptr) groundFloor_.assign(n, 0.0);
+  const std::vector<double>& floor = options.floor != nullptr ? *options.floor : groundFloor_;
   start_ = state.positions;
   predicted_.resize(n);
   for (std::size_t i = 0; i < n; ++i)
@@ -495,7 +503,7 @@ glm::dvec3 ProjectiveSolver::step(BulkBody& body, BulkScratch& scratch, const Pr
     localStep(body, h, iteration == 0);
     for (std::size_t i = 0; i < n; ++i) targets_[i] += masses_[i] * predicted_[i];  // the right-hand side
     factor_->solve(targets_, solved_);
-    holdOnFloor(state.inverseMasses);
+    holdOnFloor(state.inverseMasses, floor);
     for (std::size_t i = 0; i < n; ++i) state.positions[i] = state.inverseMasses[i] > 0.0 ? solved_[i] : predicted_[i];
   }
   // Friction: a node the floor held with the reaction N has its slide across the floor undone up to
@@ -506,9 +514,9 @@ glm::dvec3 ProjectiveSolver::step(BulkBody& body, BulkScratch& scratch, const Pr
     glm::dvec3& x = state.positions[i];
     if (state.inverseMasses[i] == 0.0) continue;
     double limit = 0.0;
-    if (x.z < 0.0) {
-      limit = options.friction * -x.z;
-      x.z = 0.0;
+    if (x.z < floor[i]) {
+      limit = options.friction * (floor[i] - x.z);
+      x.z = floor[i];
     } else if (reaction_[i] > 0.0) {
       limit = options.friction * reaction_[i] * h * h * state.inverseMasses[i];
     } else {

@@ -343,6 +343,10 @@ void Simulation::bulkSubstep(double h) {
       options.iterations = settings_.sim.iterations;
       options.gravity = glm::dvec3(0.0, 0.0, -settings_.sim.gravity);
       options.friction = settings_.slime.friction;
+      // The floor under each node where the drawn surface touches it: held there inside the solve,
+      // the drawn contact after the step has nothing left to lift at rest (docs/physics.md).
+      drawnFloorHeights(bulkBody_, projectiveFloor_);
+      options.floor = &projectiveFloor_;
       // The first holding hand goes through the solver (as with one hand); a second one is applied
       // the same way just before it.
       Hand* first = nullptr;
@@ -384,7 +388,9 @@ void Simulation::bulkSubstep(double h) {
   if (!floorDone)
     for (std::size_t i = 0; i < state.size(); ++i)
       if (state.inverseMasses[i] > 0.0) resolveFloorContactAt(state.positions[i], state.velocities[i], friction);
-  projectBulkVolume(bulkBody_, h, bulkScratch_, state);
+  // The projective solve held its nodes on the drawn surface's floor: they stay there.
+  const bool heldAbove = integrator_ == Integrator::Projective && projectiveFloor_.size() == state.size();
+  projectBulkVolume(bulkBody_, h, bulkScratch_, state, heldAbove ? &projectiveFloor_ : nullptr);
   if (adhesion > 0.0) adhesion_.endSubstep(state, bulkBody_.mesh.surface, bulkBody_.freeInverseMasses, adhesion, h);
 }
 
