@@ -33,6 +33,16 @@ inline void setLaneMatrix(ElementReal (&entries)[9][kTetLanes], std::size_t lane
   for (int entry = 0; entry < 9; ++entry) entries[entry][lane] = static_cast<ElementReal>(m[entry / 3][entry % 3]);
 }
 
+// Whether a surface triangle may carry a drawn vertex below the floor: the drawn surface bulges past
+// the flat body triangle by a small fraction of the triangle's size, so a triangle whose lowest node
+// is more than half its longest edge up cannot (in squares: no square roots).
+bool mayTouchFloor(const std::vector<glm::dvec3>& x, const Triangle& triangle) {
+  const double lowest = std::min({x[triangle.x].z, x[triangle.y].z, x[triangle.z].z});
+  const glm::dvec3 a = x[triangle.y] - x[triangle.x], b = x[triangle.z] - x[triangle.y], c = x[triangle.x] - x[triangle.z];
+  const double spanSquared = std::max({glm::dot(a, a), glm::dot(b, b), glm::dot(c, c)});
+  return !(lowest > 0.0 && lowest * lowest > 0.25 * spanSquared);
+}
+
 }  // namespace
 
 void gatherShapes(const std::vector<Tetrahedron>& tetrahedra, const std::vector<glm::dvec3>& x, std::size_t block,
@@ -241,16 +251,9 @@ std::size_t resolveDrawnFloorContact(BulkBody& body, double friction) {
   ParticleState& state = body.state;
   const SurfaceEmbedding& embedding = body.embedding;
   const std::vector<glm::dvec3>& x = state.positions;
-  // Only the surface triangles near the floor can carry a drawn vertex below it: the drawn surface
-  // bulges past the flat body triangle by a small fraction of the triangle's size.
   std::size_t touched = 0;
   for (std::size_t s = 0; s < body.mesh.surface.size(); ++s) {
-    const Triangle& triangle = body.mesh.surface[s];
-    // lowest > span/2, in squares (no square roots): a triangle well above the floor.
-    const double lowest = std::min({x[triangle.x].z, x[triangle.y].z, x[triangle.z].z});
-    const glm::dvec3 a = x[triangle.y] - x[triangle.x], b = x[triangle.z] - x[triangle.y], c = x[triangle.x] - x[triangle.z];
-    const double spanSquared = std::max({glm::dot(a, a), glm::dot(b, b), glm::dot(c, c)});
-    if (lowest > 0.0 && lowest * lowest > 0.25 * spanSquared) continue;
+    if (!mayTouchFloor(x, body.mesh.surface[s])) continue;
     for (std::uint32_t vertex : embedding.verticesOfSurfaceTriangle[s]) {
       // The element map's vertex (4 terms), not the smooth one the drawn surface shows (~45 terms: 6×
       // the step's cost at level 6, and lifting ~45 nodes per vertex in one pass left drawn vertices
@@ -283,19 +286,15 @@ void drawnFloorHeights(const BulkBody& body, std::vector<double>& heights) {
   const SurfaceEmbedding& embedding = body.embedding;
   heights.assign(x.size(), 0.0);
   for (std::size_t s = 0; s < body.mesh.surface.size(); ++s) {
-    const Triangle& triangle = body.mesh.surface[s];
-    // As resolveDrawnFloorContact: only triangles within half their span of the floor carry a drawn
-    // vertex that can reach it within a step.
-    const double lowest = std::min({x[triangle.x].z, x[triangle.y].z, x[triangle.z].z});
-    const glm::dvec3 a = x[triangle.y] - x[triangle.x], b = x[triangle.z] - x[triangle.y], c = x[triangle.x] - x[triangle.z];
-    const double spanSquared = std::max({glm::dot(a, a), glm::dot(b, b), glm::dot(c, c)});
-    if (lowest > 0.0 && lowest * lowest > 0.25 * spanSquared) continue;
+    if (!mayTouchFloor(x, body.mesh.surface[s])) continue;
     for (std::uint32_t vertex : embedding.verticesOfSurfaceTriangle[s]) {
       const Tetrahedron& t = embedding.nodes[vertex];
       const glm::dvec4& w = embedding.weights[vertex];
       const double z = w.x * x[t.x].z + w.y * x[t.y].z + w.z * x[t.z].z + w.w * x[t.w].z;
-      for (int j = 0; j < 4; ++j)
-        if (w[j] > 0.0) heights[t[j]] = std::max(heights[t[j]], x[t[j]].z - std::max(z, 0.0) / w[j]);
+      int owner = 0;
+      for (int j = 1; j < 4; ++j)
+        if (w[j] > w[owner]) owner = j;
+      heights[t[owner]] = std::max(heights[t[owner]], x[t[owner]].z - std::max(z, 0.0) / w[owner]);
     }
   }
 }
