@@ -10,6 +10,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace slime {
 namespace {
@@ -213,6 +215,9 @@ void projectBulkVolume(const BulkBody& body, double h, BulkScratch& scratch, Par
   std::vector<glm::dvec3>& gradient = scratch.volumeGradient;  // 6∇V
   std::vector<glm::dvec3>& x = state.positions;
   if (surfaceNodes == 0) return;
+  if (floor != nullptr && floor->size() != x.size())
+    throw std::invalid_argument("projectBulkVolume: a floor of " + std::to_string(floor->size()) + " heights for " +
+                                std::to_string(x.size()) + " nodes");
   const double sixTimesVolume = sixTimesVolumeGradient(x, body.mesh.surface, surfaceNodes, gradient);
   // A node lying on the floor is held by it (as a pinned node is by the hand): it does not move.
   const std::vector<double>& w = state.inverseMasses;

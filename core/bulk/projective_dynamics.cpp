@@ -12,8 +12,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
-#include <string>
 
 namespace slime {
 namespace {
@@ -489,11 +487,8 @@ glm::dvec3 ProjectiveSolver::step(BulkBody& body, BulkScratch& scratch, const Pr
     for (std::size_t k = 0; k < mouse.nodes.size(); ++k) state.velocities[mouse.nodes[k]] += scale * change[k];
     hand *= scale;
   }
-  if (options.floor != nullptr && options.floor->size() != n)
-    throw std::invalid_argument("ProjectiveStep::floor has " + std::to_string(options.floor->size()) + " heights for " +
-                                std::to_string(n) + " nodes");
-  if (options.floor == nullptr) groundFloor_.assign(n, 0.0);
-  const std::vector<double>& floor = options.floor != nullptr ? *options.floor : groundFloor_;
+  drawnFloorHeights(body, floor_);
+  const std::vector<double>& floor = floor_;
   start_ = state.positions;
   predicted_.resize(n);
   for (std::size_t i = 0; i < n; ++i)

@@ -323,8 +323,8 @@ void Simulation::bulkAccelerations(const std::vector<glm::dvec3>& x, const std::
 
 // The bulk body's substep. symplectic_euler: v += h a(x), the dampers exactly, x += h v; explicit_euler
 // and rk4 integrate the same accelerations, dampers included, through integrators.h. Then the floor on
-// every node and the volume projection, which leaves the nodes on the floor where they are (the drawn
-// surface's own contact follows once per step).
+// every node and the volume projection, which leaves the nodes on the floor where they are (projective's:
+// on the drawn surface's floor; the drawn surface's own contact follows once per step).
 void Simulation::bulkSubstep(double h) {
   ParticleState& state = bulkBody_.state;
   // The sticky floor reads a stuck node's pull from the kick-drift step's Δx = h²F/m; the projective
@@ -343,10 +343,6 @@ void Simulation::bulkSubstep(double h) {
       options.iterations = settings_.sim.iterations;
       options.gravity = glm::dvec3(0.0, 0.0, -settings_.sim.gravity);
       options.friction = settings_.slime.friction;
-      // The floor under each node where the drawn surface touches it: held there inside the solve,
-      // the drawn contact after the step has nothing left to lift at rest (docs/physics.md).
-      drawnFloorHeights(bulkBody_, projectiveFloor_);
-      options.floor = &projectiveFloor_;
       // The first holding hand goes through the solver (as with one hand); a second one is applied
       // the same way just before it.
       Hand* first = nullptr;
@@ -388,9 +384,7 @@ void Simulation::bulkSubstep(double h) {
   if (!floorDone)
     for (std::size_t i = 0; i < state.size(); ++i)
       if (state.inverseMasses[i] > 0.0) resolveFloorContactAt(state.positions[i], state.velocities[i], friction);
-  // The projective solve held its nodes on the drawn surface's floor: they stay there.
-  const bool heldAbove = integrator_ == Integrator::Projective && projectiveFloor_.size() == state.size();
-  projectBulkVolume(bulkBody_, h, bulkScratch_, state, heldAbove ? &projectiveFloor_ : nullptr);
+  projectBulkVolume(bulkBody_, h, bulkScratch_, state, projectiveActive_ ? &projective_.floorHeights() : nullptr);
   if (adhesion > 0.0) adhesion_.endSubstep(state, bulkBody_.mesh.surface, bulkBody_.freeInverseMasses, adhesion, h);
 }
 

@@ -164,7 +164,6 @@ class Simulation {
   std::vector<std::size_t> independentSpringRuns_;  // for the fused substep's threads
   XpbdModel xpbdModel_;
   ProjectiveSolver projective_;     // bulk, sim.integrator=projective
-  std::vector<double> projectiveFloor_;  // per node, the floor under it for the projective solve
   bool projectiveActive_ = false;   // its Maxwell stretches are the live ones (the body's metrics a copy)
   AccelerationField accelerationField_;
   ForceScratch forceScratch_;

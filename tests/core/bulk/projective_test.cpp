@@ -4,8 +4,6 @@
 #include "simulation_fixture.h"
 #include "core/settings/settings_io.h"
 #include "core/scene/simulation.h"
-#include "core/bulk/bulk_body.h"
-#include "core/bulk/projective_dynamics.h"
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
@@ -181,17 +179,6 @@ TEST(Projective, StiffRestHeightDoesNotDependOnIterations) {
   const double one = stiffRestHeight("projective", 1), ten = stiffRestHeight("projective", 10);
   EXPECT_NEAR(one, ten, 0.01 * ten);
   EXPECT_NEAR(one, explicitHeight, 0.01 * explicitHeight);
-}
-
-// A floor of the wrong length is refused, not read past its end.
-TEST(Projective, RefusesAFloorOfTheWrongSize) {
-  BulkBody body = buildBulkBody(defaultSettings().slime);
-  ProjectiveSolver solver;
-  BulkScratch scratch;
-  const std::vector<double> floor(body.state.size() - 1, 0.0);
-  ProjectiveStep step;
-  step.floor = &floor;
-  EXPECT_THROW(solver.step(body, scratch, step), std::invalid_argument);
 }
 
 }  // namespace
