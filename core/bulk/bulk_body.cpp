@@ -10,6 +10,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace slime {
 namespace {
@@ -31,6 +33,16 @@ inline glm::dmat3 laneMatrix(const ElementReal (&entries)[9][kTetLanes], std::si
 }
 inline void setLaneMatrix(ElementReal (&entries)[9][kTetLanes], std::size_t lane, const glm::dmat3& m) {
   for (int entry = 0; entry < 9; ++entry) entries[entry][lane] = static_cast<ElementReal>(m[entry / 3][entry % 3]);
+}
+
+// Whether a surface triangle may carry a drawn vertex below the floor: the drawn surface bulges past
+// the flat body triangle by a small fraction of the triangle's size, so a triangle whose lowest node
+// is more than half its longest edge up cannot (in squares: no square roots).
+bool mayTouchFloor(const std::vector<glm::dvec3>& x, const Triangle& triangle) {
+  const double lowest = std::min({x[triangle.x].z, x[triangle.y].z, x[triangle.z].z});
+  const glm::dvec3 a = x[triangle.y] - x[triangle.x], b = x[triangle.z] - x[triangle.y], c = x[triangle.x] - x[triangle.z];
+  const double spanSquared = std::max({glm::dot(a, a), glm::dot(b, b), glm::dot(c, c)});
+  return !(lowest > 0.0 && lowest * lowest > 0.25 * spanSquared);
 }
 
 }  // namespace
@@ -195,25 +207,30 @@ void dampEdges(const BulkBody& body, double h, BulkScratch& scratch, ParticleSta
   }
 }
 
-void projectBulkVolume(const BulkBody& body, double h, BulkScratch& scratch, ParticleState& state) {
+void projectBulkVolume(const BulkBody& body, double h, BulkScratch& scratch, ParticleState& state,
+                       const std::vector<double>* floor) {
   // One pass over the surface triangles for 6V and 6∇V (volume.h's sums, about the first node; the
   // surface triangles hold only the surface nodes 0..N_s−1), one over those nodes for Σ w|∇V|².
   const std::size_t surfaceNodes = body.mesh.surfaceNodes;
   std::vector<glm::dvec3>& gradient = scratch.volumeGradient;  // 6∇V
   std::vector<glm::dvec3>& x = state.positions;
   if (surfaceNodes == 0) return;
+  if (floor != nullptr && floor->size() != x.size())
+    throw std::invalid_argument("projectBulkVolume: a floor of " + std::to_string(floor->size()) + " heights for " +
+                                std::to_string(x.size()) + " nodes");
   const double sixTimesVolume = sixTimesVolumeGradient(x, body.mesh.surface, surfaceNodes, gradient);
   // A node lying on the floor is held by it (as a pinned node is by the hand): it does not move.
   const std::vector<double>& w = state.inverseMasses;
+  const auto free = [&](std::size_t i) { return x[i].z > (floor != nullptr ? (*floor)[i] : 0.0); };
   double resistance = 0.0;  // Σ w_i |6∇_i V|²
   for (std::size_t i = 0; i < surfaceNodes; ++i)
-    resistance += (x[i].z > 0.0 ? w[i] : 0.0) * glm::dot(gradient[i], gradient[i]);
+    resistance += (free(i) ? w[i] : 0.0) * glm::dot(gradient[i], gradient[i]);
   if (resistance <= 0.0) return;
   // Δx_i = (V0 − V) w_i ∇_i V / Σ w|∇V|² = 6 (V0 − V) w_i (6∇_i V) / Σ w|6∇V|².
   const double multiplier = 6.0 * (body.restVolume - sixTimesVolume / 6.0) / resistance;
   const double inverseStep = 1.0 / h;
   for (std::size_t i = 0; i < surfaceNodes; ++i) {
-    if (!(x[i].z > 0.0)) continue;
+    if (!free(i)) continue;
     const glm::dvec3 move = (multiplier * w[i]) * gradient[i];
     x[i] += move;
     state.velocities[i] += move * inverseStep;
@@ -239,16 +256,9 @@ std::size_t resolveDrawnFloorContact(BulkBody& body, double friction) {
   ParticleState& state = body.state;
   const SurfaceEmbedding& embedding = body.embedding;
   const std::vector<glm::dvec3>& x = state.positions;
-  // Only the surface triangles near the floor can carry a drawn vertex below it: the drawn surface
-  // bulges past the flat body triangle by a small fraction of the triangle's size.
   std::size_t touched = 0;
   for (std::size_t s = 0; s < body.mesh.surface.size(); ++s) {
-    const Triangle& triangle = body.mesh.surface[s];
-    // lowest > span/2, in squares (no square roots): a triangle well above the floor.
-    const double lowest = std::min({x[triangle.x].z, x[triangle.y].z, x[triangle.z].z});
-    const glm::dvec3 a = x[triangle.y] - x[triangle.x], b = x[triangle.z] - x[triangle.y], c = x[triangle.x] - x[triangle.z];
-    const double spanSquared = std::max({glm::dot(a, a), glm::dot(b, b), glm::dot(c, c)});
-    if (lowest > 0.0 && lowest * lowest > 0.25 * spanSquared) continue;
+    if (!mayTouchFloor(x, body.mesh.surface[s])) continue;
     for (std::uint32_t vertex : embedding.verticesOfSurfaceTriangle[s]) {
       // The element map's vertex (4 terms), not the smooth one the drawn surface shows (~45 terms: 6×
       // the step's cost at level 6, and lifting ~45 nodes per vertex in one pass left drawn vertices
@@ -274,6 +284,24 @@ std::size_t resolveDrawnFloorContact(BulkBody& body, double friction) {
     }
   }
   return touched;
+}
+
+void drawnFloorHeights(const BulkBody& body, std::vector<double>& heights) {
+  const std::vector<glm::dvec3>& x = body.state.positions;
+  const SurfaceEmbedding& embedding = body.embedding;
+  heights.assign(x.size(), 0.0);
+  for (std::size_t s = 0; s < body.mesh.surface.size(); ++s) {
+    if (!mayTouchFloor(x, body.mesh.surface[s])) continue;
+    for (std::uint32_t vertex : embedding.verticesOfSurfaceTriangle[s]) {
+      const Tetrahedron& t = embedding.nodes[vertex];
+      const glm::dvec4& w = embedding.weights[vertex];
+      const double z = w.x * x[t.x].z + w.y * x[t.y].z + w.z * x[t.z].z + w.w * x[t.w].z;
+      int owner = 0;
+      for (int j = 1; j < 4; ++j)
+        if (w[j] > w[owner]) owner = j;
+      heights[t[owner]] = std::max(heights[t[owner]], x[t[owner]].z - std::max(z, 0.0) / w[owner]);
+    }
+  }
 }
 
 double bulkHighestFrequency(const BulkBody& body, BulkScratch& scratch, int iterations) {

@@ -282,19 +282,20 @@ void ProjectiveSolver::keepColumns(const std::vector<std::uint32_t>& nodes) {
   if (count > 0) solveBatch();
 }
 
-// The floor as a constraint of the global solve: minimise ½ zᵀAz − bᵀz subject to z_i ≥ 0. With z0 =
-// A⁻¹b the free solve and C the active set, z = z0 + Σ_{c∈C} λ_c A⁻¹e_c with (A⁻¹)_CC λ = −z0_C, so
-// that z_C = 0 and λ_c (N) is the floor's reaction on node c. Active-set rounds: a node with λ < 0
+// The floor as a constraint of the global solve: minimise ½ zᵀAz − bᵀz subject to z_i ≥ f_i, f_i the
+// floor under node i (0, or where the drawn surface touches it: drawnFloorHeights, bulk_body.h). With
+// z0 = A⁻¹b the free solve and C the active set, z = z0 + Σ_{c∈C} λ_c A⁻¹e_c with (A⁻¹)_CC λ = f_C − z0_C,
+// so that z_C = f_C and λ_c (N) is the floor's reaction on node c. Active-set rounds: a node with λ < 0
 // (the floor pulling) leaves C, a node still below the floor joins it. The columns A⁻¹e_c are kept
 // until the matrix changes, and the small dense factor while C does not change (a slime at rest).
-void ProjectiveSolver::holdOnFloor(const std::vector<double>& inverseMasses) {
+void ProjectiveSolver::holdOnFloor(const std::vector<double>& inverseMasses, const std::vector<double>& floor) {
   const std::size_t n = solved_.size();
   reaction_.assign(n, 0.0);
   freeZ_.resize(n);
   for (std::size_t i = 0; i < n; ++i) freeZ_[i] = solved_[i].z;
   contact_.clear();
   for (std::size_t i = 0; i < n; ++i)
-    if (inverseMasses[i] > 0.0 && freeZ_[i] < 0.0) contact_.push_back(static_cast<std::uint32_t>(i));
+    if (inverseMasses[i] > 0.0 && freeZ_[i] < floor[i]) contact_.push_back(static_cast<std::uint32_t>(i));
   keepColumns(contact_);
   std::erase_if(contact_, [&](std::uint32_t i) { return columnOf_[i] < 0; });
   if (contact_.empty()) return;
@@ -312,7 +313,7 @@ void ProjectiveSolver::holdOnFloor(const std::vector<double>& inverseMasses) {
       factoredContact_ = contact_;
     }
     Eigen::VectorXd rhs(static_cast<Eigen::Index>(k));
-    for (std::size_t a = 0; a < k; ++a) rhs(static_cast<Eigen::Index>(a)) = -freeZ_[contact_[a]];
+    for (std::size_t a = 0; a < k; ++a) rhs(static_cast<Eigen::Index>(a)) = floor[contact_[a]] - freeZ_[contact_[a]];
     lambda = contactFactor_->llt.solve(rhs);
     heldZ_ = freeZ_;
     for (std::size_t b = 0; b < k; ++b) {
@@ -332,7 +333,7 @@ void ProjectiveSolver::holdOnFloor(const std::vector<double>& inverseMasses) {
     }
     below_.clear();
     for (std::size_t i = 0; i < n; ++i)
-      if (inverseMasses[i] > 0.0 && !(heldZ_[i] >= -1e-12) && !inContact_[i]) below_.push_back(static_cast<std::uint32_t>(i));
+      if (inverseMasses[i] > 0.0 && !(heldZ_[i] >= floor[i] - 1e-12) && !inContact_[i]) below_.push_back(static_cast<std::uint32_t>(i));
     keepColumns(below_);
     for (const std::uint32_t i : below_) {
       if (columnOf_[i] < 0) continue;  // past the column budget
@@ -342,7 +343,7 @@ void ProjectiveSolver::holdOnFloor(const std::vector<double>& inverseMasses) {
     if (!changed) {
       for (std::size_t b = 0; b < k; ++b) {
         reaction_[contact_[b]] = lambda(static_cast<Eigen::Index>(b));
-        heldZ_[contact_[b]] = 0.0;
+        heldZ_[contact_[b]] = floor[contact_[b]];
       }
       break;
     }
@@ -394,6 +395,8 @@ glm::dvec3 ProjectiveSolver::step(BulkBody& body, BulkScratch& scratch, const Pr
     for (std::size_t k = 0; k < mouse.nodes.size(); ++k) state.velocities[mouse.nodes[k]] += scale * change[k];
     hand *= scale;
   }
+  drawnFloorHeights(body, floor_);
+  const std::vector<double>& floor = floor_;
   start_.resize(n);
   predicted_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {  // one pass, not a loop and two copies
@@ -406,7 +409,7 @@ glm::dvec3 ProjectiveSolver::step(BulkBody& body, BulkScratch& scratch, const Pr
     localStep(body, h, iteration == 0);
     for (std::size_t i = 0; i < n; ++i) targets_[i] += masses_[i] * predicted_[i];  // the right-hand side
     factor_.solve(targets_, solved_);
-    holdOnFloor(state.inverseMasses);
+    holdOnFloor(state.inverseMasses, floor);
     for (std::size_t i = 0; i < n; ++i) state.positions[i] = state.inverseMasses[i] > 0.0 ? solved_[i] : predicted_[i];
   }
   // Friction: a node the floor held with the reaction N has its slide across the floor undone up to
@@ -417,9 +420,9 @@ glm::dvec3 ProjectiveSolver::step(BulkBody& body, BulkScratch& scratch, const Pr
     glm::dvec3& x = state.positions[i];
     if (state.inverseMasses[i] == 0.0) continue;
     double limit = 0.0;
-    if (x.z < 0.0) {
-      limit = options.friction * -x.z;
-      x.z = 0.0;
+    if (x.z < floor[i]) {
+      limit = options.friction * (floor[i] - x.z);
+      x.z = floor[i];
     } else if (reaction_[i] > 0.0) {
       limit = options.friction * reaction_[i] * h * h * state.inverseMasses[i];
     } else {

@@ -25,9 +25,13 @@
 // One step h: the seed's edge dampers exactly (dampEdges, a contraction), the mouse spring
 // implicitly node by node (with the hand's force limit), the inertial prediction y = x + h v + h² g,
 // then `iterations` local steps (targets p_e, vectorised over kTetLanes tetrahedra) and global
-// solves A x = M y/h² + Σ w_e D_eᵀ p_e with the floor z ≥ 0 a constraint of each solve (an active
+// solves A x = M y/h² + Σ w_e D_eᵀ p_e with the floor z_i ≥ f_i a constraint of each solve (an active
 // set; holdOnFloor in the .cpp), then Coulomb friction on the held nodes' slide up to μ × the floor's
-// reaction; v = (x − x_start)/h.
+// reaction; v = (x − x_start)/h. f_i is where the drawn surface touches the floor under node i
+// (drawnFloorHeights, bulk_body.h): a correction after the solve, as the drawn surface's contact was,
+// is undone by the next solve through the whole matrix A, so the rest balanced a phantom force A Δ
+// and depended on sim.iterations. The Simulation's volume projection after the step is still such a
+// correction (docs/physics.md).
 // Each iteration lowers the step's objective, so no step length makes it blow up; what a long step
 // costs is numerical damping (backward Euler's ζ ≈ hω/2 for a mode ω; see docs/physics.md).
 #pragma once
@@ -75,11 +79,13 @@ class ProjectiveSolver {
   // Forget the factorisation (after a material change); the next step factors again.
   void invalidate() { factoredStep_ = -1.0; }
   int factorisations() const { return factorisations_; }
+  // Per node, the floor the last step held it above, m (drawnFloorHeights, bulk_body.h).
+  const std::vector<double>& floorHeights() const { return floor_; }
 
  private:
   void factor(const BulkBody& body, double h);
-  // The floor inside the global solve: z of solved_ with the active set of floor nodes held at 0.
-  void holdOnFloor(const std::vector<double>& inverseMasses);
+  // The floor inside the global solve: z of solved_ with the active set of floor nodes held at their floor.
+  void holdOnFloor(const std::vector<double>& inverseMasses, const std::vector<double>& floor);
   // Computes the columns A⁻¹e_i of `nodes` not kept yet, four per solve, while the budget lasts
   // (columnOf_ stays −1 for a node past it).
   void keepColumns(const std::vector<std::uint32_t>& nodes);
@@ -96,6 +102,7 @@ class ProjectiveSolver {
   std::vector<double> masses_;             // m_i/h² on the diagonal (pinned: a huge mass)
   std::vector<glm::dvec3> start_, predicted_, targets_;  // x at the step's start, y, Σ w Dᵀp per node
   std::vector<glm::dvec3> solved_;
+  std::vector<double> floor_;  // per node, the floor under it this step (drawnFloorHeights)
   // Floor contact in the solve (holdOnFloor): columns A⁻¹e_i of the nodes that touched the floor
   // since the last factorisation, the active set, its reactions (N) and the factor of (A⁻¹)_CC.
   std::vector<int> columnOf_;                 // node → index into columns_, −1 none

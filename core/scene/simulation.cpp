@@ -323,8 +323,8 @@ void Simulation::bulkAccelerations(const std::vector<glm::dvec3>& x, const std::
 
 // The bulk body's substep. symplectic_euler: v += h a(x), the dampers exactly, x += h v; explicit_euler
 // and rk4 integrate the same accelerations, dampers included, through integrators.h. Then the floor on
-// every node and the volume projection, which leaves the nodes on the floor where they are (the drawn
-// surface's own contact follows once per step).
+// every node and the volume projection, which leaves the nodes on the floor where they are (projective's:
+// on the drawn surface's floor; the drawn surface's own contact follows once per step).
 void Simulation::bulkSubstep(double h) {
   ParticleState& state = bulkBody_.state;
   // The sticky floor reads a stuck node's pull from the kick-drift step's Δx = h²F/m; the projective
@@ -384,7 +384,7 @@ void Simulation::bulkSubstep(double h) {
   if (!floorDone)
     for (std::size_t i = 0; i < state.size(); ++i)
       if (state.inverseMasses[i] > 0.0) resolveFloorContactAt(state.positions[i], state.velocities[i], friction);
-  projectBulkVolume(bulkBody_, h, bulkScratch_, state);
+  projectBulkVolume(bulkBody_, h, bulkScratch_, state, projectiveActive_ ? &projective_.floorHeights() : nullptr);
   if (adhesion > 0.0) adhesion_.endSubstep(state, bulkBody_.mesh.surface, bulkBody_.freeInverseMasses, adhesion, h);
 }
 

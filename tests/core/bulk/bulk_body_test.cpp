@@ -16,6 +16,8 @@
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <stdexcept>
+#include <vector>
 
 namespace slime {
 namespace {
@@ -245,6 +247,64 @@ TEST(Viscoelastic, CreepUnderAHeldShearStressConvergesAtFirstOrder) {
   EXPECT_LT(finer, 0.01);
   EXPECT_NEAR(std::log2(coarse / fine), 1.0, 0.15);
   EXPECT_NEAR(std::log2(fine / finer), 1.0, 0.15);
+}
+
+// The element map's height of drawn vertex v.
+double drawnHeight(const BulkBody& body, std::size_t v) {
+  const Tetrahedron& t = body.embedding.nodes[v];
+  const glm::dvec4& w = body.embedding.weights[v];
+  const std::vector<glm::dvec3>& x = body.state.positions;
+  return w.x * x[t.x].z + w.y * x[t.y].z + w.z * x[t.z].z + w.w * x[t.w].z;
+}
+
+// The drawn surface's floor under the nodes (for the projective solve): nothing while the body is in
+// the air; turned onto a face of its outer shell and set down until its lowest drawn vertex touches,
+// that vertex holds the node it follows most right where it is (above the floor: the drawn surface
+// bulges below the face), and no node is held above itself or below the floor.
+TEST(DrawnFloorHeights, TheLowestDrawnVertexHoldsItsMainNodeWhereItIs) {
+  BulkBody body = buildBulkBody(defaultSettings().slime);
+  std::vector<double> heights;
+  drawnFloorHeights(body, heights);
+  ASSERT_EQ(heights.size(), body.state.size());
+  for (double f : heights) EXPECT_EQ(f, 0.0);
+  // Rodrigues' rotation about the centre taking the first outer face's direction c to straight down.
+  std::vector<glm::dvec3>& x = body.state.positions;
+  glm::dvec3 centre(0.0);
+  for (const glm::dvec3& p : x) centre += p / static_cast<double>(x.size());
+  const Triangle& face = body.mesh.surface.front();
+  const glm::dvec3 c = glm::normalize((x[face.x] + x[face.y] + x[face.z]) / 3.0 - centre), down(0.0, 0.0, -1.0);
+  const glm::dvec3 axis = glm::normalize(glm::cross(c, down));
+  const double angle = std::acos(glm::dot(c, down));
+  for (glm::dvec3& p : x) {
+    const glm::dvec3 r = p - centre;
+    p = centre + r * std::cos(angle) + glm::cross(axis, r) * std::sin(angle) +
+        axis * glm::dot(axis, r) * (1.0 - std::cos(angle));
+  }
+  std::size_t lowest = 0;
+  for (std::size_t v = 1; v < body.embedding.nodes.size(); ++v)
+    if (drawnHeight(body, v) < drawnHeight(body, lowest)) lowest = v;
+  const double drop = drawnHeight(body, lowest);
+  for (glm::dvec3& p : x) p.z -= drop;
+  drawnFloorHeights(body, heights);
+  const glm::dvec4& w = body.embedding.weights[lowest];
+  int owner = 0;
+  for (int j = 1; j < 4; ++j)
+    if (w[j] > w[owner]) owner = j;
+  const std::uint32_t node = body.embedding.nodes[lowest][owner];
+  EXPECT_GT(body.state.positions[node].z, 1e-5);  // the drawn surface bulges below the node
+  EXPECT_NEAR(heights[node], body.state.positions[node].z, 1e-12);
+  for (std::size_t i = 0; i < heights.size(); ++i) {
+    EXPECT_GE(heights[i], 0.0);
+    EXPECT_LE(heights[i], std::max(body.state.positions[i].z, 0.0) + 1e-12);
+  }
+}
+
+// A floor of the wrong length is refused, not read past its end.
+TEST(ProjectBulkVolume, RefusesAFloorOfTheWrongSize) {
+  BulkBody body = buildBulkBody(defaultSettings().slime);
+  BulkScratch scratch;
+  const std::vector<double> floor(body.state.size() - 1, 0.0);
+  EXPECT_THROW(projectBulkVolume(body, 0.001, scratch, body.state, &floor), std::invalid_argument);
 }
 
 }  // namespace
