@@ -24,7 +24,7 @@
 //
 // One step h: the seed's edge dampers exactly (dampEdges, a contraction), the mouse spring
 // implicitly node by node (with the hand's force limit), the inertial prediction y = x + h v + h² g,
-// then `iterations` local steps (targets p_e, vectorised over kTetLanes tetrahedra) and global
+// then `iterations` local steps (targets p_e, projective_local.h, in ElementReal lanes) and global
 // solves A x = M y/h² + Σ w_e D_eᵀ p_e with the floor z ≥ 0 a constraint of each solve (an active
 // set; holdOnFloor in the .cpp), then Coulomb friction on the held nodes' slide up to μ × the floor's
 // reaction; v = (x − x_start)/h.
@@ -33,6 +33,7 @@
 #pragma once
 
 #include "core/bulk/bulk_body.h"
+#include "core/bulk/projective_local.h"
 #include "core/scene/grab.h"
 
 #include <cstdint>
@@ -40,13 +41,6 @@
 #include <vector>
 
 namespace slime {
-
-// Per block of kTetLanes tetrahedra: the rotation of F as a unit quaternion (w, x, y, z; warm start
-// of the next polar decomposition) and the Maxwell rest stretch U_v (symmetric: 00, 11, 22, 01, 02, 12).
-struct ProjectiveBlock {
-  alignas(64) double rotation[4][kTetLanes] = {};
-  alignas(64) double maxwellStretch[6][kTetLanes] = {};
-};
 
 struct ProjectiveStep {
   double h = 0.001;               // s
@@ -81,12 +75,11 @@ class ProjectiveSolver {
   void holdOnFloor(const std::vector<double>& inverseMasses);
   const std::vector<double>* column(std::uint32_t node);
   void localStep(const BulkBody& body, double h, bool flow);
-  template <bool Flows>
-  void localPass(const BulkBody& body, double decay);
 
   struct Factor;  // Eigen's SimplicialLDLT and the right-hand sides (Eigen stays out of this header)
 
   std::vector<ProjectiveBlock> blocks_;
+  NodeQuads quads_;  // the local step's node copies
   std::unique_ptr<Factor> factor_;
   double factoredStep_ = -1.0;
   double factoredShear_ = 0.0, factoredLambda_ = 0.0;
