@@ -133,12 +133,14 @@ void ProjectiveSolver::loadMaxwell(const BulkBody& body) {
       Eigen::Matrix3d g;
       for (int c = 0; c < 3; ++c)
         for (int r = 0; r < 3; ++r) g(r, c) = body.maxwell[block].metric[3 * c + r][lane];
-      // U_v = √G_v through G_v's eigenvectors (a zero lane past the last tetrahedron gives U_v = 0).
+      // U_v = √G_v through G_v's eigenvectors (a zero lane past the last tetrahedron gives U_v = 0), kept
+      // as U_v − I (projective_local.h).
       const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(g);
       const Eigen::Vector3d roots = eigen.eigenvalues().cwiseMax(0.0).cwiseSqrt();
       const Eigen::Matrix3d u = eigen.eigenvectors() * roots.asDiagonal() * eigen.eigenvectors().transpose();
       for (int r = 0; r < 3; ++r)
-        for (int c = r; c < 3; ++c) blocks_[block].maxwellStretch[kSym[r][c]][lane] = u(r, c);
+        for (int c = r; c < 3; ++c)
+          blocks_[block].maxwellStretch[kSym[r][c]][lane] = static_cast<ElementReal>(u(r, c) - (r == c ? 1.0 : 0.0));
     }
 }
 
@@ -148,7 +150,7 @@ void ProjectiveSolver::storeMaxwell(BulkBody& body) const {
     for (std::size_t lane = 0; lane < kTetLanes; ++lane) {
       glm::dmat3 u;
       for (int c = 0; c < 3; ++c)
-        for (int r = 0; r < 3; ++r) u[c][r] = blocks_[block].maxwellStretch[kSym[r][c]][lane];
+        for (int r = 0; r < 3; ++r) u[c][r] = blocks_[block].maxwellStretch[kSym[r][c]][lane] + (r == c ? 1.0 : 0.0);
       const glm::dmat3 g = u * u;
       const double det = glm::determinant(g);
       const glm::dmat3 b = det > 0.0 ? glm::inverse(g) : glm::dmat3(1.0);

@@ -10,20 +10,22 @@ using Real = ElementReal;
 
 constexpr int kPolarIterations = 2;  // Müller et al. 2016 sweeps per local step (warm-started)
 
-// x^(−1/3) for a volume ratio near 1: two fourth-order steps r ← r (1 + e/3 + 2e²/9 + 14e³/81),
-// e = 1 − x r³, from r = 1 (the Taylor series of (1 − e)^(−1/3); a step leaves an error of 35e⁴/243, so
-// the second is within float's rounding for x in [0.6, 1.6], and a step's flow changes U_v's volume far
-// less). e is clamped to [−1, 0.5], where the polynomial is positive and monotone, so a volume ratio
-// farther out (a long step's flow of a squashed element: 0.3 → 0.98, 10 → 1.35) is brought most of the
-// way to 1 and the rest by the next steps. No division or root: it lies on the local step's longest
-// chain of dependent operations.
-inline Real inverseCubeRootNearOne(Real x) {
-  Real r = 1;
-  for (int step = 0; step < 2; ++step) {
-    const Real e = std::min(std::max(1 - x * r * r * r, Real(-1)), Real(0.5));
-    r += r * e * (Real(1.0 / 3.0) + e * (Real(2.0 / 9.0) + e * Real(14.0 / 81.0)));
-  }
-  return r;
+// (1 − e)^(−1/3) − 1 for a volume ratio 1 − e near 1: two fourth-order steps r ← r (1 + ε/3 + 2ε²/9 +
+// 14ε³/81), ε = 1 − (1 − e) r³, from r = 1 (the Taylor series of (1 − ε)^(−1/3); a step leaves an error
+// of 35ε⁴/243, so the second is within float's rounding for 1 − e in [0.6, 1.6], and a step's flow
+// changes U_v's volume far less), written on ρ = r − 1 so that a small e keeps its digits. ε is clamped
+// to [−1, 0.5], where the polynomial is positive and monotone, so a volume ratio farther out (a long
+// step's flow of a squashed element: 0.3 → 0.98, 10 → 1.35) is brought most of the way to 1 and the
+// rest by the next steps. No division or root: it lies on the local step's longest chain.
+inline Real inverseCubeRootNearOneMinusOne(Real e) {
+  const auto series = [](Real x) {
+    const Real clamped = std::min(std::max(x, Real(-1)), Real(0.5));
+    return clamped * (Real(1.0 / 3.0) + clamped * (Real(2.0 / 9.0) + clamped * Real(14.0 / 81.0)));
+  };
+  const Real rho = series(e);
+  // 1 − (1 − e)(1 + ρ)³ without the cancellation of its leading terms.
+  const Real left = e - (1 - e) * rho * (3 + rho * (3 + rho));
+  return rho + (1 + rho) * series(left);
 }
 
 // The symmetric stretch entries 00, 11, 22, 01, 02, 12.
@@ -91,31 +93,34 @@ void blockTargets(const TargetWeights& k, const Real (&shape)[9][kTetLanes], con
     const Real inverseNorm = std::sqrt(inverseNormSquared);
     state.rotation[0][lane] = qw * inverseNorm, state.rotation[1][lane] = qx * inverseNorm;
     state.rotation[2][lane] = qy * inverseNorm, state.rotation[3][lane] = qz * inverseNorm;
-    Real u[6];
+    Real d[6];  // U_v − I
     #pragma GCC unroll 9
-    for (int e = 0; e < 6; ++e) u[e] = state.maxwellStretch[e][lane];
+    for (int e = 0; e < 6; ++e) d[e] = state.maxwellStretch[e][lane];
     if constexpr (Flows) {
-      // U = sym(RᵀF); U_v ← U_v + (U − U_v)(1 − decay) (the same as U + (U_v − U)·decay, with the small
-      // step's digits kept in float), then det U_v = 1 (an inverted blend keeps U_v).
+      // U = sym(RᵀF); U_v ← U_v + (U − U_v)·flow, then det U_v = 1 (an inverted blend keeps U_v). On
+      // the deviations B = U_v − I: det(I + B) = 1 + tr B + (B's principal 2×2 minors) + det B, so
+      // 1 − det and the rescaled B (1 + ρ) + ρ I (ρ = det^(−1/3) − 1) keep a small B's digits.
       Real s[9];
       #pragma GCC unroll 9
       for (int c = 0; c < 3; ++c)
         #pragma GCC unroll 9
         for (int r = 0; r < 3; ++r)
           s[3 * c + r] = rot[3 * r] * f[3 * c] + rot[3 * r + 1] * f[3 * c + 1] + rot[3 * r + 2] * f[3 * c + 2];
-      const Real sym[6] = {s[0], s[4], s[8], Real(0.5) * (s[1] + s[3]), Real(0.5) * (s[2] + s[6]), Real(0.5) * (s[5] + s[7])};
-      Real blended[6];
+      const Real stretch[6] = {s[0] - 1, s[4] - 1, s[8] - 1, Real(0.5) * (s[1] + s[3]), Real(0.5) * (s[2] + s[6]),
+                               Real(0.5) * (s[5] + s[7])};
+      Real b[6];
       #pragma GCC unroll 9
-      for (int e = 0; e < 6; ++e) blended[e] = u[e] + (sym[e] - u[e]) * k.flow;
-      const Real det = blended[0] * (blended[1] * blended[2] - blended[5] * blended[5]) -
-                       blended[3] * (blended[3] * blended[2] - blended[5] * blended[4]) +
-                       blended[4] * (blended[3] * blended[5] - blended[1] * blended[4]);
-      const bool positive = det > 0;
-      const Real normalise = inverseCubeRootNearOne(positive ? det : Real(1));
+      for (int e = 0; e < 6; ++e) b[e] = d[e] + (stretch[e] - d[e]) * k.flow;
+      const Real minors = b[0] * b[1] - b[3] * b[3] + b[0] * b[2] - b[4] * b[4] + b[1] * b[2] - b[5] * b[5];
+      const Real determinant = b[0] * (b[1] * b[2] - b[5] * b[5]) - b[3] * (b[3] * b[2] - b[5] * b[4]) +
+                               b[4] * (b[3] * b[5] - b[1] * b[4]);
+      const Real shrink = -(b[0] + b[1] + b[2] + minors + determinant);  // 1 − det(I + B)
+      const bool positive = shrink < 1;
+      const Real rho = inverseCubeRootNearOneMinusOne(positive ? shrink : Real(0));
       #pragma GCC unroll 9
       for (int e = 0; e < 6; ++e) {
-        u[e] = positive ? blended[e] * normalise : u[e];
-        state.maxwellStretch[e][lane] = u[e];
+        d[e] = positive ? b[e] * (1 + rho) + (e < 3 ? rho : Real(0)) : d[e];
+        state.maxwellStretch[e][lane] = d[e];
       }
     }
     // The volume target: one Newton step from F towards det = 1 along det's gradient cof F,
@@ -138,17 +143,17 @@ void blockTargets(const TargetWeights& k, const Real (&shape)[9][kTetLanes], con
     const Real delta = (1 - j) / (cofSquared + Real(1e-30));
     const bool newton = j > 0 && delta * delta * cofSquared <= toRotation;
     // −(2μ + 3λ) p with p = (μ∞ R + μ1 R U_v + (3λ/2) p_V) / (μ + 3λ/2), p_V = F + δ cof F or R:
-    // a R + b R U_v + c F + d cof F with the lane's a, c, d.
-    const Real a = newton ? k.longTermShear : k.longTermShear + k.volumeWeight;
-    const Real c = newton ? k.volumeWeight : Real(0), d = newton ? k.volumeWeight * delta : Real(0);
+    // a R + μ1 R (U_v − I) + c F + step cof F with the lane's a, c and step.
+    const Real a = k.longTermShear + k.maxwellShear + (newton ? Real(0) : k.volumeWeight);
+    const Real c = newton ? k.volumeWeight : Real(0), step = newton ? k.volumeWeight * delta : Real(0);
     Real p[9];
     #pragma GCC unroll 9
     for (int col = 0; col < 3; ++col)
       #pragma GCC unroll 9
       for (int r = 0; r < 3; ++r) {
-        const Real ru = rot[r] * u[kSym[0][col]] + rot[3 + r] * u[kSym[1][col]] + rot[6 + r] * u[kSym[2][col]];
+        const Real rd = rot[r] * d[kSym[0][col]] + rot[3 + r] * d[kSym[1][col]] + rot[6 + r] * d[kSym[2][col]];
         const int e = 3 * col + r;
-        p[e] = a * rot[e] + k.maxwellShear * ru + c * f[e] + d * cof[e];
+        p[e] = a * rot[e] + k.maxwellShear * rd + c * f[e] + step * cof[e];
       }
     // p·forceMap: the columns go to nodes 1..3.
     #pragma GCC unroll 9

@@ -81,10 +81,7 @@ void projectiveLocalStep(benchmark::State& state) {
   }
   std::vector<ProjectiveBlock> blocks(body.restBlocks.size());
   for (ProjectiveBlock& block : blocks)
-    for (std::size_t lane = 0; lane < kTetLanes; ++lane) {
-      block.rotation[0][lane] = 1;
-      for (int e = 0; e < 3; ++e) block.maxwellStretch[e][lane] = 1;
-    }
+    for (std::size_t lane = 0; lane < kTetLanes; ++lane) block.rotation[0][lane] = 1;
   NodeQuads quads;
   std::vector<glm::dvec3> targets;
   for (auto _ : state) {
