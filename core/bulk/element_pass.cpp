@@ -86,11 +86,7 @@ void relaxElements(BulkBody& body, double decay) {
       prefetchBytes<1>(&body.maxwellMaps[b + 1], sizeof(MaxwellMapBlock));
     }
     alignas(64) ElementReal shape[9][kTetLanes];
-    for (std::size_t o = 0; o < kTetLanes; o += kLaneWidth) {
-      Lanes ds[9];
-      gatherLanes<ElementReal>(block, quads.positions, o, ds);
-      for (int e = 0; e < 9; ++e) storeLanes<ElementReal>(&shape[e][o], ds[e]);
-    }
+    gatherBlock(block, quads.positions, shape);
     for (std::size_t o = 0; o < kTetLanes; o += kLaneWidth) {
       relaxLanes<ElementReal>(shape, block.restInverse, decay, o, maxwell.metric, maxwell.inverse);
       congruenceLanes<ElementReal>(block.restInverse, block.forceMap, maxwell.inverse, o, body.maxwellMaps[b].forceMap);

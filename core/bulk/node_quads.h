@@ -140,4 +140,41 @@ template <class Real>
   }
 }
 
+// Ds of all kTetLanes tetrahedra of `block` into `shape` ([3·column + row][lane]), for a pass that reads
+// them as arrays (element_pass.h's flow, projective_local.h): the differences in double, then rounded.
+template <class Real>
+[[gnu::always_inline]] inline void gatherBlock(const TetBlock& block, const std::vector<Quad>& x,
+                                               Real (&shape)[9][kTetLanes]) {
+  for (std::size_t g = 0; g < kTetLanes; g += 4) {
+    Quad edge[3][4];
+    for (std::size_t l = 0; l < 4; ++l) {
+      const Quad origin = x[block.nodes[0][g + l]];
+      for (int c = 0; c < 3; ++c) edge[c][l] = x[block.nodes[c + 1][g + l]] - origin;
+    }
+    for (int c = 0; c < 3; ++c) {
+      Quad xyz[3];
+      transposeIn(edge[c][0], edge[c][1], edge[c][2], edge[c][3], xyz[0], xyz[1], xyz[2]);
+      for (int r = 0; r < 3; ++r) storeQuad(&shape[3 * c + r][g], xyz[r]);
+    }
+  }
+}
+
+// And the nodal sums of all kTetLanes tetrahedra of `block` from arrays: H's columns ([3·column + row][lane])
+// added to nodes 1..3 and minus their sum to node 0, in double.
+template <class Real>
+[[gnu::always_inline]] inline void scatterBlock(const TetBlock& block, const Real (&h)[9][kTetLanes],
+                                                std::vector<Quad>& forces) {
+  for (std::size_t g = 0; g < kTetLanes; g += 4) {
+    Quad columns[3][4];
+    for (int c = 0; c < 3; ++c)
+      transposeOut(loadQuad(&h[3 * c][g]), loadQuad(&h[3 * c + 1][g]), loadQuad(&h[3 * c + 2][g]), columns[c]);
+    for (std::size_t l = 0; l < 4; ++l) {
+      forces[block.nodes[1][g + l]] += columns[0][l];
+      forces[block.nodes[2][g + l]] += columns[1][l];
+      forces[block.nodes[3][g + l]] += columns[2][l];
+      forces[block.nodes[0][g + l]] -= columns[0][l] + columns[1][l] + columns[2][l];
+    }
+  }
+}
+
 }  // namespace slime

@@ -40,10 +40,11 @@ struct TargetWeights {
 
 // One block's targets, w_e p_e Dm⁻ᵀ per tetrahedron into `out` ([3·column + row][lane], the
 // columns for nodes 1..3). One tetrahedron per lane, no branches and no calls: the loop the compiler
-// vectorises; `state` is a local copy, so its stores cannot alias the rest data.
+// vectorises; `block` is restrict, so its stores need no runtime check against the rest data.
 template <bool Flows>
-void blockTargets(const TargetWeights& k, const Real (&shape)[9][kTetLanes], const TetBlock& rest, ProjectiveBlock& state,
-                  Real (&out)[9][kTetLanes]) {
+void blockTargets(const TargetWeights& k, const Real (&shape)[9][kTetLanes], const TetBlock& rest,
+                  ProjectiveBlock* __restrict block, Real (&out)[9][kTetLanes]) {
+  ProjectiveBlock& state = *block;
   for (std::size_t lane = 0; lane < kTetLanes; ++lane) {
     Real f[9];  // F = Ds·Dm⁻¹, [3·column + row]
     #pragma GCC unroll 9
@@ -170,20 +171,10 @@ void allTargets(const BulkBody& body, const TargetWeights& weights, std::vector<
   for (std::size_t b = 0; b < blocks.size(); ++b) {
     const TetBlock& rest = body.restBlocks[b];
     alignas(64) Real shape[9][kTetLanes];
-    for (std::size_t o = 0; o < kTetLanes; o += kLaneWidth) {
-      Lanes ds[9];
-      gatherLanes<Real>(rest, quads.positions, o, ds);
-      for (int e = 0; e < 9; ++e) storeLanes<Real>(&shape[e][o], ds[e]);
-    }
-    ProjectiveBlock state = blocks[b];
+    gatherBlock(rest, quads.positions, shape);
     alignas(64) Real out[9][kTetLanes];
-    blockTargets<Flows>(weights, shape, rest, state, out);
-    blocks[b] = state;
-    for (std::size_t o = 0; o < kTetLanes; o += kLaneWidth) {
-      Lanes h[9];
-      for (int e = 0; e < 9; ++e) h[e] = loadLanes<Real>(&out[e][o]);
-      scatterLanes<Real>(rest, h, o, quads.forces);
-    }
+    blockTargets<Flows>(weights, shape, rest, &blocks[b], out);
+    scatterBlock(rest, out, quads.forces);
   }
 }
 
