@@ -140,7 +140,7 @@ void ProjectiveSolver::loadMaxwell(const BulkBody& body) {
       const Eigen::Matrix3d u = eigen.eigenvectors() * roots.asDiagonal() * eigen.eigenvectors().transpose();
       for (int r = 0; r < 3; ++r)
         for (int c = r; c < 3; ++c)
-          blocks_[block].maxwellStretch[kSym[r][c]][lane] = static_cast<ElementReal>(u(r, c) - (r == c ? 1.0 : 0.0));
+          blocks_[block].maxwellStretch[kSym[r][c]][lane] = static_cast<ProjectiveReal>(u(r, c) - (r == c ? 1.0 : 0.0));
     }
 }
 

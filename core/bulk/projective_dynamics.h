@@ -24,7 +24,7 @@
 //
 // One step h: the seed's edge dampers exactly (dampEdges, a contraction), the mouse spring
 // implicitly node by node (with the hand's force limit), the inertial prediction y = x + h v + h² g,
-// then `iterations` local steps (targets p_e, projective_local.h, in ElementReal lanes) and global
+// then `iterations` local steps (targets p_e, projective_local.h, in float lanes) and global
 // solves A x = M y/h² + Σ w_e D_eᵀ p_e with the floor z ≥ 0 a constraint of each solve (an active
 // set; holdOnFloor in the .cpp), then Coulomb friction on the held nodes' slide up to μ × the floor's
 // reaction; v = (x − x_start)/h.

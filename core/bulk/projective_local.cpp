@@ -6,7 +6,7 @@
 namespace slime {
 namespace {
 
-using Real = ElementReal;
+using Real = ProjectiveReal;
 
 constexpr int kPolarIterations = 2;  // Müller et al. 2016 sweeps per local step (warm-started)
 
@@ -51,8 +51,9 @@ void blockTargets(const TargetWeights& k, const Real (&shape)[9][kTetLanes], con
     for (int c = 0; c < 3; ++c)
       #pragma GCC unroll 9
       for (int r = 0; r < 3; ++r)
-        f[3 * c + r] = shape[r][lane] * rest.restInverse[3 * c][lane] + shape[3 + r][lane] * rest.restInverse[3 * c + 1][lane] +
-                       shape[6 + r][lane] * rest.restInverse[3 * c + 2][lane];
+        f[3 * c + r] = shape[r][lane] * Real(rest.restInverse[3 * c][lane]) +
+                       shape[3 + r][lane] * Real(rest.restInverse[3 * c + 1][lane]) +
+                       shape[6 + r][lane] * Real(rest.restInverse[3 * c + 2][lane]);
     // R by Müller et al.'s sweeps from the warm start q: ω = Σ r_c × f_c, the rotation by
     // ω/(2 |Σ r_c·f_c|) taken as the quaternion (1, ω/(2 |Σ r_c·f_c|)) (the same to second order, no
     // trigonometry). Written on the unnormalised quaternion: M(q) = |q|² R(q) (the rotation's entries as
@@ -161,8 +162,8 @@ void blockTargets(const TargetWeights& k, const Real (&shape)[9][kTetLanes], con
     for (int col = 0; col < 3; ++col)
       #pragma GCC unroll 9
       for (int r = 0; r < 3; ++r)
-        out[3 * col + r][lane] = p[r] * rest.forceMap[3 * col][lane] + p[3 + r] * rest.forceMap[3 * col + 1][lane] +
-                                 p[6 + r] * rest.forceMap[3 * col + 2][lane];
+        out[3 * col + r][lane] = p[r] * Real(rest.forceMap[3 * col][lane]) + p[3 + r] * Real(rest.forceMap[3 * col + 1][lane]) +
+                                 p[6 + r] * Real(rest.forceMap[3 * col + 2][lane]);
   }
 }
 

@@ -1,4 +1,4 @@
-// The projective local step in ElementReal lanes (core/bulk/projective_local.h) against the same step
+// The projective local step in float lanes (core/bulk/projective_local.h) against the same step
 // written per tetrahedron in double with glm (the loop of main f661e65, before the lanes): the targets
 // Σ w_e D_eᵀ p_e, the rotations and the flowed Maxwell stretches agree to float's rounding, on a twisted,
 // non-affine shape with a few elements inverted, from R = I and again warm-started, at resolutions 1–2.
@@ -139,7 +139,7 @@ TEST_P(ProjectiveLocal, TargetsRotationsAndFlowEqualTheScalarStepInDouble) {
   const ViscoelasticMaterial& m = body.material;
   const double scale = (2.0 * (m.longTermShear + m.maxwellShear) + 3.0 * m.lameLambda) *
                        std::pow(body.restVolume / static_cast<double>(tetrahedra), 2.0 / 3.0);
-  const double tolerance = std::max(1e-11, 64.0 * std::numeric_limits<ElementReal>::epsilon());
+  const double tolerance = std::max(1e-11, 64.0 * std::numeric_limits<ProjectiveReal>::epsilon());
   for (const double amount : {0.6, 0.7, 0.75}) {  // from R = I, then warm-started twice
     body.state.positions = twisted(rest, amount);
     ASSERT_GT(invertedElements(body), 0u);
@@ -172,7 +172,7 @@ TEST(ProjectiveLocal, ARelaxedStretchFlowsBackToRest) {
     ProjectiveBlock& block = blocks[e / kTetLanes];
     const std::size_t lane = e % kTetLanes;
     block.rotation[0][lane] = 1;
-    const ElementReal stretch[6] = {1e-4f, -1e-4f, 0.0f, 5e-5f, 0.0f, -5e-5f};  // U_v − I, volume kept to 1e-8
+    const ProjectiveReal stretch[6] = {1e-4f, -1e-4f, 0.0f, 5e-5f, 0.0f, -5e-5f};  // U_v − I, volume kept to 1e-8
     for (int k = 0; k < 6; ++k) block.maxwellStretch[k][lane] = stretch[k];
   }
   NodeQuads quads;
