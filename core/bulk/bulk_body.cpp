@@ -47,19 +47,6 @@ bool mayTouchFloor(const std::vector<glm::dvec3>& x, const Triangle& triangle) {
 
 }  // namespace
 
-void gatherShapes(const std::vector<Tetrahedron>& tetrahedra, const std::vector<glm::dvec3>& x, std::size_t block,
-                  double (&shape)[9][kTetLanes]) {
-  const std::size_t first = block * kTetLanes;
-  const std::size_t count = std::min(kTetLanes, tetrahedra.size() - first);
-  for (std::size_t lane = 0; lane < count; ++lane) {
-    const Tetrahedron& t = tetrahedra[first + lane];
-    const glm::dvec3 edges[3] = {x[t.y] - x[t.x], x[t.z] - x[t.x], x[t.w] - x[t.x]};
-    for (int entry = 0; entry < 9; ++entry) shape[entry][lane] = edges[entry / 3][entry % 3];
-  }
-  for (std::size_t lane = count; lane < kTetLanes; ++lane)
-    for (int entry = 0; entry < 9; ++entry) shape[entry][lane] = 0.0;
-}
-
 BulkBody buildBulkBody(const SlimeSettings& slime) {
   BulkBody body;
   body.mesh = makeBallTetMesh(slime.resolution, slime.radius, slime.position);

@@ -84,11 +84,6 @@ struct BulkBody {
 
 BulkBody buildBulkBody(const SlimeSettings& slime);
 
-// Ds = [x1 − x0, x2 − x0, x3 − x0] of block `block`'s tetrahedra into lanes (zero past the last one),
-// for the loops that take kTetLanes tetrahedra at a time (the forces here, projective_dynamics.h).
-void gatherShapes(const std::vector<Tetrahedron>& tetrahedra, const std::vector<glm::dvec3>& x, std::size_t block,
-                  double (&shape)[9][kTetLanes]);
-
 // B_v of one tetrahedron.
 glm::dmat3 maxwellInverse(const BulkBody& body, std::size_t tetrahedron);
 

@@ -14,20 +14,10 @@
 namespace slime {
 namespace {
 
-constexpr int kPolarIterations = 2;        // Müller et al. 2016 sweeps per local step (warm-started)
 constexpr int kContactRounds = 4;          // active-set rounds of the floor per global solve
 // Columns A⁻¹e_i kept for floor nodes, at most this many doubles in all (64 MB): resolution 3 keeps
 // every node's, resolution 4 about 350; a node past the budget is put on the floor after the solve.
 constexpr std::size_t kColumnBudget = std::size_t{8} << 20;
-
-// x^(1/3) for x > 0 near 1 (volume ratios): three Newton steps from 1 + (x − 1)/3, within 1e-6
-// for x in [0.3, 4], and still positive and monotone outside. Only arithmetic (bit tricks need
-// AVX-512's integer conversions), so the loop over a block vectorises on AVX2.
-inline double cubeRootNearOne(double x) {
-  double g = (2.0 + x) * (1.0 / 3.0);
-  for (int k = 0; k < 3; ++k) g = (2.0 * g + x / (g * g)) * (1.0 / 3.0);
-  return g;
-}
 
 // The symmetric stretch entries 00, 11, 22, 01, 02, 12.
 constexpr int kSym[3][3] = {{0, 3, 4}, {3, 1, 5}, {4, 5, 2}};
@@ -70,12 +60,14 @@ void ProjectiveSolver::loadMaxwell(const BulkBody& body) {
       Eigen::Matrix3d g;
       for (int c = 0; c < 3; ++c)
         for (int r = 0; r < 3; ++r) g(r, c) = body.maxwell[block].metric[3 * c + r][lane];
-      // U_v = √G_v through G_v's eigenvectors (a zero lane past the last tetrahedron gives U_v = 0).
+      // U_v = √G_v through G_v's eigenvectors (a zero lane past the last tetrahedron gives U_v = 0), kept
+      // as U_v − I (projective_local.h).
       const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(g);
       const Eigen::Vector3d roots = eigen.eigenvalues().cwiseMax(0.0).cwiseSqrt();
       const Eigen::Matrix3d u = eigen.eigenvectors() * roots.asDiagonal() * eigen.eigenvectors().transpose();
       for (int r = 0; r < 3; ++r)
-        for (int c = r; c < 3; ++c) blocks_[block].maxwellStretch[kSym[r][c]][lane] = u(r, c);
+        for (int c = r; c < 3; ++c)
+          blocks_[block].maxwellStretch[kSym[r][c]][lane] = static_cast<ProjectiveReal>(u(r, c) - (r == c ? 1.0 : 0.0));
     }
 }
 
@@ -85,7 +77,7 @@ void ProjectiveSolver::storeMaxwell(BulkBody& body) const {
     for (std::size_t lane = 0; lane < kTetLanes; ++lane) {
       glm::dmat3 u;
       for (int c = 0; c < 3; ++c)
-        for (int r = 0; r < 3; ++r) u[c][r] = blocks_[block].maxwellStretch[kSym[r][c]][lane];
+        for (int r = 0; r < 3; ++r) u[c][r] = blocks_[block].maxwellStretch[kSym[r][c]][lane] + (r == c ? 1.0 : 0.0);
       const glm::dmat3 g = u * u;
       const double det = glm::determinant(g);
       const glm::dmat3 b = det > 0.0 ? glm::inverse(g) : glm::dmat3(1.0);
@@ -115,150 +107,8 @@ void ProjectiveSolver::factor(const BulkBody& body, double h) {
 // `flow`: the Maxwell rest stretch flows towards this shape first (once per step).
 void ProjectiveSolver::localStep(const BulkBody& body, double h, bool flow) {
   const ViscoelasticMaterial& m = body.material;
-  const double decay = m.maxwellShear > 0.0 ? std::exp(-h / m.relaxationTime) : 1.0;
-  if (flow && m.maxwellShear > 0.0) localPass<true>(body, decay);
-  else localPass<false>(body, decay);
-}
-
-template <bool Flows>
-void ProjectiveSolver::localPass(const BulkBody& body, double decay) {
-  const ViscoelasticMaterial& m = body.material;
-  const double muInf = m.longTermShear, muMaxwell = m.maxwellShear, lambda = m.lameLambda;
-  const double mu = muInf + muMaxwell;
-  const double volumeWeight = 1.5 * lambda;
-  const double blend = 1.0 / (mu + volumeWeight);
-  const double forceScale = -(2.0 * mu + 3.0 * lambda);  // w_e p Dm⁻ᵀ = −(2μ + 3λ) p·forceMap
-  const std::vector<Tetrahedron>& tetrahedra = body.mesh.tetrahedra;
-  const std::vector<glm::dvec3>& x = body.state.positions;
-  targets_.assign(x.size(), glm::dvec3(0.0));
-  alignas(64) double shape[9][kTetLanes];
-  alignas(64) double out[9][kTetLanes];
-  for (std::size_t block = 0; block < blocks_.size(); ++block) {
-    gatherShapes(tetrahedra, x, block, shape);
-    const TetBlock& rest = body.restBlocks[block];
-    // The block's state in a local copy: stores to it cannot alias the rest data, so the loop
-    // vectorises without runtime alias checks.
-    ProjectiveBlock state = blocks_[block];
-    // One tetrahedron per lane, no branches and no calls: the loop the compiler vectorises.
-    for (std::size_t lane = 0; lane < kTetLanes; ++lane) {
-      double f[9];  // F = Ds·Dm⁻¹, [3·column + row]
-      #pragma GCC unroll 9
-      for (int c = 0; c < 3; ++c)
-        #pragma GCC unroll 9
-        for (int r = 0; r < 3; ++r)
-          f[3 * c + r] = shape[r][lane] * rest.restInverse[3 * c][lane] + shape[3 + r][lane] * rest.restInverse[3 * c + 1][lane] +
-                         shape[6 + r][lane] * rest.restInverse[3 * c + 2][lane];
-      double qw = state.rotation[0][lane], qx = state.rotation[1][lane], qy = state.rotation[2][lane],
-             qz = state.rotation[3][lane];
-      double rot[9];
-      const auto rotationMatrix = [&] {
-        rot[0] = 1.0 - 2.0 * (qy * qy + qz * qz), rot[1] = 2.0 * (qx * qy + qw * qz), rot[2] = 2.0 * (qx * qz - qw * qy);
-        rot[3] = 2.0 * (qx * qy - qw * qz), rot[4] = 1.0 - 2.0 * (qx * qx + qz * qz), rot[5] = 2.0 * (qy * qz + qw * qx);
-        rot[6] = 2.0 * (qx * qz + qw * qy), rot[7] = 2.0 * (qy * qz - qw * qx), rot[8] = 1.0 - 2.0 * (qx * qx + qy * qy);
-      };
-      #pragma GCC unroll 9
-      for (int sweep = 0; sweep < kPolarIterations; ++sweep) {
-        rotationMatrix();
-        // ω = Σ r_i × f_i / (|Σ r_i·f_i| + ε) over the columns; the rotation by ω taken as the
-        // quaternion (1, ω/2) normalised (the same to second order, and no trigonometry).
-        double ox = 0.0, oy = 0.0, oz = 0.0, dot = 0.0;
-        #pragma GCC unroll 9
-        for (int c = 0; c < 3; ++c) {
-          const double* r = rot + 3 * c;
-          const double* g = f + 3 * c;
-          ox += r[1] * g[2] - r[2] * g[1];
-          oy += r[2] * g[0] - r[0] * g[2];
-          oz += r[0] * g[1] - r[1] * g[0];
-          dot += r[0] * g[0] + r[1] * g[1] + r[2] * g[2];
-        }
-        const double scale = 0.5 / (std::abs(dot) + 1e-12);
-        ox *= scale, oy *= scale, oz *= scale;
-        const double nw = qw - ox * qx - oy * qy - oz * qz;
-        const double nx = qx + ox * qw + oy * qz - oz * qy;
-        const double ny = qy + oy * qw + oz * qx - ox * qz;
-        const double nz = qz + oz * qw + ox * qy - oy * qx;
-        const double norm = 1.0 / std::sqrt(nw * nw + nx * nx + ny * ny + nz * nz);
-        qw = nw * norm, qx = nx * norm, qy = ny * norm, qz = nz * norm;
-      }
-      rotationMatrix();
-      state.rotation[0][lane] = qw, state.rotation[1][lane] = qx, state.rotation[2][lane] = qy, state.rotation[3][lane] = qz;
-      double u[6];
-      #pragma GCC unroll 9
-      for (int k = 0; k < 6; ++k) u[k] = state.maxwellStretch[k][lane];
-      if constexpr (Flows) {
-        // U = sym(RᵀF); U_v ← U + (U_v − U)·decay, then det U_v = 1 (an inverted blend keeps U_v).
-        double s[9];
-        #pragma GCC unroll 9
-        for (int c = 0; c < 3; ++c)
-          #pragma GCC unroll 9
-          for (int r = 0; r < 3; ++r)
-            s[3 * c + r] = rot[3 * r] * f[3 * c] + rot[3 * r + 1] * f[3 * c + 1] + rot[3 * r + 2] * f[3 * c + 2];
-        const double sym[6] = {s[0], s[4], s[8], 0.5 * (s[1] + s[3]), 0.5 * (s[2] + s[6]), 0.5 * (s[5] + s[7])};
-        double blended[6];
-        #pragma GCC unroll 9
-        for (int k = 0; k < 6; ++k) blended[k] = sym[k] + (u[k] - sym[k]) * decay;
-        const double det = blended[0] * (blended[1] * blended[2] - blended[5] * blended[5]) -
-                           blended[3] * (blended[3] * blended[2] - blended[5] * blended[4]) +
-                           blended[4] * (blended[3] * blended[5] - blended[1] * blended[4]);
-        const bool positive = det > 0.0;
-        const double normalise = 1.0 / cubeRootNearOne(positive ? det : 1.0);
-        #pragma GCC unroll 9
-        for (int k = 0; k < 6; ++k) {
-          u[k] = positive ? blended[k] * normalise : u[k];
-          state.maxwellStretch[k][lane] = u[k];
-        }
-      }
-      // The volume target: one Newton step from F towards det = 1 along det's gradient cof F,
-      // p_V = F + δ cof F with δ = (1 − J)/|cof F|² (at small strain F − (tr ε/3) I, the same
-      // stiffness as F J^(−1/3)); it stays at a bounded distance from F for an element squashed flat
-      // (cof F points out of its plane), where F J^(−1/3) grows without bound. R lies on det = 1 too,
-      // so no closer point is farther than R: an inverted element (J ≤ 0), or a step that would go
-      // farther, takes R.
-      double cof[9];  // cof F = columns f1×f2, f2×f0, f0×f1 (∂J/∂F)
-      cof[0] = f[4] * f[8] - f[5] * f[7], cof[1] = f[5] * f[6] - f[3] * f[8], cof[2] = f[3] * f[7] - f[4] * f[6];
-      cof[3] = f[7] * f[2] - f[8] * f[1], cof[4] = f[8] * f[0] - f[6] * f[2], cof[5] = f[6] * f[1] - f[7] * f[0];
-      cof[6] = f[1] * f[5] - f[2] * f[4], cof[7] = f[2] * f[3] - f[0] * f[5], cof[8] = f[0] * f[4] - f[1] * f[3];
-      const double j = f[0] * cof[0] + f[1] * cof[1] + f[2] * cof[2];
-      double cofSquared = 0.0, toRotation = 0.0;
-      #pragma GCC unroll 9
-      for (int k = 0; k < 9; ++k) {
-        cofSquared += cof[k] * cof[k];
-        toRotation += (f[k] - rot[k]) * (f[k] - rot[k]);
-      }
-      const double delta = (1.0 - j) / (cofSquared + 1e-300);
-      const bool newton = j > 0.0 && delta * delta * cofSquared <= toRotation;
-      const double step = newton ? delta : 0.0, keep = newton ? 1.0 : 0.0;
-      // p = (μ∞ R + μ1 R U_v + (3λ/2) p_V) / (μ + 3λ/2).
-      double p[9];
-      #pragma GCC unroll 9
-      for (int c = 0; c < 3; ++c)
-        #pragma GCC unroll 9
-        for (int r = 0; r < 3; ++r) {
-          const double ru = rot[r] * u[kSym[0][c]] + rot[3 + r] * u[kSym[1][c]] + rot[6 + r] * u[kSym[2][c]];
-          const double volumeTarget = keep * f[3 * c + r] + step * cof[3 * c + r] + (1.0 - keep) * rot[3 * c + r];
-          p[3 * c + r] = blend * (muInf * rot[3 * c + r] + muMaxwell * ru + volumeWeight * volumeTarget);
-        }
-      // −(2μ + 3λ) p·forceMap: the columns go to nodes 1..3.
-      #pragma GCC unroll 9
-      for (int c = 0; c < 3; ++c)
-        #pragma GCC unroll 9
-        for (int r = 0; r < 3; ++r)
-          out[3 * c + r][lane] = forceScale * (p[r] * rest.forceMap[3 * c][lane] + p[3 + r] * rest.forceMap[3 * c + 1][lane] +
-                                               p[6 + r] * rest.forceMap[3 * c + 2][lane]);
-    }
-    blocks_[block] = state;
-    const std::size_t first = block * kTetLanes;
-    const std::size_t count = std::min(kTetLanes, tetrahedra.size() - first);
-    for (std::size_t lane = 0; lane < count; ++lane) {
-      const Tetrahedron& t = tetrahedra[first + lane];
-      const glm::dvec3 a(out[0][lane], out[1][lane], out[2][lane]), b(out[3][lane], out[4][lane], out[5][lane]),
-          c(out[6][lane], out[7][lane], out[8][lane]);
-      targets_[t.y] += a;
-      targets_[t.z] += b;
-      targets_[t.w] += c;
-      targets_[t.x] -= a + b + c;
-    }
-  }
+  const bool flows = flow && m.maxwellShear > 0.0;
+  projectiveTargets(body, flows, flows ? -std::expm1(-h / m.relaxationTime) : 0.0, blocks_, quads_, targets_);
 }
 
 void ProjectiveSolver::keepColumns(const std::vector<std::uint32_t>& nodes) {

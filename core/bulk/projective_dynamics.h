@@ -24,7 +24,7 @@
 //
 // One step h: the seed's edge dampers exactly (dampEdges, a contraction), the mouse spring
 // implicitly node by node (with the hand's force limit), the inertial prediction y = x + h v + h² g,
-// then `iterations` local steps (targets p_e, vectorised over kTetLanes tetrahedra) and global
+// then `iterations` local steps (targets p_e, projective_local.h, in float lanes) and global
 // solves A x = M y/h² + Σ w_e D_eᵀ p_e with the floor z_i ≥ f_i a constraint of each solve (an active
 // set; holdOnFloor in the .cpp), then Coulomb friction on the held nodes' slide up to μ × the floor's
 // reaction; v = (x − x_start)/h. f_i is where the drawn surface touches the floor under node i
@@ -38,6 +38,7 @@
 
 #include "core/bulk/bulk_body.h"
 #include "core/bulk/projective_factor.h"
+#include "core/bulk/projective_local.h"
 #include "core/scene/grab.h"
 
 #include <cstdint>
@@ -45,13 +46,6 @@
 #include <vector>
 
 namespace slime {
-
-// Per block of kTetLanes tetrahedra: the rotation of F as a unit quaternion (w, x, y, z; warm start
-// of the next polar decomposition) and the Maxwell rest stretch U_v (symmetric: 00, 11, 22, 01, 02, 12).
-struct ProjectiveBlock {
-  alignas(64) double rotation[4][kTetLanes] = {};
-  alignas(64) double maxwellStretch[6][kTetLanes] = {};
-};
 
 struct ProjectiveStep {
   double h = 0.001;               // s
@@ -90,10 +84,9 @@ class ProjectiveSolver {
   // (columnOf_ stays −1 for a node past it).
   void keepColumns(const std::vector<std::uint32_t>& nodes);
   void localStep(const BulkBody& body, double h, bool flow);
-  template <bool Flows>
-  void localPass(const BulkBody& body, double decay);
 
   std::vector<ProjectiveBlock> blocks_;
+  NodeQuads quads_;  // the local step's node copies
   ProjectiveFactor factor_;
   double factoredStep_ = -1.0;
   double factoredShear_ = 0.0, factoredLambda_ = 0.0;

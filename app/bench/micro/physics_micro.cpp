@@ -1,6 +1,8 @@
 // Micro-benchmarks of the physics kernels on the default slime at levels 4 and 6: the spring forces
 // alone, the whole force evaluation (springs, damper, fill pressure, gravity), and one full step of
-// each integrator (Simulation::step with sim.dt = 1 ms and the substeps it needs).
+// each integrator (Simulation::step with sim.dt = 1 ms and the substeps it needs); and the bulk body's
+// projective local step (its targets with the Maxwell flow) at resolutions 2 and 3.
+#include "core/bulk/projective_local.h"
 #include "core/membrane/force_model.h"
 #include "core/integrators/integrators.h"
 #include "core/settings/settings_io.h"
@@ -9,6 +11,8 @@
 #include "core/membrane/springs.h"
 
 #include <benchmark/benchmark.h>
+
+#include <cmath>
 
 namespace slime {
 namespace {
@@ -62,6 +66,31 @@ void integratorStep(benchmark::State& state) {
   state.SetLabel(integrator + ", " + std::to_string(simulation.substepsPerStep()) + " substeps");
 }
 BENCHMARK(integratorStep)->ArgsProduct({{0, 1, 2, 3, 4}, {4}})->Unit(benchmark::kMillisecond);
+
+// projectiveTargets with the flow, on the bulk body of resolution range(0) twisted and squashed a little
+// (each element its own F, so the polar decompositions do work), R warm-started from the last call.
+void projectiveLocalStep(benchmark::State& state) {
+  SlimeSettings slime = defaultSettings().slime;
+  slime.resolution = static_cast<int>(state.range(0));
+  BulkBody body = buildBulkBody(slime);
+  for (glm::dvec3& x : body.state.positions) {
+    const glm::dvec3 d = x - slime.position;
+    const double angle = 4.0 * d.z;  // radians per metre of height
+    x = slime.position + glm::dvec3(d.x * std::cos(angle) - d.y * std::sin(angle),
+                                    d.x * std::sin(angle) + d.y * std::cos(angle), 0.9 * d.z);
+  }
+  std::vector<ProjectiveBlock> blocks(body.restBlocks.size());
+  for (ProjectiveBlock& block : blocks)
+    for (std::size_t lane = 0; lane < kTetLanes; ++lane) block.rotation[0][lane] = 1;
+  NodeQuads quads;
+  std::vector<glm::dvec3> targets;
+  for (auto _ : state) {
+    projectiveTargets(body, true, 0.001, blocks, quads, targets);
+    benchmark::DoNotOptimize(targets.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(body.mesh.tetrahedra.size()));
+}
+BENCHMARK(projectiveLocalStep)->Arg(2)->Arg(3)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace slime
