@@ -170,7 +170,7 @@ int runSim(const SimOptions& options) {
   std::printf("sim: %.3f s, %lld steps of %g s, %s, %s, level %d (%zu vertices drawn, %zu simulated), %.4f ms/step, "
               "volume %.4f, aspect %.3f, min z %.2e m, KE %.2e J, rollbacks %zu%s\n",
               simulation.time(), static_cast<long long>(simulation.stepCount()), dt,
-              simulation.settings().slime.model.c_str(), settings.sim.integrator.c_str(),
+              simulation.settings().slime.model.c_str(), integratorName(simulation.integrator()).c_str(),
               simulation.settings().slime.level, simulation.positions().size(), simulation.state().size(), msPerStep,
               metrics.volumeRatio, metrics.aspect, metrics.minZ, metrics.kineticEnergy, rollbacks,
               nan ? ", NaN" : "");
@@ -187,6 +187,7 @@ int runSim(const SimOptions& options) {
         {"dt", dt},
         {"substeps", simulation.substepsPerStep()},
         {"integrator", settings.sim.integrator},
+        {"integrator_used", integratorName(simulation.integrator())},  // auto resolved (integrator_choice.h)
         {"level", simulation.settings().slime.level},
         {"model", simulation.settings().slime.model},
         {"vertices", simulation.positions().size()},

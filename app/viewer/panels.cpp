@@ -227,6 +227,7 @@ void simulationExtras(const Settings& draft, const PanelView& view, PanelRequest
   ImGui::EndDisabled();
   ImGui::SameLine();
   ImGui::Text("volume %.3f  height %.1f mm", view.metrics.volumeRatio, view.metrics.height * 1000.0);
+  if (draft.sim.integrator == "auto") ImGui::Text("auto steps with %s", view.integrator.c_str());
 }
 
 // The traced image's scale and the adaptive resolution's target frame rate (0: off), which the user

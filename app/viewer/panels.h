@@ -50,6 +50,7 @@ struct PanelView {
   // left out (inactiveReason, panel_fields.h). Null: judged from the draft.
   const Settings* shown = nullptr;
   std::vector<HandView> hands{};  // hand 0 (left-drag) and hand 1 (Ctrl+left-drag)
+  std::string integrator{};      // the one stepping the slime (sim.integrator with auto resolved)
 };
 
 // Width of the column for a display of this width, in window pixels.

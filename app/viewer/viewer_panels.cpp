@@ -46,7 +46,7 @@ PanelRequests Viewer::drawPanelsAndOverlay(const GrabMarks& marks) {
   draft_ = settings_;
   copyReloadFields(wanted_, draft_);
   const PanelView view{stats_,       metrics_,    editError_, errorGroup_, differingReloadFields(draft_, built_),
-                       fileMessage_, fileFailed_, &settings_, marks.views};
+                       fileMessage_, fileFailed_, &settings_, marks.views, integratorName(simulation_.integrator())};
   const PanelRequests requests = drawPanels(draft_, scenePath_, view);
   if (showHelp_) drawHelpOverlay(requests.columnWidth);
 

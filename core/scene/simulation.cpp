@@ -3,6 +3,7 @@
 #include "core/integrators/divergence.h"
 #include "core/scene/floor_contact.h"
 #include "core/scene/grab.h"
+#include "core/scene/integrator_choice.h"
 #include "core/scene/level_of_detail.h"
 #include "core/membrane/volume.h"
 #include "core/bulk/element_pass.h"
@@ -114,7 +115,7 @@ void Simulation::applySettings(const Settings& settings) {
 }
 
 void Simulation::rebuildModels() {
-  integrator_ = parseIntegrator(settings_.sim.integrator);
+  integrator_ = chooseIntegrator(settings_);
   const glm::dvec3 gravity{0.0, 0.0, -settings_.sim.gravity};
   if (bulk_) {
     // The Maxwell state moves between the projective solver's stretches U_v and the body's metrics G_v.
@@ -321,15 +322,14 @@ void Simulation::bulkAccelerations(const std::vector<glm::dvec3>& x, const std::
   for (std::size_t i = 0; i < a.size(); ++i) a[i] = w[i] > 0.0 ? a[i] * w[i] + gravity : glm::dvec3(0.0);
 }
 
-// The bulk body's substep. symplectic_euler: v += h a(x), the dampers exactly, x += h v; explicit_euler
-// and rk4 integrate the same accelerations, dampers included, through integrators.h. Then the floor on
-// every node and the volume projection, which leaves the nodes on the floor where they are (projective's:
-// on the drawn surface's floor; the drawn surface's own contact follows once per step).
+// The bulk body's substep. symplectic_euler: v += h a(x), the dampers exactly, x += h v; explicit_euler and rk4
+// integrate the same accelerations, dampers included, through integrators.h. Then the floor on every node and the
+// volume projection, which leaves the nodes on the floor where they are (projective's: on the drawn surface's
+// floor; the drawn surface's own contact follows once per step).
 void Simulation::bulkSubstep(double h) {
   ParticleState& state = bulkBody_.state;
-  // The sticky floor reads a stuck node's pull from the kick-drift step's Δx = h²F/m; the projective
-  // solver's implicit step is not that, and holding its nodes back made it roll back (21 times in a
-  // two-hand pull at 6000 Pa), so it has no adhesion yet.
+  // The sticky floor reads a stuck node's pull from the kick-drift step's Δx = h²F/m; projective's implicit step
+  // is not that, and holding its nodes back made it roll back (21 times in a two-hand pull at 6000 Pa): no adhesion.
   const double adhesion = integrator_ == Integrator::Projective ? 0.0 : settings_.slime.adhesion;
   const double friction = settings_.slime.friction;
   bool floorDone = false;  // the floor contact on every node, fused with the drift below

@@ -118,6 +118,7 @@ class Simulation {
   double volume() const;
   int substepsPerStep() const;  // sim.substeps times the guard's refinement after rollbacks
   int lastSolverIterations() const { return lastSolverIterations_; }  // CG iterations (implicit_euler)
+  Integrator integrator() const { return integrator_; }  // the one stepping (sim.integrator, auto resolved)
   // Substeps are at least what the integrator needs to stay stable at this level and material
   // (stability.h); off: exactly sim.substeps, so tests and benchmarks can watch a method blow up.
   void setAutomaticSubsteps(bool automatic);

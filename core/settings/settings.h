@@ -84,7 +84,7 @@ struct RenderSettings {
 
 struct SimSettings {
   double dt = 0.001;                       // fixed time step, s
-  std::string integrator = "symplectic_euler";  // explicit_euler | symplectic_euler | rk4 | implicit_euler | xpbd | projective
+  std::string integrator = "auto";  // auto (integrator_choice.h) | explicit_euler | symplectic_euler | rk4 | implicit_euler | xpbd | projective
   int substeps = 1;                        // substeps per step (xpbd, projective)
   int iterations = 1;                      // projective: local/global iterations per substep
   double gravity = 9.81;                   // |g|, m/s^2, pointing along -z

@@ -149,8 +149,9 @@ void forEachField(S& s, Visitor&& visitor) {
   // Simulation
   visit("sim.dt", s.sim.dt, Limits{1e-6, 0.01, "s"}, "fixed time step");
   visit("sim.integrator", s.sim.integrator,
-        Choices{"explicit_euler", "symplectic_euler", "rk4", "implicit_euler", "xpbd", "projective"},
-        "time integrator");
+        Choices{"auto", "explicit_euler", "symplectic_euler", "rk4", "implicit_euler", "xpbd", "projective"},
+        "time integrator (auto: symplectic_euler, or projective for a bulk slime whose slowest jiggle is over 30 Hz, "
+        "too fast for 60 frames a second to show)");
   visit("sim.substeps", s.sim.substeps, Limits{1, 1000, "substeps"}, "substeps per step (xpbd, projective)");
   visit("sim.iterations", s.sim.iterations, Limits{1, 100, "iterations"},
         "projective: local/global iterations per substep (more: less numerical damping, more cost)");

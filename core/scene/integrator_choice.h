@@ -1,0 +1,28 @@
+// sim.integrator=auto, the default: which integrator steps the slime (issue 27).
+//
+// symplectic_euler keeps the slime's jiggle (numerical damping ζ ~ 1e-5, Lamb's frequencies within
+// 1–4 %), but its substeps grow as √(G/ρ): a 100 kPa slime needs 7 a millisecond, a 100 kPa one of
+// 10 g needs 34. projective (backward Euler) costs the same whatever the material, and damps a mode ω by
+// ζ ≈ ωh/2. So auto takes projective where that damping cannot be seen: for a bulk slime whose slowest
+// jiggle, Lamb's torsional n = 2 mode of the rest ball (lamb_sphere.h), is faster than half the
+// viewer's 60 frames a second (Nyquist: a faster swing cannot be shown, only aliased); everywhere else
+// symplectic_euler. The default slime jiggles at 10.9 Hz; a modulus above about 9 kPa at the default
+// mass, or a mass below about 35 g at the default modulus, crosses 30 Hz.
+#pragma once
+
+#include "core/integrators/integrators.h"
+#include "core/settings/settings.h"
+
+namespace slime {
+
+// Half of 60 frames a second: the fastest swing a display at that rate can show.
+constexpr double kShownJiggleHz = 30.0;
+
+// Lamb's torsional n = 2 frequency, Hz, of the rest ball: η c_s / (2πR), c_s = √(G/ρ) with the
+// instantaneous modulus G and ρ the mass over the ball's volume.
+double slowestJiggleHz(const SlimeSettings& slime);
+
+// sim.integrator, with "auto" resolved as above; another name is parsed as it is (parseIntegrator).
+Integrator chooseIntegrator(const Settings& settings);
+
+}  // namespace slime
