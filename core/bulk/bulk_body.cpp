@@ -45,6 +45,22 @@ bool mayTouchFloor(const std::vector<glm::dvec3>& x, const Triangle& triangle) {
   return !(lowest > 0.0 && lowest * lowest > 0.25 * spanSquared);
 }
 
+// visit(t, w, z) for each drawn vertex over a surface triangle that may touch the floor: the element
+// map's nodes t and weights w, and the vertex's height z (read when it is visited, so a visit that
+// moves nodes is seen by the next).
+template <typename Visit>
+void forEachDrawnVertexNearFloor(const BulkBody& body, Visit&& visit) {
+  const std::vector<glm::dvec3>& x = body.state.positions;
+  for (std::size_t s = 0; s < body.mesh.surface.size(); ++s) {
+    if (!mayTouchFloor(x, body.mesh.surface[s])) continue;
+    for (std::uint32_t vertex : body.embedding.verticesOfSurfaceTriangle[s]) {
+      const Tetrahedron& t = body.embedding.nodes[vertex];
+      const glm::dvec4& w = body.embedding.weights[vertex];
+      visit(t, w, w.x * x[t.x].z + w.y * x[t.y].z + w.z * x[t.z].z + w.w * x[t.w].z);
+    }
+  }
+}
+
 }  // namespace
 
 BulkBody buildBulkBody(const SlimeSettings& slime) {
@@ -241,54 +257,39 @@ void relaxBulk(BulkBody& body, double dt) {
 
 std::size_t resolveDrawnFloorContact(BulkBody& body, double friction) {
   ParticleState& state = body.state;
-  const SurfaceEmbedding& embedding = body.embedding;
-  const std::vector<glm::dvec3>& x = state.positions;
   std::size_t touched = 0;
-  for (std::size_t s = 0; s < body.mesh.surface.size(); ++s) {
-    if (!mayTouchFloor(x, body.mesh.surface[s])) continue;
-    for (std::uint32_t vertex : embedding.verticesOfSurfaceTriangle[s]) {
-      // The element map's vertex (4 terms), not the smooth one the drawn surface shows (~45 terms: 6×
-      // the step's cost at level 6, and lifting ~45 nodes per vertex in one pass left drawn vertices
-      // 0.95 mm under the floor in the torture runs). The smooth map's vertices are set on the floor
-      // where they dip under it when placed (liftOntoFloor, surface_embedding.h).
-      const Tetrahedron& t = embedding.nodes[vertex];
-      const glm::dvec4& w = embedding.weights[vertex];
-      const double z = w.x * x[t.x].z + w.y * x[t.y].z + w.z * x[t.z].z + w.w * x[t.w].z;
-      if (z >= 0.0) continue;
-      // Only the nodes with positive weights lift the vertex (a node the affine map extrapolates
-      // with a negative weight would be pushed down); lifted nodes lose their downward speed.
-      double stiffness = 0.0;  // Σ w_j² / m_j over those nodes
-      for (int j = 0; j < 4; ++j)
-        if (w[j] > 0.0) stiffness += w[j] * w[j] * state.inverseMasses[t[j]];
-      if (stiffness <= 0.0) continue;
-      ++touched;
-      const double lift = -z / stiffness;
-      for (int j = 0; j < 4; ++j) {
-        if (w[j] <= 0.0 || state.inverseMasses[t[j]] == 0.0) continue;
-        state.positions[t[j]].z += lift * w[j] * state.inverseMasses[t[j]];
-        stopFallWithFriction(state.velocities[t[j]], friction);
-      }
+  // The element map's vertex (4 terms), not the smooth one the drawn surface shows (~45 terms: 6× the
+  // step's cost at level 6, and lifting ~45 nodes per vertex in one pass left drawn vertices 0.95 mm
+  // under the floor in the torture runs). The smooth map's vertices are set on the floor where they dip
+  // under it when placed (liftOntoFloor, surface_embedding.h).
+  forEachDrawnVertexNearFloor(body, [&](const Tetrahedron& t, const glm::dvec4& w, double z) {
+    if (z >= 0.0) return;
+    // Only the nodes with positive weights lift the vertex (a node the affine map extrapolates
+    // with a negative weight would be pushed down); lifted nodes lose their downward speed.
+    double stiffness = 0.0;  // Σ w_j² / m_j over those nodes
+    for (int j = 0; j < 4; ++j)
+      if (w[j] > 0.0) stiffness += w[j] * w[j] * state.inverseMasses[t[j]];
+    if (stiffness <= 0.0) return;
+    ++touched;
+    const double lift = -z / stiffness;
+    for (int j = 0; j < 4; ++j) {
+      if (w[j] <= 0.0 || state.inverseMasses[t[j]] == 0.0) continue;
+      state.positions[t[j]].z += lift * w[j] * state.inverseMasses[t[j]];
+      stopFallWithFriction(state.velocities[t[j]], friction);
     }
-  }
+  });
   return touched;
 }
 
 void drawnFloorHeights(const BulkBody& body, std::vector<double>& heights) {
   const std::vector<glm::dvec3>& x = body.state.positions;
-  const SurfaceEmbedding& embedding = body.embedding;
   heights.assign(x.size(), 0.0);
-  for (std::size_t s = 0; s < body.mesh.surface.size(); ++s) {
-    if (!mayTouchFloor(x, body.mesh.surface[s])) continue;
-    for (std::uint32_t vertex : embedding.verticesOfSurfaceTriangle[s]) {
-      const Tetrahedron& t = embedding.nodes[vertex];
-      const glm::dvec4& w = embedding.weights[vertex];
-      const double z = w.x * x[t.x].z + w.y * x[t.y].z + w.z * x[t.z].z + w.w * x[t.w].z;
-      int owner = 0;
-      for (int j = 1; j < 4; ++j)
-        if (w[j] > w[owner]) owner = j;
-      heights[t[owner]] = std::max(heights[t[owner]], x[t[owner]].z - std::max(z, 0.0) / w[owner]);
-    }
-  }
+  forEachDrawnVertexNearFloor(body, [&](const Tetrahedron& t, const glm::dvec4& w, double z) {
+    int owner = 0;
+    for (int j = 1; j < 4; ++j)
+      if (w[j] > w[owner]) owner = j;
+    heights[t[owner]] = std::max(heights[t[owner]], x[t[owner]].z - std::max(z, 0.0) / w[owner]);
+  });
 }
 
 double bulkHighestFrequency(const BulkBody& body, BulkScratch& scratch, int iterations) {
