@@ -22,7 +22,7 @@ long_physics='Torture|DefaultsHoldLevel6|DefaultsHold.BallFallsSettlesSoftAndRou
 # Seconds of simulated physics each, 12-40 s apiece under ASan (F25): the press, the pinch, the drop
 # with two other integrators, Lamb's modes, energy, the stiffer dampers, the sticky floor. The code they
 # drive runs under ASan in the short tests (Hands, Projective, BulkSlime's others, the scenarios).
-long_under_asan='BulkSlime\.(APressLeaves|HeldUpByAPinch|Lamb|EnergyIsKept|FallsJiggles)|DefaultBall\.ComesToRest|StifferDamper\.|FloorAdhesion\.TheStickyDefaultStretches|ProjectiveStiffRest\.'
+long_under_asan='BulkSlime\.(APressLeaves|HeldUpByAPinch|Lamb|EnergyIsKept|FallsJiggles)|DefaultBall\.ComesToRest|StifferDamper\.|FloorAdhesion\.TheStickyDefaultStretches|ProjectiveStiffRest\.|Projective\.StiffRestHeight'
 # The render tests whose time is a single-threaded brute-force oracle (every pixel or ray against every
 # triangle) over classes that start no thread (the pencil grid, the exit walk, the screen footprint) or
 # whose threaded part (SlimeGeometry::update) every renderer test runs too: under ThreadSanitizer they

@@ -139,7 +139,13 @@ TEST_P(ProjectiveLocal, TargetsRotationsAndFlowEqualTheScalarStepInDouble) {
   const ViscoelasticMaterial& m = body.material;
   const double scale = (2.0 * (m.longTermShear + m.maxwellShear) + 3.0 * m.lameLambda) *
                        std::pow(body.restVolume / static_cast<double>(tetrahedra), 2.0 / 3.0);
-  const double tolerance = std::max(1e-11, 64.0 * std::numeric_limits<ProjectiveReal>::epsilon());
+  // Float rounding, amplified by the polar decomposition of the twisted, partly inverted elements: the worst node
+  // is 0.36 × 64 ε of the scale at -O3 but 5.8 × 64 ε in the -O1 sanitizer build (other rounding, same code);
+  // 1024 ε (1.2e-4) holds both. A dropped term of the target is off by orders more (testing.md).
+  const double tolerance = std::max(1e-11, 1024.0 * std::numeric_limits<ProjectiveReal>::epsilon());
+  // The rotation and the Maxwell stretch, unit-sized: 1e-5 held at -O3, but the -O1 sanitizer build put one
+  // quaternion of the twist's most deformed element 1.8e-5 off; one polar sweep instead of two is off by more.
+  const double kStateTolerance = 1e-4;
   for (const double amount : {0.6, 0.7, 0.75}) {  // from R = I, then warm-started twice
     body.state.positions = twisted(rest, amount);
     ASSERT_GT(invertedElements(body), 0u);
@@ -152,9 +158,9 @@ TEST_P(ProjectiveLocal, TargetsRotationsAndFlowEqualTheScalarStepInDouble) {
       const ProjectiveBlock& block = blocks[e / kTetLanes];
       const std::size_t lane = e % kTetLanes;
       for (int k = 0; k < 4; ++k)
-        EXPECT_NEAR(block.rotation[k][lane], states[e].q[k], 1e-5) << "tetrahedron " << e << ", twist " << amount;
+        EXPECT_NEAR(block.rotation[k][lane], states[e].q[k], kStateTolerance) << "tetrahedron " << e << ", twist " << amount;
       for (int k = 0; k < 6; ++k)
-        EXPECT_NEAR(block.maxwellStretch[k][lane] + (k < 3 ? 1.0 : 0.0), states[e].u[k], 1e-5) << "tetrahedron " << e << ", twist " << amount;
+        EXPECT_NEAR(block.maxwellStretch[k][lane] + (k < 3 ? 1.0 : 0.0), states[e].u[k], kStateTolerance) << "tetrahedron " << e << ", twist " << amount;
     }
   }
 }
