@@ -19,9 +19,6 @@ constexpr int kContactRounds = 4;          // active-set rounds of the floor per
 // every node's, resolution 4 about 350; a node past the budget is put on the floor after the solve.
 constexpr std::size_t kColumnBudget = std::size_t{8} << 20;
 
-// The symmetric stretch entries 00, 11, 22, 01, 02, 12.
-constexpr int kSym[3][3] = {{0, 3, 4}, {3, 1, 5}, {4, 5, 2}};
-
 }  // namespace
 
 struct ProjectiveSolver::Contact {
@@ -67,7 +64,7 @@ void ProjectiveSolver::loadMaxwell(const BulkBody& body) {
       const Eigen::Matrix3d u = eigen.eigenvectors() * roots.asDiagonal() * eigen.eigenvectors().transpose();
       for (int r = 0; r < 3; ++r)
         for (int c = r; c < 3; ++c)
-          blocks_[block].maxwellStretch[kSym[r][c]][lane] = static_cast<ProjectiveReal>(u(r, c) - (r == c ? 1.0 : 0.0));
+          blocks_[block].maxwellStretch[kSymmetricEntry[r][c]][lane] = static_cast<ProjectiveReal>(u(r, c) - (r == c ? 1.0 : 0.0));
     }
 }
 
@@ -77,7 +74,7 @@ void ProjectiveSolver::storeMaxwell(BulkBody& body) const {
     for (std::size_t lane = 0; lane < kTetLanes; ++lane) {
       glm::dmat3 u;
       for (int c = 0; c < 3; ++c)
-        for (int r = 0; r < 3; ++r) u[c][r] = blocks_[block].maxwellStretch[kSym[r][c]][lane] + (r == c ? 1.0 : 0.0);
+        for (int r = 0; r < 3; ++r) u[c][r] = blocks_[block].maxwellStretch[kSymmetricEntry[r][c]][lane] + (r == c ? 1.0 : 0.0);
       const glm::dmat3 g = u * u;
       const double det = glm::determinant(g);
       const glm::dmat3 b = det > 0.0 ? glm::inverse(g) : glm::dmat3(1.0);

@@ -28,9 +28,6 @@ inline Real inverseCubeRootNearOneMinusOne(Real e) {
   return rho + (1 + rho) * series(left);
 }
 
-// The symmetric stretch entries 00, 11, 22, 01, 02, 12.
-constexpr int kSym[3][3] = {{0, 3, 4}, {3, 1, 5}, {4, 5, 2}};
-
 // The material's constants of the target, in Real: μ∞, μ1 and 3λ/2, each × −(2μ + 3λ)/(μ + 3λ/2), so
 // that p·forceMap is w_e p_e Dm⁻ᵀ (forceMap = −V0 Dm⁻ᵀ, w_e = V0 (2μ + 3λ)).
 struct TargetWeights {
@@ -153,7 +150,7 @@ void blockTargets(const TargetWeights& k, const Real (&shape)[9][kTetLanes], con
     for (int col = 0; col < 3; ++col)
       #pragma GCC unroll 9
       for (int r = 0; r < 3; ++r) {
-        const Real rd = rot[r] * d[kSym[0][col]] + rot[3 + r] * d[kSym[1][col]] + rot[6 + r] * d[kSym[2][col]];
+        const Real rd = rot[r] * d[kSymmetricEntry[0][col]] + rot[3 + r] * d[kSymmetricEntry[1][col]] + rot[6 + r] * d[kSymmetricEntry[2][col]];
         const int e = 3 * col + r;
         p[e] = a * rot[e] + k.maxwellShear * rd + c * f[e] + step * cof[e];
       }

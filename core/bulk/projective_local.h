@@ -23,9 +23,9 @@ namespace slime {
 using ProjectiveReal = float;
 
 // Per block of kTetLanes tetrahedra: the rotation of F as a unit quaternion (w, x, y, z; warm start
-// of the next polar decomposition) and the Maxwell rest stretch as U_v − I (symmetric: 00, 11, 22, 01,
-// 02, 12): a step's flow moves U_v by ~1e-6, which float keeps in U_v − I but rounds away in U_v
-// (a relaxed twist stopped recovering at 0.1 % of it).
+// of the next polar decomposition) and the Maxwell rest stretch as U_v − I (symmetric, in tet_lanes.h's
+// kSymmetricEntry order: 00, 11, 22, 01, 02, 12): a step's flow moves U_v by ~1e-6, which float keeps in
+// U_v − I but rounds away in U_v (a relaxed twist stopped recovering at 0.1 % of it).
 struct ProjectiveBlock {
   alignas(64) ProjectiveReal rotation[4][kTetLanes] = {};
   alignas(64) ProjectiveReal maxwellStretch[6][kTetLanes] = {};
