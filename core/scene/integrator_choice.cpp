@@ -17,7 +17,10 @@ double slowestJiggleHz(const SlimeSettings& slime) {
 
 Integrator chooseIntegrator(const Settings& settings) {
   if (settings.sim.integrator != "auto") return parseIntegrator(settings.sim.integrator);
-  if (settings.slime.model == "bulk" && slowestJiggleHz(settings.slime) > kShownJiggleHz) return Integrator::Projective;
+  const SlimeSettings& slime = settings.slime;
+  if (slime.model == "bulk" && slowestJiggleHz(slime) > kShownJiggleHz &&
+      slime.adhesion <= kUnseenAdhesionStrain * slime.modulus)
+    return Integrator::Projective;
   return Integrator::SymplecticEuler;
 }
 

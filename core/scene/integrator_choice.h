@@ -6,8 +6,12 @@
 // ζ ≈ ωh/2. So auto takes projective where that damping cannot be seen: for a bulk slime whose slowest
 // jiggle, Lamb's torsional n = 2 mode of the rest ball (lamb_sphere.h), is faster than half the
 // viewer's 60 frames a second (Nyquist: a faster swing cannot be shown, only aliased); everywhere else
-// symplectic_euler. The default slime jiggles at 10.9 Hz; a modulus above about 9 kPa at the default
-// mass, or a mass below about 35 g at the default modulus, crosses 30 Hz.
+// symplectic_euler. Projective has no sticky floor yet, so auto keeps symplectic_euler where the floor's
+// adhesion σ_a could still be seen: a stuck patch strains the body by about σ_a / G, and under a tenth
+// (kUnseenAdhesionStrain) it neither pulls a strand nor spreads the base. The default slime jiggles at
+// 10.9 Hz; a modulus above about 9 kPa, or a mass below about 35 g, crosses 30 Hz; with the default
+// adhesion (8,000 Pa) auto takes projective from 80 kPa up (a 10 g slime at 1200 Pa stays explicit: its
+// sticky floor stretches it when it is dragged).
 #pragma once
 
 #include "core/integrators/integrators.h"
@@ -17,6 +21,8 @@ namespace slime {
 
 // Half of 60 frames a second: the fastest swing a display at that rate can show.
 constexpr double kShownJiggleHz = 30.0;
+// The strain σ_a / G under which the sticky floor's pull on a slime cannot be seen.
+constexpr double kUnseenAdhesionStrain = 0.1;
 
 // Lamb's torsional n = 2 frequency, Hz, of the rest ball: η c_s / (2πR), c_s = √(G/ρ) with the
 // instantaneous modulus G and ρ the mass over the ball's volume.

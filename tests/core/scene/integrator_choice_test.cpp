@@ -1,5 +1,5 @@
 // sim.integrator=auto (integrator_choice.h): symplectic_euler where the slime's slowest jiggle can be
-// seen at 60 frames a second, projective where it is faster than 30 Hz.
+// seen at 60 frames a second or the sticky floor could be, projective where neither can.
 #include "simulation_fixture.h"
 #include "core/scene/integrator_choice.h"
 #include "core/scene/simulation.h"
@@ -28,16 +28,17 @@ TEST(IntegratorChoice, SlowestJiggleIsLambsTorsionalModeOfTheRestBall) {
   EXPECT_NEAR(slowestJiggleHz(slime), 2.0 * base, 1e-9 * base);
 }
 
-Integrator autoFor(double modulus, double mass, const char* model = "bulk") {
+Integrator autoFor(double modulus, double mass, const char* model = "bulk", double adhesion = 0.0) {
   Settings settings = defaultSettings();
   EXPECT_EQ(settings.sim.integrator, "auto");
   settings.slime.modulus = modulus;
   settings.slime.mass = mass;
+  settings.slime.adhesion = adhesion;
   settings.slime.model = model;
   return chooseIntegrator(settings);
 }
 
-TEST(IntegratorChoice, AutoTakesProjectiveOnlyWhereTheJiggleIsTooFastToShow) {
+TEST(IntegratorChoice, AutoTakesProjectiveOnlyWhereNeitherTheJiggleNorTheStickyFloorShows) {
   EXPECT_EQ(autoFor(1200.0, 0.268), Integrator::SymplecticEuler);   // 10.9 Hz
   EXPECT_EQ(autoFor(8000.0, 0.268), Integrator::SymplecticEuler);   // 28.1 Hz
   EXPECT_EQ(autoFor(10000.0, 0.268), Integrator::Projective);       // 31.5 Hz
@@ -45,6 +46,10 @@ TEST(IntegratorChoice, AutoTakesProjectiveOnlyWhereTheJiggleIsTooFastToShow) {
   EXPECT_EQ(autoFor(1200.0, 0.04), Integrator::SymplecticEuler);    // 28.2 Hz
   EXPECT_EQ(autoFor(1200.0, 0.01), Integrator::Projective);         // 56.4 Hz
   EXPECT_EQ(autoFor(100000.0, 0.268, "membrane"), Integrator::SymplecticEuler);  // projective is the bulk body's only
+  // The default sticky floor (8,000 Pa) stays where it strains the body by more than a tenth.
+  EXPECT_EQ(autoFor(1200.0, 0.01, "bulk", 8000.0), Integrator::SymplecticEuler);   // 6.7
+  EXPECT_EQ(autoFor(60000.0, 0.268, "bulk", 8000.0), Integrator::SymplecticEuler); // 0.13
+  EXPECT_EQ(autoFor(100000.0, 0.268, "bulk", 8000.0), Integrator::Projective);     // 0.08
   Settings named = defaultSettings();
   named.slime.modulus = 100000.0;
   named.sim.integrator = "rk4";  // a name is taken as it is, whatever the material
