@@ -1,11 +1,11 @@
 // `slime bench render|physics|accuracy|material`: the benchmarks behind docs/bench (scripts/bench.sh
 // runs them all and redraws the charts). Each prints a table, and writes every figure with --json/--csv.
-#include "app/bench/bench_accuracy.h"
-#include "app/bench/bench_caustics.h"
-#include "app/bench/bench_material.h"
-#include "app/bench/bench_physics.h"
-#include "app/bench/bench_render.h"
-#include "app/bench/bench_report.h"
+#include "app/bench/render/bench_accuracy.h"
+#include "app/bench/render/bench_caustics.h"
+#include "app/bench/material/bench_material.h"
+#include "app/bench/physics/bench_physics.h"
+#include "app/bench/render/bench_render.h"
+#include "app/bench/report/bench_report.h"
 #include "app/cli/commands.h"
 #include "core/integrators/integrators.h"
 #include "core/settings/settings_io.h"

@@ -2,7 +2,7 @@
 // `--report` JSON at exit.
 #include "app/viewer/viewer.h"
 
-#include "app/bench/bench_report.h"
+#include "app/bench/report/bench_report.h"
 #include "app/viewer/panel_fields.h"
 #include "core/settings/file_output.h"
 #include "core/settings/settings_io.h"

@@ -22,7 +22,7 @@ namespace slime {
 
 // Sagitta in pixels below which the mesh looks like the sphere. Measured by `slime bench accuracy`
 // at the default view (smooth normals, the sphere at the same depth as reference, the visibility rule
-// of app/bench/bench_accuracy.h): level 4 (sagitta 0.136 px) is invisible, level 3 (0.54 px) is not. A
+// of app/bench/render/bench_accuracy.h): level 4 (sagitta 0.136 px) is invisible, level 3 (0.54 px) is not. A
 // quarter pixel sits between the two with margin on both sides.
 constexpr double kInvisibleSagittaPixels = 0.25;
 

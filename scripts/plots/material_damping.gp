@@ -1,4 +1,4 @@
-# What an integrator's speed costs in jiggle (`slime bench material`, app/bench/bench_damping.h,
+# What an integrator's speed costs in jiggle (`slime bench material`, app/bench/material/bench_damping.h,
 # docs/material.md): the free elastic ball started in Lamb's n = 2 torsional mode, nothing physical
 # dissipating. Left, the damping ratio ζ the integrator adds against sim.dt, with backward Euler's closed
 # form ln(1 + (ωh)²)/(2ωh) dashed (what projective dynamics, an implicit Euler step, tends to as its

@@ -1,4 +1,4 @@
-# The tensile test (`slime bench material`, app/bench/bench_tensile.h, docs/material.md), two charts:
+# The tensile test (`slime bench material`, app/bench/material/bench_tensile.h, docs/material.md), two charts:
 # left, a tetrahedral cylinder of the slime's material, its ends held and pulled apart at three constant
 # strain rates, its nominal stress against the strain of its middle half (solid), with the standard
 # linear solid's closed form σ = E∞ε + E₁ε̇τ(1 − e^{−ε/(ε̇τ)}) dashed and the uniform material point dotted; right, the slime itself pulled apart by two hands at three

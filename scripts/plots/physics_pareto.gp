@@ -1,5 +1,5 @@
 # Accuracy against cost: RMS distance of the drawn vertices from a much smaller-step RK4 reference over
-# the pinch in the air (no contact: see app/bench/bench_trajectory_error.h for why), against CPU seconds
+# the pinch in the air (no contact: see app/bench/physics/bench_trajectory_error.h for why), against CPU seconds
 # per simulated second; one point per substep h (labelled in ms), and a ringed point for each integrator
 # at the program's own automatic substeps. Lower left is better. Left: the bulk body; right: the seed's
 # membrane. Reads physics_accuracy.csv.

@@ -1,5 +1,5 @@
 # The stability maps: the largest time step at which each integrator does not blow up (bisection on
-# the criterion of app/bench/bench_stability.h: one substep, automatic substeps off), as points, beside
+# the criterion of app/bench/physics/bench_stability.h: one substep, automatic substeps off), as points, beside
 # the limit the simulation predicts for itself (Simulation::largestStableStep, from ω_max by power
 # iteration), as dashed lines of the same colour. Left: the bulk body against its shear modulus;
 # right: the seed's membrane against its spring stiffness. Reads physics_stability.csv.

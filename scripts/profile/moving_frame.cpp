@@ -7,7 +7,7 @@
 //   perf record -F 2000 build/moving_frame 40 734 564 2 && perf report --no-children --sort dso,symbol
 // Arguments: frames, width, height, threads, [PNG of the last frame]. Prints the median wall and CPU
 // (process, all threads) time per frame: CPU time is the steadier figure on a shared machine.
-#include "app/bench/bench_bvh.h"
+#include "app/bench/render/bench_bvh.h"
 #include "core/scene/icosphere.h"
 #include "core/settings/settings_io.h"
 #include "render/image/image_io.h"

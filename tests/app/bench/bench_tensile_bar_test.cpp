@@ -1,4 +1,4 @@
-// The meshed bar of the tensile test (app/bench/bench_tensile_bar.h) against oracles written here:
+// The meshed bar of the tensile test (app/bench/material/bench_tensile_bar.h) against oracles written here:
 //  - the cylinder's mesh: every tetrahedron positive, the volume the polygon disc's area × length, and
 //    conforming (each face shared by at most two tetrahedra; the free faces exactly the ends' triangles
 //    and the side's quads, two each);
@@ -7,8 +7,8 @@
 //    half of the bar (an extensometer) — and faster pulls need more force;
 //  - the clamps: a purely elastic bar's middle is Young's modulus with lateral contraction −νε, while its
 //    grips' strain reads it stiffer by an end effect that halves when the bar is twice as long.
-#include "app/bench/bench_tensile.h"
-#include "app/bench/bench_tensile_bar.h"
+#include "app/bench/material/bench_tensile.h"
+#include "app/bench/material/bench_tensile_bar.h"
 #include "core/settings/settings_io.h"
 #include "sls_oracle.h"
 

@@ -1,4 +1,4 @@
-// The tensile test (app/bench/bench_tensile.h) against oracles written here, not by the bench:
+// The tensile test (app/bench/material/bench_tensile.h) against oracles written here, not by the bench:
 //  - the standard linear solid's constant-strain-rate response, σ = E∞ε + E₁ε̇τ(1 − e^{−ε/(ε̇τ)})
 //    with E = 2G(1 + ν) (issue 29, item 5), within 5 % at small strain, at three rates;
 //  - the limits that closed form has: a purely elastic material (no Maxwell branch) at any rate is
@@ -6,7 +6,7 @@
 //  - the bar's sides are free (the lateral stress is zero), so its lateral stretch is 1 − νε at small strain;
 //  - the slime pulled by two hands: a faster pull needs more force, nothing diverges, the volume holds
 //    (BenchTensileLong: seconds of physics).
-#include "app/bench/bench_tensile.h"
+#include "app/bench/material/bench_tensile.h"
 #include "core/settings/settings_io.h"
 #include "sls_oracle.h"
 

@@ -1,10 +1,10 @@
 // The benchmarks run end to end at a tiny size so their code cannot rot: every JSON field the charts
 // and the README read is there and sane. Nothing about timing is asserted beyond "positive" and the
 // ratios being the quotients of the times they name.
-#include "app/bench/bench_accuracy.h"
-#include "app/bench/bench_material.h"
-#include "app/bench/bench_physics.h"
-#include "app/bench/bench_render.h"
+#include "app/bench/render/bench_accuracy.h"
+#include "app/bench/material/bench_material.h"
+#include "app/bench/physics/bench_physics.h"
+#include "app/bench/render/bench_render.h"
 #include "core/settings/settings_io.h"
 
 #include <gtest/gtest.h>

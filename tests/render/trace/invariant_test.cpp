@@ -207,7 +207,7 @@ TEST(Invariant, FootprintHoldsEveryPixelTheSlimeChanges) {
 // The viewer skips tracing a slime whose vertices moved less than kInvisibleMotionPixels since it was
 // last drawn (core/scene/level_of_detail.h). Every vertex moved that far, each in its own random direction
 // (the worst for the normals), must be invisible by the rule the level of detail rests on
-// (app/bench/bench_accuracy.h: at most 1 % of the pixels off by more than 2 steps of 8-bit sRGB; with one
+// (app/bench/render/bench_accuracy.h: at most 1 % of the pixels off by more than 2 steps of 8-bit sRGB; with one
 // sample a pixel, the pixels whose centre a silhouette or a refracted plank edge crosses flip
 // whatever the move). A move of one pixel must show by the same rule.
 TEST(Invariant, MotionBelowTheRedrawThresholdDoesNotShow) {

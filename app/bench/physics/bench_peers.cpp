@@ -1,4 +1,4 @@
-#include "app/bench/bench_peers.h"
+#include "app/bench/physics/bench_peers.h"
 
 #include <spawn.h>
 #include <sys/resource.h>

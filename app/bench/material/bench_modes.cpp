@@ -1,4 +1,4 @@
-#include "app/bench/bench_modes.h"
+#include "app/bench/material/bench_modes.h"
 
 #include "core/bulk/lamb_sphere.h"
 

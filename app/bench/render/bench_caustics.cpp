@@ -1,4 +1,4 @@
-#include "app/bench/bench_caustics.h"
+#include "app/bench/render/bench_caustics.h"
 
 #include "core/scene/icosphere.h"
 #include "render/caustics/caustic_map.h"

@@ -1,4 +1,4 @@
-#include "app/bench/bench_ray_log.h"
+#include "app/bench/render/bench_ray_log.h"
 
 #include "core/scene/camera.h"
 #include "render/trace/embree_scene.h"

@@ -13,8 +13,8 @@
 //  - The integrators' numerical damping of Lamb's modes against the step (bench_damping.h).
 #pragma once
 
-#include "app/bench/bench_damping.h"
-#include "app/bench/bench_tensile.h"
+#include "app/bench/material/bench_damping.h"
+#include "app/bench/material/bench_tensile.h"
 #include "core/settings/settings.h"
 
 #include <glm/vec3.hpp>

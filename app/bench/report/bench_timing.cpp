@@ -1,4 +1,4 @@
-#include "app/bench/bench_timing.h"
+#include "app/bench/report/bench_timing.h"
 
 #include <algorithm>
 

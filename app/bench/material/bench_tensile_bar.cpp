@@ -1,4 +1,4 @@
-#include "app/bench/bench_tensile_bar.h"
+#include "app/bench/material/bench_tensile_bar.h"
 
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>

@@ -1,6 +1,6 @@
-#include "app/bench/bench_trajectory_error.h"
+#include "app/bench/physics/bench_trajectory_error.h"
 
-#include "app/bench/bench_timing.h"
+#include "app/bench/report/bench_timing.h"
 #include "core/scene/scenario.h"
 #include "core/scene/simulation.h"
 

@@ -1,6 +1,6 @@
-#include "app/bench/bench_embree_replay.h"
+#include "app/bench/render/bench_embree_replay.h"
 
-#include "app/bench/bench_timing.h"
+#include "app/bench/report/bench_timing.h"
 #include "render/trace/embree_util.h"
 
 #include <tbb/blocked_range.h>

@@ -1,8 +1,8 @@
-#include "app/bench/bench_bvh.h"
+#include "app/bench/render/bench_bvh.h"
 
-#include "app/bench/bench_embree_replay.h"
-#include "app/bench/bench_ray_log.h"
-#include "app/bench/bench_timing.h"
+#include "app/bench/render/bench_embree_replay.h"
+#include "app/bench/render/bench_ray_log.h"
+#include "app/bench/report/bench_timing.h"
 #include "core/scene/simulation.h"
 
 #include <glm/common.hpp>

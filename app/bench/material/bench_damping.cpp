@@ -1,8 +1,8 @@
-#include "app/bench/bench_damping.h"
+#include "app/bench/material/bench_damping.h"
 
-#include "app/bench/bench_material.h"
-#include "app/bench/bench_modes.h"
-#include "app/bench/bench_timing.h"
+#include "app/bench/material/bench_material.h"
+#include "app/bench/material/bench_modes.h"
+#include "app/bench/report/bench_timing.h"
 #include "core/bulk/lamb_sphere.h"
 #include "core/scene/simulation.h"
 

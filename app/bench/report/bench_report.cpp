@@ -1,4 +1,4 @@
-#include "app/bench/bench_report.h"
+#include "app/bench/report/bench_report.h"
 
 #include "core/settings/file_output.h"
 

@@ -1,4 +1,4 @@
-#include "app/bench/bench_tensile.h"
+#include "app/bench/material/bench_tensile.h"
 
 #include "core/scene/simulation.h"
 

@@ -1,11 +1,11 @@
-#include "app/bench/bench_render.h"
+#include "app/bench/render/bench_render.h"
 
-#include "app/bench/bench_bvh.h"
-#include "app/bench/bench_embree_replay.h"
-#include "app/bench/bench_progress.h"
-#include "app/bench/bench_ray_log.h"
-#include "app/bench/bench_report.h"
-#include "app/bench/bench_timing.h"
+#include "app/bench/render/bench_bvh.h"
+#include "app/bench/render/bench_embree_replay.h"
+#include "app/bench/report/bench_progress.h"
+#include "app/bench/render/bench_ray_log.h"
+#include "app/bench/report/bench_report.h"
+#include "app/bench/report/bench_timing.h"
 #include "render/trace/renderer.h"
 
 #include <algorithm>

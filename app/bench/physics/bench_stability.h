@@ -14,7 +14,7 @@
 // (dampers exact), h² ω² + 2 h c < 4 for the explicit Euler, (ω + c) dt < 2.78 for RK4.
 #pragma once
 
-#include "app/bench/bench_progress.h"
+#include "app/bench/report/bench_progress.h"
 #include "core/settings/settings.h"
 
 namespace slime {

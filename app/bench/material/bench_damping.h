@@ -7,7 +7,7 @@
 // per method (symplectic_euler, rk4, projective at 1, 3 and 10 iterations), mode and sim.dt.
 #pragma once
 
-#include "app/bench/bench_report.h"
+#include "app/bench/report/bench_report.h"
 #include "core/settings/settings.h"
 
 #include <nlohmann/json.hpp>

@@ -5,8 +5,8 @@
 // frame are replayed through each BVH: does refitting slow tracing down as the slime deforms?
 #pragma once
 
-#include "app/bench/bench_progress.h"
-#include "app/bench/bench_report.h"
+#include "app/bench/report/bench_progress.h"
+#include "app/bench/report/bench_report.h"
 #include "core/scene/icosphere.h"
 #include "core/settings/settings.h"
 

@@ -1,4 +1,4 @@
-#include "app/bench/bench_progress.h"
+#include "app/bench/report/bench_progress.h"
 
 #include <algorithm>
 #include <cstdio>

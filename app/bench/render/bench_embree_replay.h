@@ -4,7 +4,7 @@
 // renderer's scene of them).
 #pragma once
 
-#include "app/bench/bench_ray_log.h"
+#include "app/bench/render/bench_ray_log.h"
 #include "core/scene/icosphere.h"
 #include "render/trace/embree_scene.h"
 #include "render/slime/slime_geometry.h"

@@ -1,4 +1,4 @@
-#include "app/bench/bench_stability.h"
+#include "app/bench/physics/bench_stability.h"
 
 #include "core/scene/simulation.h"
 

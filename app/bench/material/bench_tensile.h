@@ -11,8 +11,8 @@
 //      opposite directions, at mid-height): the hands' pull against the extension of the held parts.
 #pragma once
 
-#include "app/bench/bench_report.h"
-#include "app/bench/bench_tensile_bar.h"
+#include "app/bench/report/bench_report.h"
+#include "app/bench/material/bench_tensile_bar.h"
 #include "core/bulk/viscoelastic.h"
 #include "core/settings/settings.h"
 
