@@ -1,10 +1,8 @@
+#include "core/bulk/eigen.h"  // first: see its header
 #include "core/bulk/projective_dynamics.h"
 
 #include "core/bulk/element_pass.h"
 
-#include <Eigen/Cholesky>
-#include <Eigen/Dense>
-#include <Eigen/Eigenvalues>
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 

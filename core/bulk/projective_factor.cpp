@@ -1,7 +1,5 @@
+#include "core/bulk/eigen.h"  // first: see its header
 #include "core/bulk/projective_factor.h"
-
-#include <Eigen/Sparse>
-#include <Eigen/SparseCholesky>
 
 #include <stdexcept>
 

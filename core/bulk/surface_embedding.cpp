@@ -1,6 +1,6 @@
+#include "core/bulk/eigen.h"  // first: see its header
 #include "core/bulk/surface_embedding.h"
 
-#include <Eigen/Dense>
 #include <glm/common.hpp>
 #include <glm/ext/vector_int3_sized.hpp>
 #include <glm/geometric.hpp>
@@ -155,7 +155,6 @@ void placeEmbedded(const SurfaceEmbedding& embedding, const std::vector<glm::dve
   // measurable at level 6 (20–28 ms either way, docs/physics.md); level 4 takes 0.15 ms.
   place(0, count);
 }
-
 
 void placeByElements(const SurfaceEmbedding& embedding, const std::vector<glm::dvec3>& body,
                      std::vector<glm::dvec3>& drawn) {
