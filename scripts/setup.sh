@@ -11,6 +11,6 @@ $SUDO apt-get install -y -qq --no-install-recommends \
   libglfw3-dev libimgui-dev libegl-dev libopengl-dev libgl-dev libgl1 libegl1 libegl-mesa0 libgl1-mesa-dri \
   libosmesa6-dev libtinygltf-dev libassimp-dev assimp-utils \
   libgtest-dev libgmock-dev libbenchmark-dev \
-  xvfb xauth xdotool x11-utils jq gnuplot-nox imagemagick ffmpeg \
+  xvfb xauth xdotool x11-utils jq gnuplot-nox imagemagick ffmpeg python3 \
   clang libclang-rt-14-dev libbullet-dev libeigen3-dev >/dev/null
 echo "setup: dependencies installed"
