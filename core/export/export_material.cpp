@@ -14,7 +14,8 @@ constexpr double kDarkest = 1e-3;  // as render/trace/optics.cpp: a black channe
 
 glm::dvec3 ExportMaterial::absorptionPerMetre() const {
   if (attenuationDistance <= 0.0) return glm::dvec3(0.0);
-  return {-std::log(attenuationColor.x) / attenuationDistance, -std::log(attenuationColor.y) / attenuationDistance,
+  return {-std::log(attenuationColor.x) / attenuationDistance,
+          -std::log(attenuationColor.y) / attenuationDistance,
           -std::log(attenuationColor.z) / attenuationDistance};
 }
 

@@ -16,12 +16,15 @@
 namespace slime {
 
 struct ExportMaterial {
-  glm::dvec3 color{1.0};           // slime.color, linear RGB: the base (diffuse) colour
-  double transmission = 0.0;       // slime.transmission: the weight of the refracted light
-  double ior = 1.5;                // slime.ior
+  glm::dvec3 color{1.0};             // slime.color, linear RGB: the base (diffuse) colour
+  double transmission = 0.0;         // slime.transmission: the weight of the refracted light
+  double ior = 1.5;                  // slime.ior
   glm::dvec3 attenuationColor{1.0};  // what a path of attenuationDistance transmits, each channel
   double attenuationDistance = 0.0;  // m; 0 when slime.absorption is 0 (nothing is absorbed)
-  double specular = 0.0;           // slime.specular: the Phong highlight's weight
+  double specular = 0.0;             // slime.specular: the Phong highlight's weight
+  // glTF's roughness: the renderer's reflected and refracted rays are sharp (Whitted), so the surface is
+  // smooth; kept off exactly 0 so that rasterisers still draw a light's highlight, as its Phong term does.
+  double roughness = 0.05;
 
   // σ_c, 1/m: what the renderer absorbs per metre of jelly (0 for a clear one).
   glm::dvec3 absorptionPerMetre() const;

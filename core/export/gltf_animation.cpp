@@ -66,9 +66,7 @@ void addMaterial(tinygltf::Model& model, const ExportMaterial& slime, double thi
   material.name = "slime";
   material.pbrMetallicRoughness.baseColorFactor = {slime.color.x, slime.color.y, slime.color.z, 1.0};
   material.pbrMetallicRoughness.metallicFactor = 0.0;
-  // The renderer's reflected and refracted rays are sharp (Whitted): a mirror-smooth surface, kept off
-  // exactly 0 so that rasterisers still draw a point light's highlight, as the renderer's Phong term does.
-  material.pbrMetallicRoughness.roughnessFactor = kExportRoughness;
+  material.pbrMetallicRoughness.roughnessFactor = slime.roughness;
   material.extensions["KHR_materials_transmission"] =
       tinygltf::Value(tinygltf::Value::Object{{"transmissionFactor", number(slime.transmission)}});
   material.extensions["KHR_materials_ior"] = tinygltf::Value(tinygltf::Value::Object{{"ior", number(slime.ior)}});

@@ -17,7 +17,4 @@ namespace slime {
 // Throws std::runtime_error when the frames do not share one set of triangles (the level changed).
 std::string glbBytes(const std::vector<SurfaceMesh>& frames, const ExportMaterial& material);
 
-// The material's roughness: low, as the jelly's surface is smooth (see addMaterial).
-constexpr double kExportRoughness = 0.05;
-
 }  // namespace slime

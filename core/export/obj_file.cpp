@@ -1,6 +1,5 @@
 #include "core/export/obj_file.h"
 
-#include "core/export/gltf_animation.h"
 #include "core/settings/settings_io.h"
 
 #include <cstdio>
@@ -43,7 +42,7 @@ std::string objText(const SurfaceMesh& mesh, UpAxis up, const std::string& mater
 }
 
 std::string mtlText(const ExportMaterial& material) {
-  const double smoothness = 1.0 - kExportRoughness;
+  const double smoothness = 1.0 - material.roughness;
   char text[1200];
   std::snprintf(text, sizeof text,
                 "# the slime's material, from the scene's slime.* settings (docs/export.md)\n"
@@ -57,8 +56,8 @@ std::string mtlText(const ExportMaterial& material) {
                 "Tf %.6g %.6g %.6g\n"
                 "illum 7\n",
                 material.color.x, material.color.y, material.color.z, material.specular, material.specular,
-                material.specular, 1000.0 * smoothness * smoothness, material.ior, material.transmission, material.transmission,
-                material.transmission);
+                material.specular, 1000.0 * smoothness * smoothness, material.ior, material.transmission,
+                material.transmission, material.transmission);
   return text;
 }
 

@@ -11,7 +11,8 @@ namespace slime {
 namespace {
 
 TEST(ExportedMaterial, AbsorbsPerMetreAsTheRendererDoes) {
-  for (const glm::dvec3 color : {glm::dvec3(0.25, 0.85, 0.35), glm::dvec3(1.0, 0.5, 0.0), glm::dvec3(0.9, 0.95, 1.0)})
+  for (const glm::dvec3 color :
+       {glm::dvec3(0.25, 0.85, 0.35), glm::dvec3(1.0, 0.5, 0.0), glm::dvec3(0.9, 0.95, 1.0)})
     for (const double absorption : {0.0, 2.0, 20.0, 500.0}) {
       SlimeSettings slime;
       slime.color = color;
