@@ -34,6 +34,7 @@ struct SimOptions {
   std::string reportFile;
   std::string exportMesh;     // --export-mesh PATTERN (core/export/mesh_exporter.h)
   double exportEvery = -1.0;  // --export-every S, s of simulated time
+  std::string objUp;          // --obj-up y|z: an .obj's axes (empty: y, OBJ's convention)
 };
 
 void checkSeconds(double seconds) {
@@ -117,15 +118,17 @@ int runSim(const SimOptions& options) {
   Simulation simulation(settings);
   const double dt = settings.sim.dt;
   std::optional<MeshExporter> exporter;
+  const UpAxis objUp = checkObjUp(options.objUp, options.exportMesh);
   if (!options.exportMesh.empty()) {
     if (options.exportEvery < 0.0) throw SettingsError("--export-mesh needs --export-every S (simulated seconds)");
-    exporter.emplace(options.exportMesh, options.exportEvery, dt, options.seconds);
+    exporter.emplace(options.exportMesh, options.exportEvery, dt, options.seconds, objUp);
   } else if (options.exportEvery >= 0.0) {
     throw SettingsError("--export-every needs --export-mesh PATTERN");
   }
   const auto exportIfDue = [&] {
     if (exporter && exporter->due(simulation.stepCount()))
-      exporter->add(simulation.time(), simulation.positions(), simulation.triangles());
+      exporter->add(simulation.time(), simulation.positions(), simulation.triangles(),
+                    exportMaterialOf(settings.slime));  // the scene's optics, as a scenario left them
   };
   exportIfDue();
   const auto totalSteps = static_cast<std::int64_t>(std::llround(options.seconds / dt));
@@ -235,7 +238,9 @@ void registerSimCommand(CLI::App& root, int& exitCode) {
   command->add_option("--report", options->reportFile, "Write a JSON report to this file");
   command->add_option("--export-mesh", options->exportMesh,
                       "Write the slime's surface: PATTERN.ply or .obj with a frame number (out/slime_%04d.ply), "
-                      "or one animated FILE.glb");
+                      "or one animated FILE.glb; each carries the slime's material (an .obj in a .mtl beside it)");
+  command->add_option("--obj-up", options->objUp,
+                      "Up axis of an exported .obj: y (OBJ's convention, the default) or z (the simulation's)");
   command->add_option("--export-every", options->exportEvery,
                       "Simulated seconds between exported surfaces, from t = 0 (at least sim.dt)");
   addSceneOptions(*command, options->scene);

@@ -24,11 +24,13 @@ struct SnapshotOptions {
   bool ui = false;  // --ui: the whole viewer, panels included, drawn headless (app/viewer/ui_snapshot.h)
   std::string gl = "auto";  // --gl: which library draws it headless
   std::string exportMesh;   // --export-mesh: the frame's surface as .ply, .obj or .glb
+  std::string objUp;        // --obj-up y|z: an .obj's axes (empty: y, OBJ's convention)
 };
 
 void runSnapshot(const SnapshotOptions& options) {
   const HeadlessApi api = headlessApiNamed(options.gl);
   if (!options.exportMesh.empty()) checkMeshPath(options.exportMesh);  // a bad path fails before the work
+  const UpAxis objUp = checkObjUp(options.objUp, options.exportMesh);
   Settings settings = loadSettings(options.scene);
   if (!options.size.empty()) applyImageSize(settings, options.size);
   if (options.fov) {
@@ -49,7 +51,8 @@ void runSnapshot(const SnapshotOptions& options) {
       settleForSnapshot(simulation, settings, options.settle, options.scene.scenarioFile);
       if (!options.exportMesh.empty())
         writeSurfaceMesh(options.exportMesh,
-                         surfaceMeshOf(simulation.time(), simulation.positions(), simulation.triangles()));
+                         surfaceMeshOf(simulation.time(), simulation.positions(), simulation.triangles()),
+                         exportMaterialOf(simulation.settings().slime), objUp);
     }, api);
     if (!options.exportMesh.empty()) std::printf("wrote %s (the frame's surface)\n", options.exportMesh.c_str());
     std::printf("wrote %s (%dx%d, viewer with panels)\n", options.output.c_str(), settings.camera.width,
@@ -59,7 +62,7 @@ void runSnapshot(const SnapshotOptions& options) {
   const SnapshotResult snapshot = takeSnapshot(settings, options.settle, options.scene.scenarioFile);
   writePng(snapshot.image, options.output);
   if (!options.exportMesh.empty()) {
-    writeSurfaceMesh(options.exportMesh, snapshot.surface);
+    writeSurfaceMesh(options.exportMesh, snapshot.surface, exportMaterialOf(snapshot.slime), objUp);
     std::printf("wrote %s (the frame's surface: %zu vertices, %zu triangles)\n", options.exportMesh.c_str(),
                 snapshot.surface.positions.size(), snapshot.surface.triangles.size());
   }
@@ -97,7 +100,10 @@ void registerSnapshotCommand(CLI::App& root, int& exitCode) {
                       "With --ui, the headless GL: egl, osmesa, or auto (EGL, else OSMesa; the default)")
       ->needs(ui);
   command->add_option("--export-mesh", options->exportMesh,
-                      "Also write the frame's slime surface: .ply (binary), .obj or .glb, by the extension");
+                      "Also write the frame's slime surface: .ply (binary), .obj (with a .mtl) or .glb, by the "
+                      "extension; the .obj and .glb carry the slime's material");
+  command->add_option("--obj-up", options->objUp,
+                      "Up axis of an exported .obj: y (OBJ's convention, the default) or z (the simulation's)");
   addSceneOptions(*command, options->scene);
   command->callback([options, &exitCode] {
     runSnapshot(*options);

@@ -19,6 +19,7 @@ struct SnapshotResult {
   SlimeMetrics metrics;     // the slime's shape when the frame was taken
   std::size_t divergences = 0;  // steps the physics rolled back while settling
   SurfaceMesh surface;      // the drawn surface the frame shows (`--export-mesh`)
+  SlimeSettings slime;      // the slime's settings the frame was drawn with (its exported material)
 };
 
 // Simulates the slime for `settleSeconds` (negative: until it rests, at most kMaxSettleSeconds after

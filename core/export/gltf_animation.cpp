@@ -1,5 +1,7 @@
 #include "core/export/gltf_animation.h"
 
+#include "core/export/export_material.h"
+
 #include <tiny_gltf.h>
 
 #include <algorithm>
@@ -48,9 +50,39 @@ std::vector<float> floats(const std::vector<glm::dvec3>& v, const std::vector<gl
   return out;
 }
 
+tinygltf::Value number(double x) { return tinygltf::Value(x); }
+
+tinygltf::Value colorValue(const glm::dvec3& color) {
+  return tinygltf::Value(tinygltf::Value::Array{number(color.x), number(color.y), number(color.z)});
+}
+
+// The slime's material: a clear dielectric (metallic 0, smooth) tinted by its colour, letting
+// `transmission` of the light through (KHR_materials_transmission), bending it by the renderer's IOR
+// (KHR_materials_ior) and absorbing it along the way as the renderer does (KHR_materials_volume, whose
+// attenuation export_material.h derives from slime.absorption). A reader that knows none of the
+// extensions still draws a green, glossy ball from pbrMetallicRoughness.
+void addMaterial(tinygltf::Model& model, const ExportMaterial& slime, double thickness) {
+  tinygltf::Material material;
+  material.name = "slime";
+  material.pbrMetallicRoughness.baseColorFactor = {slime.color.x, slime.color.y, slime.color.z, 1.0};
+  material.pbrMetallicRoughness.metallicFactor = 0.0;
+  material.pbrMetallicRoughness.roughnessFactor = slime.roughness;
+  material.extensions["KHR_materials_transmission"] =
+      tinygltf::Value(tinygltf::Value::Object{{"transmissionFactor", number(slime.transmission)}});
+  material.extensions["KHR_materials_ior"] = tinygltf::Value(tinygltf::Value::Object{{"ior", number(slime.ior)}});
+  tinygltf::Value::Object volume{{"thicknessFactor", number(thickness)}};
+  if (slime.attenuationDistance > 0.0) {  // else the default: infinite, nothing absorbed
+    volume["attenuationDistance"] = number(slime.attenuationDistance);
+    volume["attenuationColor"] = colorValue(slime.attenuationColor);
+  }
+  material.extensions["KHR_materials_volume"] = tinygltf::Value(volume);
+  model.materials.push_back(material);
+  model.extensionsUsed = {"KHR_materials_ior", "KHR_materials_transmission", "KHR_materials_volume"};
+}
+
 }  // namespace
 
-std::string glbBytes(const std::vector<SurfaceMesh>& frames) {
+std::string glbBytes(const std::vector<SurfaceMesh>& frames, const ExportMaterial& material) {
   if (frames.empty()) throw std::runtime_error("glTF: no frame to write");
   const SurfaceMesh& first = frames.front();
   for (const SurfaceMesh& frame : frames)
@@ -65,6 +97,8 @@ std::string glbBytes(const std::vector<SurfaceMesh>& frames) {
 
   tinygltf::Primitive primitive;
   primitive.mode = TINYGLTF_MODE_TRIANGLES;
+  addMaterial(model, material, meanChord(first));
+  primitive.material = 0;
   {  // indices: uint32, three per triangle
     std::vector<unsigned char>& data = model.buffers[0].data;
     tinygltf::BufferView view;

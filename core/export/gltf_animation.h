@@ -2,9 +2,11 @@
 // first frame; every frame k is a morph target holding p_k − p_0 (and n_k − n_0), and one animation
 // drives the weights, one-hot at frame k's time and linear between frames, so Blender and other glTF
 // readers play the run. glTF stores 32-bit floats: a reader's p_0 + (p_k − p_0) is within a float's
-// rounding of the simulation's p_k.
+// rounding of the simulation's p_k. The one material is the slime's (export_material.h): base colour,
+// KHR_materials_transmission, _ior and _volume, its thickness the first frame's mean chord.
 #pragma once
 
+#include "core/export/export_material.h"
 #include "core/export/surface_mesh.h"
 
 #include <string>
@@ -13,6 +15,6 @@
 namespace slime {
 
 // Throws std::runtime_error when the frames do not share one set of triangles (the level changed).
-std::string glbBytes(const std::vector<SurfaceMesh>& frames);
+std::string glbBytes(const std::vector<SurfaceMesh>& frames, const ExportMaterial& material);
 
 }  // namespace slime

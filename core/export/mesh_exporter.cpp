@@ -90,13 +90,20 @@ void checkWritable(const std::string& path, const std::string& option) {
     throw SettingsError(option + " " + path + ": cannot write in " + (parent.empty() ? "." : parent.string()));
 }
 
-std::string bytesOf(MeshFormat format, const SurfaceMesh& mesh) {
+// Writes `mesh` to `path` in `format`, all files of it or none.
+void writeMesh(MeshFormat format, const std::string& path, const SurfaceMesh& mesh, const ExportMaterial& material,
+               UpAxis objUp) {
   switch (format) {
-    case MeshFormat::Ply: return plyBytes(mesh);
-    case MeshFormat::Obj: return objText(mesh);
-    case MeshFormat::Glb: break;
+    case MeshFormat::Ply: return writeFileAtomically(path, plyBytes(mesh));
+    case MeshFormat::Obj: {
+      // The .mtl is renamed into place first: a reader that finds the .obj finds its material.
+      const std::string materialPath = materialPathOf(path);
+      return writeFilesAtomically(
+          {{materialPath, mtlText(material)},
+           {path, objText(mesh, objUp, std::filesystem::path(materialPath).filename().string())}});
+    }
+    case MeshFormat::Glb: return writeFileAtomically(path, glbBytes({mesh}, material));
   }
-  return glbBytes({mesh});
 }
 
 }  // namespace
@@ -115,12 +122,27 @@ MeshFormat checkMeshPath(const std::string& path) {
   return format;
 }
 
-void writeSurfaceMesh(const std::string& path, const SurfaceMesh& mesh) {
-  writeFileAtomically(path, bytesOf(checkMeshPath(path), mesh));
+std::string materialPathOf(const std::string& objPath) {
+  return std::filesystem::path(objPath).replace_extension(".mtl").string();
 }
 
-MeshExporter::MeshExporter(std::string pattern, double every, double dt, double seconds)
-    : pattern_(std::move(pattern)), format_(meshFormatOf(pattern_)), every_(every), dt_(dt) {
+void writeSurfaceMesh(const std::string& path, const SurfaceMesh& mesh, const ExportMaterial& material,
+                      UpAxis objUp) {
+  writeMesh(checkMeshPath(path), path, mesh, material, objUp);
+}
+
+UpAxis checkObjUp(const std::string& name, const std::string& path) {
+  if (name.empty()) return UpAxis::Y;
+  const UpAxis up = upAxisNamed(name);
+  if (path.empty() || meshFormatOf(path) != MeshFormat::Obj)
+    throw SettingsError("--obj-up " + name + ": only an .obj export has a choice of axes (--export-mesh " +
+                        (path.empty() ? std::string("not given") : path) +
+                        "); a .glb is y up by glTF's rule, a .ply keeps the simulation's z up");
+  return up;
+}
+
+MeshExporter::MeshExporter(std::string pattern, double every, double dt, double seconds, UpAxis objUp)
+    : pattern_(std::move(pattern)), format_(meshFormatOf(pattern_)), every_(every), dt_(dt), objUp_(objUp) {
   const Conversion c = conversionIn(pattern_);
   if (format_ == MeshFormat::Glb && c.at != std::string::npos)
     throw SettingsError("--export-mesh " + pattern_ + ": a .glb holds every frame in one file; drop the frame number");
@@ -143,18 +165,21 @@ std::string MeshExporter::pathOf(int frame) const {
   return c.at == std::string::npos ? pattern_ : expand(pattern_, c, frame);
 }
 
-void MeshExporter::add(double time, const std::vector<glm::dvec3>& positions, const std::vector<Triangle>& triangles) {
+void MeshExporter::add(double time, const std::vector<glm::dvec3>& positions, const std::vector<Triangle>& triangles,
+                       const ExportMaterial& material) {
   SurfaceMesh mesh = surfaceMeshOf(time, positions, triangles);
-  if (format_ == MeshFormat::Glb)
+  if (format_ == MeshFormat::Glb) {
+    if (kept_.empty()) material_ = material;
     kept_.push_back(std::move(mesh));
-  else
-    writeFileAtomically(pathOf(frames_), bytesOf(format_, mesh));
+  } else {
+    writeMesh(format_, pathOf(frames_), mesh, material, objUp_);
+  }
   ++frames_;
   nextStep_ = std::llround(static_cast<double>(frames_) * every_ / dt_);
 }
 
 void MeshExporter::finish() {
-  if (format_ == MeshFormat::Glb && !kept_.empty()) writeFileAtomically(pattern_, glbBytes(kept_));
+  if (format_ == MeshFormat::Glb && !kept_.empty()) writeFileAtomically(pattern_, glbBytes(kept_, material_));
 }
 
 }  // namespace slime

@@ -5,11 +5,17 @@
 
 #include <cstddef>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace slime {
 
 // Throws std::runtime_error "cannot write PATH: REASON" on failure, after removing the temporary file.
 void writeFileAtomically(const std::string& path, const void* bytes, std::size_t size);
 void writeFileAtomically(const std::string& path, const std::string& text);
+
+// Several files (path, bytes) that belong together, e.g. an .obj and its .mtl: every temporary is
+// written before any is renamed over its target, in the order given, so a failed write leaves none.
+void writeFilesAtomically(const std::vector<std::pair<std::string, std::string>>& files);
 
 }  // namespace slime

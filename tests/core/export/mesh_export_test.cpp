@@ -6,18 +6,24 @@
 
 #include <assimp/Importer.hpp>
 #include <assimp/anim.h>
+#include <assimp/material.h>
 #include <assimp/mesh.h>
 #include <assimp/scene.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace slime {
@@ -40,16 +46,17 @@ fs::path freshDirectory(const std::string& name) {
 
 // Runs the default bulk slime for 0.06 s, exporting every 0.02 s with `pattern`; returns what the
 // simulation held at each export.
-std::vector<Frame> runAndExport(const std::string& pattern) {
-  Settings settings = defaultSettings();
+std::vector<Frame> runAndExport(const std::string& pattern, UpAxis objUp = UpAxis::Y,
+                                Settings settings = defaultSettings()) {
   settings.slime.level = 2;  // 162 vertices: a fast test, the same code as at level 4
   Simulation simulation(settings);
-  MeshExporter exporter(pattern, 0.02, settings.sim.dt, 0.06);
+  MeshExporter exporter(pattern, 0.02, settings.sim.dt, 0.06, objUp);
   std::vector<Frame> frames;
   const auto steps = static_cast<std::int64_t>(std::llround(0.06 / settings.sim.dt));
   while (true) {
     if (exporter.due(simulation.stepCount())) {
-      exporter.add(simulation.time(), simulation.positions(), simulation.triangles());
+      exporter.add(simulation.time(), simulation.positions(), simulation.triangles(),
+                   exportMaterialOf(settings.slime));
       frames.push_back({simulation.time(), simulation.positions(), simulation.triangles()});
     }
     if (simulation.stepCount() >= steps) break;
@@ -118,7 +125,10 @@ TEST(MeshExport, PlyHoldsTheSimulationsDoublesAndTriangles) {
   EXPECT_NE(frames[0].positions, frames[3].positions);  // the slime moved: the frames are not one
 }
 
-TEST(MeshExport, ObjReadByAssimpHoldsEveryCorner) {
+// OBJ's y up: the simulation's (x, y, z) as the file holds it, (x, z, −y).
+glm::dvec3 yUp(const glm::dvec3& p) { return {p.x, p.z, -p.y}; }
+
+TEST(MeshExport, ObjReadByAssimpHoldsEveryCornerYUp) {
   const fs::path dir = freshDirectory("mesh_export_obj");
   const std::vector<Frame> frames = runAndExport((dir / "slime_%d.obj").string());
   ASSERT_EQ(frames.size(), 4u);
@@ -134,7 +144,7 @@ TEST(MeshExport, ObjReadByAssimpHoldsEveryCorner) {
       ASSERT_EQ(mesh.mFaces[f].mNumIndices, 3u);
       for (int c = 0; c < 3; ++c) {
         const aiVector3D& v = mesh.mVertices[mesh.mFaces[f].mIndices[c]];
-        const glm::dvec3& p = frames[k].positions[frames[k].triangles[f][c]];
+        const glm::dvec3 p = yUp(frames[k].positions[frames[k].triangles[f][c]]);
         // assimp parses numbers with its own fast_atof, not always to the nearest float.
         for (int i = 0; i < 3; ++i) ASSERT_NEAR(v[i], p[i], 2e-8) << "frame " << k << " face " << f;
       }
@@ -155,7 +165,9 @@ TEST(MeshExport, ObjReadByAssimpHoldsEveryCorner) {
         triangles.emplace_back(a - 1, b - 1, c - 1);
       }
     }
-    EXPECT_EQ(positions, frames[k].positions);
+    std::vector<glm::dvec3> expected;
+    for (const glm::dvec3& p : frames[k].positions) expected.push_back(yUp(p));
+    EXPECT_EQ(positions, expected);  // the swap and the sign are exact
     EXPECT_EQ(triangles, frames[k].triangles);
   }
 }
@@ -217,6 +229,183 @@ TEST(MeshExport, BadPatternsAreRefusedBeforeAnyFile) {
   EXPECT_TRUE(fs::is_empty(dir));
   MeshExporter literalPercent((dir / "a_%%_%04d.ply").string(), 0.02, 0.001, 1.0);
   EXPECT_EQ(literalPercent.pathOf(7), (dir / "a_%_0007.ply").string());
+}
+
+double lowest(const std::vector<glm::dvec3>& values, int axis) {
+  double low = values[0][axis];
+  for (const glm::dvec3& v : values) low = std::min(low, v[axis]);
+  return low;
+}
+
+// The extent of `values` along axis `axis`.
+double extent(const std::vector<glm::dvec3>& values, int axis) {
+  double low = values[0][axis], high = low;
+  for (const glm::dvec3& v : values) low = std::min(low, v[axis]), high = std::max(high, v[axis]);
+  return high - low;
+}
+
+// A slime flattened on the floor, so that its height and width differ, read back by assimp: y up (the
+// default) puts its height along the file's y and its normals turn with it; z up keeps the
+// simulation's axes. Each .obj names its .mtl.
+TEST(MeshExport, ObjStandsUprightYUpAndKeepsZUpOnRequest) {
+  const fs::path dir = freshDirectory("mesh_export_obj_axes");
+  Settings settings = defaultSettings();
+  settings.slime.level = 2;
+  Simulation simulation(settings);
+  std::vector<glm::dvec3> squashed = simulation.positions();
+  for (glm::dvec3& p : squashed) p.z = 0.5 * p.z + 0.3 * p.y;  // height ≠ depth, and a tilt: no symmetry hides a swap
+  const SurfaceMesh mesh = surfaceMeshOf(0.0, squashed, simulation.triangles());
+  writeSurfaceMesh((dir / "y.obj").string(), mesh, exportMaterialOf(settings.slime));
+  writeSurfaceMesh((dir / "z.obj").string(), mesh, exportMaterialOf(settings.slime), UpAxis::Z);
+  for (const auto& [name, up] : {std::pair{"y", UpAxis::Y}, std::pair{"z", UpAxis::Z}}) {
+    Assimp::Importer importer;
+    const aiScene* scene = readWithAssimp(importer, dir / (std::string(name) + ".obj"));
+    ASSERT_NE(scene, nullptr);
+    const aiMesh& read = *scene->mMeshes[0];
+    ASSERT_TRUE(read.HasNormals());
+    std::vector<glm::dvec3> corners;
+    for (unsigned f = 0; f < read.mNumFaces; ++f)
+      for (int c = 0; c < 3; ++c) {
+        const unsigned i = read.mFaces[f].mIndices[c];
+        const unsigned v = mesh.triangles[f][c];
+        const glm::dvec3 position = up == UpAxis::Y ? yUp(mesh.positions[v]) : mesh.positions[v];
+        const glm::dvec3 normal = up == UpAxis::Y ? yUp(mesh.normals[v]) : mesh.normals[v];
+        corners.push_back({read.mVertices[i].x, read.mVertices[i].y, read.mVertices[i].z});
+        for (int a = 0; a < 3; ++a) {
+          ASSERT_NEAR(read.mVertices[i][a], position[a], 2e-8) << name << " face " << f;
+          ASSERT_NEAR(read.mNormals[i][a], normal[a], 1e-6) << name << " face " << f;
+        }
+      }
+    // Up is up: the file's up axis spans the simulation's z, bottom to top, in the same direction.
+    const int fileUp = up == UpAxis::Y ? 1 : 2;
+    EXPECT_NEAR(lowest(corners, fileUp), lowest(squashed, 2), 1e-7) << name << ": the bottom";
+    EXPECT_NEAR(lowest(corners, fileUp) + extent(corners, fileUp), lowest(squashed, 2) + extent(squashed, 2), 1e-7)
+        << name << ": the top";
+    EXPECT_LT(extent(squashed, 2), 0.9 * extent(squashed, 1));  // the squash made the height differ from the depth
+  }
+  std::ifstream in(dir / "y.obj");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("\nmtllib y.mtl\n"), std::string::npos);
+  EXPECT_NE(text.find("\nusemtl slime\n"), std::string::npos);
+  EXPECT_TRUE(fs::exists(dir / "y.mtl"));
+  EXPECT_TRUE(fs::exists(dir / "z.mtl"));
+  EXPECT_THROW(upAxisNamed("x"), SettingsError);
+  EXPECT_THROW(upAxisNamed("Y "), SettingsError);
+  EXPECT_THROW(checkObjUp("z", (dir / "a.glb").string()), SettingsError);  // only an .obj has the choice
+  EXPECT_EQ(checkObjUp("", (dir / "a.glb").string()), UpAxis::Y);
+}
+
+// A scene's own optics (not the defaults): a red, half-transmissive slime.
+Settings redSlime() {
+  Settings settings = defaultSettings();
+  settings.slime.color = {0.8, 0.2, 0.1};
+  settings.slime.transmission = 0.5;
+  settings.slime.absorption = 40.0;
+  settings.slime.ior = 1.42;
+  settings.slime.specular = 0.3;
+  return settings;
+}
+
+// The .mtl beside each .obj, read by assimp: the scene's colour, specular weight, IOR and transmission,
+// and a surface that is neither dissolved nor metallic.
+TEST(MeshExport, MtlCarriesTheScenesMaterial) {
+  const fs::path dir = freshDirectory("mesh_export_mtl");
+  const Settings settings = redSlime();
+  runAndExport((dir / "slime_%d.obj").string(), UpAxis::Y, settings);
+  ASSERT_TRUE(fs::exists(dir / "slime_3.mtl"));
+  Assimp::Importer importer;
+  const aiScene* scene = readWithAssimp(importer, dir / "slime_3.obj");
+  ASSERT_NE(scene, nullptr);
+  const aiMaterial& material = *scene->mMaterials[scene->mMeshes[0]->mMaterialIndex];
+  aiString name;
+  material.Get(AI_MATKEY_NAME, name);
+  EXPECT_STREQ(name.C_Str(), "slime");
+  aiColor3D diffuse, specular, ambient(1, 1, 1), filter;
+  float ior = 0, opacity = 0;
+  ASSERT_EQ(material.Get(AI_MATKEY_COLOR_DIFFUSE, diffuse), aiReturn_SUCCESS);
+  EXPECT_NEAR(diffuse.r, 0.8, 1e-6);
+  EXPECT_NEAR(diffuse.g, 0.2, 1e-6);
+  EXPECT_NEAR(diffuse.b, 0.1, 1e-6);
+  ASSERT_EQ(material.Get(AI_MATKEY_COLOR_SPECULAR, specular), aiReturn_SUCCESS);
+  EXPECT_NEAR(specular.g, 0.3, 1e-6);
+  ASSERT_EQ(material.Get(AI_MATKEY_COLOR_AMBIENT, ambient), aiReturn_SUCCESS);
+  EXPECT_EQ(ambient.r + ambient.g + ambient.b, 0.0f);  // Blender reads Ka as metallic
+  ASSERT_EQ(material.Get(AI_MATKEY_REFRACTI, ior), aiReturn_SUCCESS);
+  EXPECT_NEAR(ior, 1.42, 1e-6);
+  ASSERT_EQ(material.Get(AI_MATKEY_OPACITY, opacity), aiReturn_SUCCESS);
+  EXPECT_EQ(opacity, 1.0f);
+  // Tf: the transmission, grey (the colour tints it, as glTF's base colour does).
+  ASSERT_EQ(material.Get(AI_MATKEY_COLOR_TRANSPARENT, filter), aiReturn_SUCCESS);
+  EXPECT_EQ(filter, aiColor3D(0.5f, 0.5f, 0.5f));
+}
+
+// The JSON chunk of a .glb (glTF 2.0 binary: a 12-byte header, then the JSON chunk's length and type).
+nlohmann::json glbJson(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_GE(bytes.size(), 20u);
+  EXPECT_EQ(bytes.substr(0, 4), "glTF");
+  EXPECT_EQ(bytes.substr(16, 4), "JSON");
+  std::uint32_t length = 0;
+  std::memcpy(&length, bytes.data() + 12, 4);
+  return nlohmann::json::parse(bytes.substr(20, length));
+}
+
+// The animated .glb's one material is the scene's: base colour, metallic 0, smooth; transmission and
+// IOR; the volume's attenuation such that −ln(attenuationColor) / attenuationDistance is the
+// renderer's σ = k (−ln colour); the thickness the jelly's mean chord; the extensions declared.
+TEST(MeshExport, GlbCarriesTheScenesMaterial) {
+  const fs::path dir = freshDirectory("mesh_export_glb_material");
+  const Settings settings = redSlime();
+  const std::vector<Frame> frames = runAndExport((dir / "slime.glb").string(), UpAxis::Y, settings);
+  const nlohmann::json gltf = glbJson(dir / "slime.glb");
+  ASSERT_EQ(gltf["materials"].size(), 1u);
+  EXPECT_EQ(gltf["meshes"][0]["primitives"][0]["material"], 0);
+  const nlohmann::json& material = gltf["materials"][0];
+  const nlohmann::json& pbr = material["pbrMetallicRoughness"];
+  ASSERT_EQ(pbr["baseColorFactor"].size(), 4u);
+  EXPECT_NEAR(pbr["baseColorFactor"][0].get<double>(), 0.8, 1e-9);
+  EXPECT_NEAR(pbr["baseColorFactor"][1].get<double>(), 0.2, 1e-9);
+  EXPECT_NEAR(pbr["baseColorFactor"][2].get<double>(), 0.1, 1e-9);
+  EXPECT_EQ(pbr["baseColorFactor"][3].get<double>(), 1.0);
+  EXPECT_EQ(pbr["metallicFactor"].get<double>(), 0.0);
+  EXPECT_LE(pbr["roughnessFactor"].get<double>(), 0.1);
+  const nlohmann::json& extensions = material["extensions"];
+  EXPECT_EQ(extensions["KHR_materials_transmission"]["transmissionFactor"].get<double>(), 0.5);
+  EXPECT_NEAR(extensions["KHR_materials_ior"]["ior"].get<double>(), 1.42, 1e-12);
+  const nlohmann::json& volume = extensions["KHR_materials_volume"];
+  const double distance = volume["attenuationDistance"].get<double>();
+  EXPECT_NEAR(distance, 1.0 / 40.0, 1e-12);
+  const double color[3] = {0.8, 0.2, 0.1};
+  for (int c = 0; c < 3; ++c) {
+    const double sigma = -std::log(volume["attenuationColor"][c].get<double>()) / distance;
+    EXPECT_NEAR(sigma, 40.0 * -std::log(color[c]), 1e-9) << "channel " << c;
+  }
+  const double chord = meanChord(surfaceMeshOf(0.0, frames[0].positions, frames[0].triangles));
+  EXPECT_NEAR(volume["thicknessFactor"].get<double>(), chord, 1e-12);
+  EXPECT_NEAR(chord, 4.0 * 0.04 / 3.0, 0.004);  // 4r/3 of the 4 cm ball, less the icosphere's facets
+  std::vector<std::string> used = gltf["extensionsUsed"];
+  std::sort(used.begin(), used.end());
+  EXPECT_EQ(used, (std::vector<std::string>{"KHR_materials_ior", "KHR_materials_transmission",
+                                            "KHR_materials_volume"}));
+  EXPECT_FALSE(gltf.contains("extensionsRequired"));  // a reader without them still draws the ball
+}
+
+// A clear slime (no absorption) has no attenuation distance: glTF's default, infinite.
+TEST(MeshExport, GlbOfAClearSlimeAbsorbsNothing) {
+  const fs::path dir = freshDirectory("mesh_export_glb_clear");
+  Settings settings = defaultSettings();
+  settings.slime.absorption = 0.0;
+  settings.slime.level = 2;
+  Simulation simulation(settings);
+  writeSurfaceMesh((dir / "clear.glb").string(),
+                   surfaceMeshOf(0.0, simulation.positions(), simulation.triangles()),
+                   exportMaterialOf(settings.slime));
+  const nlohmann::json volume = glbJson(dir / "clear.glb")["materials"][0]["extensions"]["KHR_materials_volume"];
+  EXPECT_FALSE(volume.contains("attenuationDistance"));
+  EXPECT_FALSE(volume.contains("attenuationColor"));
+  EXPECT_GT(volume["thicknessFactor"].get<double>(), 0.0);
+  EXPECT_EQ(exportMaterialOf(settings.slime).absorptionPerMetre(), glm::dvec3(0.0));
 }
 
 }  // namespace

@@ -71,5 +71,20 @@ TEST(FileOutput, AFailedWriteLeavesNothingAndSaysWhy) {
   expectOnly(directory, {"blocked", "kept.json"});
 }
 
+// Files that belong together (an .obj and its .mtl): when one cannot be written, neither is.
+TEST(FileOutput, FilesThatBelongTogetherAreWrittenAllOrNone) {
+  const fs::path directory = fs::path(SLIME_TEST_OUTPUT_DIR) / "file_output_together";
+  fs::remove_all(directory);
+  fs::create_directories(directory);
+  const std::string first = (directory / "a.mtl").string(), second = (directory / "a.obj").string();
+  EXPECT_THROW(writeFilesAtomically({{first, "mtl\n"}, {(directory / "missing" / "a.obj").string(), "obj\n"}}),
+               std::runtime_error);
+  expectOnly(directory, {});  // the first file's bytes were written, then removed
+  writeFilesAtomically({{first, "mtl\n"}, {second, "obj\n"}});
+  EXPECT_EQ(contents(first), "mtl\n");
+  EXPECT_EQ(contents(second), "obj\n");
+  expectOnly(directory, {"a.mtl", "a.obj"});
+}
+
 }  // namespace
 }  // namespace slime::testing
