@@ -5,6 +5,8 @@ A link [text](path#anchor) or ![alt](path) must name a file or folder of the tre
 bare (#anchor), must be a heading of the target page as GitHub names it (lower case, punctuation but
 '-' and '_' dropped, spaces as '-', a repeated heading suffixed -1, -2, ...) or an explicit
 <a name="..."> / id="...". Links to other sites are not fetched (CI has no network).
+Every picture under docs/ (.png, .svg, .gif) must be linked or shown by some page, so that no chart is
+left behind when a page is rewritten.
 Usage: doc_links_test.py [repository root]; prints each broken link and exits 1 if there is one.
 """
 import os
@@ -63,7 +65,7 @@ def pages(root):
 
 def main():
     root = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), '..', '..'))
-    broken, checked = [], 0
+    broken, checked, linked = [], 0, set()
     for page in pages(root):
         for number, line in prose_lines(page):
             line = re.sub(r'`[^`]*`', '', line)  # code spans are not links
@@ -74,14 +76,23 @@ def main():
                 checked += 1
                 path, _, anchor = target.partition('#')
                 resolved = os.path.normpath(os.path.join(os.path.dirname(page), path)) if path else page
+                linked.add(resolved)
                 where = f'{os.path.relpath(page, root)}:{number}: ({target})'
                 if not os.path.exists(resolved):
                     broken.append(f'{where} names {os.path.relpath(resolved, root)}, which does not exist')
                 elif anchor and resolved.endswith('.md') and anchor not in anchors(resolved):
                     broken.append(f'{where}: {os.path.relpath(resolved, root)} has no heading or anchor "{anchor}"')
+    pictures = 0
+    for folder, _, files in os.walk(os.path.join(root, 'docs')):
+        for name in sorted(files):
+            if name.lower().endswith(('.png', '.svg', '.gif')):
+                pictures += 1
+                picture = os.path.normpath(os.path.join(folder, name))
+                if picture not in linked:
+                    broken.append(f'{os.path.relpath(picture, root)} is shown or linked by no page')
     for line in broken:
         print(line)
-    print(f'doc links: {checked} checked, {len(broken)} broken')
+    print(f'doc links: {checked} checked, {pictures} pictures, {len(broken)} broken')
     return 1 if broken or checked == 0 else 0
 
 
