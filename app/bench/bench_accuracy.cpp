@@ -31,7 +31,7 @@ struct Frame {
 
 Frame renderTimed(const Settings& settings, const TriangleMesh& mesh, int frames) {
   Renderer renderer(settings);
-  renderer.updateSlime(mesh.positions, mesh.triangles);
+  renderer.updateSlime({mesh});
   Frame frame;
   frame.image.resize(settings.camera.width, settings.camera.height);
   renderer.render(settings, frame.image);  // untimed: first touches of memory and threads

@@ -45,7 +45,7 @@ class TracedFrames {
   explicit TracedFrames(const Settings& settings) : renderer_(settings), simulation_(settings) {}
   Simulation& simulation() { return simulation_; }
   std::vector<std::uint8_t> draw(const Settings& settings) {
-    renderer_.updateSlime(simulation_.positions(), simulation_.triangles());
+    renderer_.updateSlime(simulation_.surfaces());
     image_.resize(settings.camera.width, settings.camera.height);
     renderer_.render(settings, image_);
     return toSrgb8(image_);

@@ -69,7 +69,7 @@ SnapshotResult takeSnapshot(const Settings& initialSettings, double settleSecond
   result.metrics = simulation.metrics();
   result.divergences = simulation.divergences().size();
   result.surface = surfaceMeshOf(simulation.time(), simulation.positions(), simulation.triangles());
-  renderer.updateSlime(simulation.positions(), simulation.triangles());
+  renderer.updateSlime(simulation.surfaces());
   result.image.resize(settings.camera.width, settings.camera.height);
   result.stats = renderer.render(settings, result.image);
   return result;

@@ -326,7 +326,7 @@ void Viewer::applyPhysicsOutcome(const PhysicsOutcome& outcome) {
 void Viewer::refitSlime() {
   const Stopwatch refitTime;
   if (slimeMoved_ && (sceneChanged_ || motionWouldShow())) {
-    renderer_.updateSlime(simulation_.positions(), simulation_.triangles());
+    renderer_.updateSlime(simulation_.surfaces());
     drawnPositions_ = simulation_.positions();
     slimeMoved_ = false;
     sceneChanged_ = true;

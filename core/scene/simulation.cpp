@@ -429,6 +429,10 @@ const std::vector<glm::dvec3>& Simulation::positions() const {
 const std::vector<Triangle>& Simulation::triangles() const {
   return bulk_ ? bulkBody_.drawn.triangles : body_.triangles;
 }
+const std::vector<SurfaceView>& Simulation::surfaces() const {
+  drawnSurfaces_.assign(1, SurfaceView{positions(), triangles()});
+  return drawnSurfaces_;
+}
 const std::vector<DivergenceEvent>& Simulation::divergences() const { return divergences_; }
 double Simulation::volume() const {
   return bulk_ ? enclosedVolume(bulkBody_.state.positions, bulkBody_.mesh.surface)

@@ -5,8 +5,10 @@
 // grab/press. A headless run, a test and a viewer reset each make a new Simulation.
 //
 // CONTRACT used by render/ and app/ (keep these signatures; add whatever else physics needs):
-//   Simulation(const Settings&), reload, applySettings, step, time, stepCount, positions, triangles,
-//   metrics, divergences, grab, dragTo, release, grabbing, grabTarget, grabbedIndices.
+//   Simulation(const Settings&), reload, applySettings, step, time, stepCount, surfaces, positions,
+//   triangles, metrics, divergences, grab, dragTo, release, grabbing, grabTarget, grabbedIndices.
+// The drawn slime is surfaces(): a list of closed surfaces, one per piece (today always one), which
+// the renderer draws and the exporters write. positions() and triangles() are the first piece's.
 // Two hands (kHands): each grab/drag/release names its hand, 0 (the default) or 1; each hand holds its
 // own nodes with its own target, radius and force limit, and the two act on the body together.
 #pragma once
@@ -18,6 +20,7 @@
 #include "core/scene/floor_adhesion.h"
 #include "core/scene/grab.h"
 #include "core/scene/icosphere.h"
+#include "core/scene/surface_view.h"
 #include "core/integrators/implicit_euler.h"
 #include "core/integrators/integrators.h"
 #include "core/settings/settings.h"
@@ -82,8 +85,10 @@ class Simulation {
 
   double time() const;                            // simulated seconds since (re)load
   std::int64_t stepCount() const;
-  const std::vector<glm::dvec3>& positions() const;  // the drawn surface's vertices
-  const std::vector<Triangle>& triangles() const;    // the drawn surface's triangles
+  // The drawn slime: one closed surface per piece, valid until the next step, reload or applySettings.
+  const std::vector<SurfaceView>& surfaces() const;
+  const std::vector<glm::dvec3>& positions() const;  // the first piece's drawn vertices
+  const std::vector<Triangle>& triangles() const;    // the first piece's drawn triangles
   SlimeMetrics metrics() const;
   const std::vector<DivergenceEvent>& divergences() const;
 
@@ -150,6 +155,7 @@ class Simulation {
   FloorAdhesion adhesion_;  // bulk: the sticky floor (slime.adhesion)
   mutable std::vector<glm::dvec3> drawnPositions_;  // bulk: placed from the body when first asked for
   mutable bool drawnStale_ = true;
+  mutable std::vector<SurfaceView> drawnSurfaces_;  // what surfaces() gives (its storage kept)
   Integrator integrator_ = Integrator::SymplecticEuler;
   ForceModel forceModel_;    // every force, the damper explicit
   bool automaticSubsteps_ = true;

@@ -76,7 +76,7 @@ int main(int argc, char** argv) {
     if (!still) settings.camera.yaw = yaw + (frame % 2 ? 1e-3 : -1e-3);  // as bench render's moving camera
     const TriangleMesh& mesh = shapes[frame % shapes.size()];
     const auto refitStart = std::chrono::steady_clock::now();
-    renderer.updateSlime(mesh.positions, mesh.triangles);
+    renderer.updateSlime({mesh});
     refitMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - refitStart).count());
     const auto start = std::chrono::steady_clock::now();
     const double cpuStart = processCpuMilliseconds();

@@ -86,10 +86,10 @@ TEST(Invariant, FramesFromTheFloorCacheEqualFreshFrames) {
   Image image;
   image.resize(settings.camera.width, settings.camera.height);
   std::vector<std::uint8_t> bytes;  // the window's sRGB bytes, written by the tiles as they go
-  renderer.updateSlime(resting.positions, resting.triangles);
+  renderer.updateSlime({resting});
   renderer.render(settings, image, &bytes);
   auto expectFresh = [&](const Settings& s, const TriangleMesh& mesh, const char* what) {
-    renderer.updateSlime(mesh.positions, mesh.triangles);
+    renderer.updateSlime({mesh});
     const std::vector<std::uint8_t> before = bytes;
     const RenderStats stats = renderer.render(s, image, &bytes, /*buffersKept=*/true);
     expectFrameEquals(image, bytes, renderMesh(s, mesh), what);
@@ -137,7 +137,7 @@ TEST(Invariant, FreshBuffersAreWrittenWhole) {
   const TriangleMesh mesh = restingMesh(settings);
   const Image expected = renderMesh(settings, mesh);
   Renderer renderer(settings);
-  renderer.updateSlime(mesh.positions, mesh.triangles);
+  renderer.updateSlime({mesh});
   Image image;
   image.resize(settings.camera.width, settings.camera.height);
   std::vector<std::uint8_t> bytes;
