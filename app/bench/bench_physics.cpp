@@ -7,7 +7,7 @@
 #include "app/bench/bench_timing.h"
 #include "app/bench/bench_trajectory_error.h"
 #include "core/integrators/integrators.h"
-#include "core/scene/simulation.h"
+#include "core/simulation/simulation.h"
 #include "core/integrators/stability.h"
 
 #include <glm/geometric.hpp>

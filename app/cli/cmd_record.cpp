@@ -15,9 +15,9 @@
 #include "app/cli/snapshot.h"
 #include "app/cli/video_encoder.h"
 #include "app/viewer/ui_snapshot.h"
-#include "core/scene/scenario.h"
+#include "core/simulation/scenario.h"
 #include "core/settings/settings_io.h"
-#include "core/scene/simulation.h"
+#include "core/simulation/simulation.h"
 #include "render/image/image_io.h"
 #include "render/trace/renderer.h"
 

@@ -1,8 +1,8 @@
 #include "app/cli/snapshot.h"
 
-#include "core/scene/scenario.h"
+#include "core/simulation/scenario.h"
 #include "core/settings/settings_io.h"
-#include "core/scene/simulation.h"
+#include "core/simulation/simulation.h"
 
 #include <algorithm>
 #include <cctype>

@@ -1,15 +1,15 @@
 // The slime as the renderer sees it: float vertex positions (padded for Embree), per-frame vertex
 // normals, triangles, a bounding sphere for culling, and the analytic sphere of slime.shape=sphere.
 // Shared by both intersection back-ends and by shading, so only the intersection differs.
-// The slime may be several pieces (closed surfaces, core/scene/surface_view.h): they are held as one
+// The slime may be several pieces (closed surfaces, core/geometry/surface_view.h): they are held as one
 // mesh, piece after piece, each piece's triangles offset by the vertices of the pieces before it. Every
 // structure built on the mesh holds for disjoint closed parts as for one: "supporting" is judged against
 // every vertex of every piece, the exit walk steps only across shared edges (within a piece), and the
 // bounds, outlines and grids bound all the pieces together.
 #pragma once
 
-#include "core/scene/icosphere.h"
-#include "core/scene/surface_view.h"
+#include "core/geometry/icosphere.h"
+#include "core/geometry/surface_view.h"
 #include "render/trace/ray.h"
 
 #include <glm/geometric.hpp>

@@ -1,6 +1,6 @@
 #include "render/trace/renderer.h"
 
-#include "core/scene/camera.h"
+#include "core/geometry/camera.h"
 #include "render/caustics/caustics.h"
 #include "render/trace/brute_tracer.h"
 #include "render/trace/checkerboard.h"

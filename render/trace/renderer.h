@@ -1,6 +1,6 @@
 // The ray tracer: one Embree device and scene holding the slime (a dynamic triangle mesh refitted
 // every frame) over the analytic floor z = 0, traced Whitted-style in parallel TBB tiles. The slime is
-// a list of closed surfaces, one per piece (core/scene/surface_view.h), drawn as one mesh.
+// a list of closed surfaces, one per piece (core/geometry/surface_view.h), drawn as one mesh.
 // Rendering is one call: render(settings, image). The window shows the image, the snapshot writes it,
 // the benchmark times it: the same code path.
 //
@@ -9,7 +9,7 @@
 //   render, pick.
 #pragma once
 
-#include "core/scene/surface_view.h"
+#include "core/geometry/surface_view.h"
 #include "core/settings/settings.h"
 #include "render/image/image.h"  // Image: a linear-RGB float image, row-major, top row first
 

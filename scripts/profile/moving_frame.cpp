@@ -8,7 +8,7 @@
 // Arguments: frames, width, height, threads, [PNG of the last frame]. Prints the median wall and CPU
 // (process, all threads) time per frame: CPU time is the steadier figure on a shared machine.
 #include "app/bench/bench_bvh.h"
-#include "core/scene/icosphere.h"
+#include "core/geometry/icosphere.h"
 #include "core/settings/settings_io.h"
 #include "render/image/image_io.h"
 #include "render/trace/renderer.h"

@@ -1,7 +1,7 @@
 // Helpers shared by the render tests: a small default scene, one-call rendering and image comparison.
 #pragma once
 
-#include "core/scene/icosphere.h"
+#include "core/geometry/icosphere.h"
 #include "core/settings/settings.h"
 #include "core/settings/settings_io.h"
 #include "render/image/image_io.h"

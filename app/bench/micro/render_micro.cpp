@@ -2,8 +2,8 @@
 // at the slime's centre) and one whole frame at a small size (160×120), level 4, one thread, and the
 // refit of the slime's BVH after its vertices move; and the floor's pattern alone, looked up where
 // the default view sees it (under and around the slime, pixel footprints of about half a millimetre).
-#include "core/scene/camera.h"
-#include "core/scene/icosphere.h"
+#include "core/geometry/camera.h"
+#include "core/geometry/icosphere.h"
 #include "core/settings/settings_io.h"
 #include "render/floor/floor_texture.h"
 #include "render/trace/renderer.h"

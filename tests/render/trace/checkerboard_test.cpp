@@ -2,7 +2,7 @@
 // and frames traced that way against the full trace (the viewer's --check-every aims: ≥ 38 dB).
 #include "render_fixture.h"
 
-#include "core/scene/camera.h"
+#include "core/geometry/camera.h"
 #include "render/slime/screen_footprint.h"
 #include "render/trace/checkerboard.h"
 #include "render/trace/shading_parameters.h"
