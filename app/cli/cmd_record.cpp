@@ -15,9 +15,9 @@
 #include "app/cli/snapshot.h"
 #include "app/cli/video_encoder.h"
 #include "app/viewer/ui_snapshot.h"
-#include "core/scene/scenario.h"
+#include "core/simulation/scenario.h"
 #include "core/settings/settings_io.h"
-#include "core/scene/simulation.h"
+#include "core/simulation/simulation.h"
 #include "render/image/image_io.h"
 #include "render/trace/renderer.h"
 
@@ -45,7 +45,7 @@ class TracedFrames {
   explicit TracedFrames(const Settings& settings) : renderer_(settings), simulation_(settings) {}
   Simulation& simulation() { return simulation_; }
   std::vector<std::uint8_t> draw(const Settings& settings) {
-    renderer_.updateSlime(simulation_.positions(), simulation_.triangles());
+    renderer_.updateSlime(simulation_.surfaces());
     image_.resize(settings.camera.width, settings.camera.height);
     renderer_.render(settings, image_);
     return toSrgb8(image_);

@@ -5,10 +5,10 @@
 #include "core/export/mesh_exporter.h"
 #include "core/settings/file_output.h"
 #include "core/integrators/integrators.h"
-#include "core/scene/scenario.h"
+#include "core/simulation/scenario.h"
 #include "core/settings/settings_io.h"
-#include "core/scene/simulation.h"
-#include "core/scene/strand_profile.h"
+#include "core/simulation/simulation.h"
+#include "core/geometry/strand_profile.h"
 
 #include <nlohmann/json.hpp>
 

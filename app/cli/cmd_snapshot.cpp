@@ -3,7 +3,7 @@
 #include "app/cli/snapshot.h"
 #include "app/viewer/ui_snapshot.h"
 #include "core/export/mesh_exporter.h"
-#include "core/scene/camera.h"
+#include "core/geometry/camera.h"
 #include "core/settings/settings_io.h"
 #include "render/image/image_io.h"
 

@@ -5,8 +5,8 @@
 #include "app/cli/snapshot.h"
 #include "app/viewer/viewer.h"
 #include "app/viewer/window.h"
-#include "core/scene/camera.h"
-#include "core/scene/scenario.h"
+#include "core/geometry/camera.h"
+#include "core/simulation/scenario.h"
 #include "core/settings/settings_io.h"
 
 #include <nlohmann/json.hpp>

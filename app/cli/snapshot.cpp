@@ -1,8 +1,8 @@
 #include "app/cli/snapshot.h"
 
-#include "core/scene/scenario.h"
+#include "core/simulation/scenario.h"
 #include "core/settings/settings_io.h"
-#include "core/scene/simulation.h"
+#include "core/simulation/simulation.h"
 
 #include <algorithm>
 #include <cctype>
@@ -70,7 +70,7 @@ SnapshotResult takeSnapshot(const Settings& initialSettings, double settleSecond
   result.divergences = simulation.divergences().size();
   result.surface = surfaceMeshOf(simulation.time(), simulation.positions(), simulation.triangles());
   result.slime = settings.slime;
-  renderer.updateSlime(simulation.positions(), simulation.triangles());
+  renderer.updateSlime(simulation.surfaces());
   result.image.resize(settings.camera.width, settings.camera.height);
   result.stats = renderer.render(settings, result.image);
   return result;

@@ -5,7 +5,7 @@
 #include "core/export/surface_mesh.h"
 
 #include "core/settings/settings.h"
-#include "core/scene/simulation.h"
+#include "core/simulation/simulation.h"
 #include "render/trace/renderer.h"
 
 #include <string>

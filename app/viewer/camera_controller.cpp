@@ -1,6 +1,6 @@
 #include "app/viewer/camera_controller.h"
 
-#include "core/scene/camera.h"
+#include "core/geometry/camera.h"
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>

@@ -56,7 +56,7 @@ double ImageCheck::check(const Settings& settings, const std::vector<glm::dvec3>
   const auto start = std::chrono::steady_clock::now();
   // A renderer of its own each time: what `slime snapshot` does for one image, nothing carried over.
   Renderer renderer(settings);
-  renderer.updateSlime(positions, triangles);
+  renderer.updateSlime({SurfaceView{positions, triangles}});
   reference_.resize(settings.camera.width, settings.camera.height);
   renderer.render(settings, reference_);
   toSrgb8(reference_, 4, referenceBytes_);

@@ -7,7 +7,7 @@
 // resolution) is judged by these figures.
 #pragma once
 
-#include "core/scene/icosphere.h"
+#include "core/geometry/icosphere.h"
 #include "core/settings/settings.h"
 #include "render/image/image.h"
 

@@ -4,7 +4,7 @@
 // pressing — Shift+vertical drag or the wheel — pushes the target along the view ray into the body.
 #pragma once
 
-#include "core/scene/camera.h"
+#include "core/geometry/camera.h"
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>

@@ -11,7 +11,7 @@
 
 #include "app/viewer/frame_stats.h"
 #include "core/settings/settings.h"
-#include "core/scene/simulation.h"
+#include "core/simulation/simulation.h"
 
 #include <glm/vec3.hpp>
 

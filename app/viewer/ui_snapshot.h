@@ -4,7 +4,7 @@
 
 #include "app/viewer/headless_gl.h"
 #include "core/settings/settings.h"
-#include "core/scene/simulation.h"
+#include "core/simulation/simulation.h"
 
 #include <cstdint>
 #include <functional>

@@ -4,8 +4,8 @@
 #include "app/viewer/imgui_gl.h"
 #include "app/viewer/panel_fields.h"
 #include "app/viewer/screenshot.h"
-#include "core/scene/camera.h"
-#include "core/scene/level_of_detail.h"
+#include "core/geometry/camera.h"
+#include "core/geometry/level_of_detail.h"
 #include "core/settings/settings_io.h"
 
 #include <imgui.h>
@@ -29,7 +29,7 @@ class Stopwatch {
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
-// ScenarioPlayer fires the events due within this of the simulated time (core/scene/scenario.cpp).
+// ScenarioPlayer fires the events due within this of the simulated time (core/simulation/scenario.cpp).
 constexpr double kScenarioTimeTolerance = 1e-9;
 
 }  // namespace
@@ -326,7 +326,7 @@ void Viewer::applyPhysicsOutcome(const PhysicsOutcome& outcome) {
 void Viewer::refitSlime() {
   const Stopwatch refitTime;
   if (slimeMoved_ && (sceneChanged_ || motionWouldShow())) {
-    renderer_.updateSlime(simulation_.positions(), simulation_.triangles());
+    renderer_.updateSlime(simulation_.surfaces());
     drawnPositions_ = simulation_.positions();
     slimeMoved_ = false;
     sceneChanged_ = true;

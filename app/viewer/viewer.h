@@ -18,9 +18,9 @@
 #include "app/viewer/panels.h"
 #include "app/viewer/physics_clock.h"
 #include "app/viewer/viewer_backend.h"
-#include "core/scene/scenario.h"
+#include "core/simulation/scenario.h"
 #include "core/settings/settings.h"
-#include "core/scene/simulation.h"
+#include "core/simulation/simulation.h"
 #include "render/trace/accumulation_buffer.h"
 #include "render/trace/renderer.h"
 

@@ -1,7 +1,7 @@
 #include "core/bulk/bulk_body.h"
 
-#include "core/scene/floor_contact.h"
-#include "core/membrane/volume.h"
+#include "core/contact/floor_contact.h"
+#include "core/geometry/volume.h"
 #include "core/bulk/element_pass.h"
 #include "core/bulk/tet_lanes.h"
 

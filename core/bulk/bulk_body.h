@@ -19,8 +19,8 @@
 // keep the volume, so it leaves them alone.
 #pragma once
 
-#include "core/scene/icosphere.h"
-#include "core/integrators/particle_state.h"
+#include "core/geometry/icosphere.h"
+#include "core/geometry/particle_state.h"
 #include "core/settings/settings.h"
 #include "core/bulk/edge_colours.h"
 #include "core/bulk/element_real.h"

@@ -5,7 +5,7 @@
 // which is what a person sees as facets. The largest and the 99th percentile summarise it.
 #pragma once
 
-#include "core/scene/icosphere.h"
+#include "core/geometry/icosphere.h"
 
 #include <glm/vec3.hpp>
 

@@ -39,7 +39,7 @@
 #include "core/bulk/bulk_body.h"
 #include "core/bulk/projective_factor.h"
 #include "core/bulk/projective_local.h"
-#include "core/scene/grab.h"
+#include "core/hands/grab.h"
 
 #include <cstdint>
 #include <memory>

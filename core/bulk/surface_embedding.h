@@ -15,7 +15,7 @@
 //    (R / 2^s) holds about 30–40 nodes of the outer shells.
 #pragma once
 
-#include "core/scene/icosphere.h"
+#include "core/geometry/icosphere.h"
 #include "core/bulk/tet_mesh.h"
 
 #include <glm/vec4.hpp>

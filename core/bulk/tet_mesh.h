@@ -15,7 +15,7 @@
 // centre.
 #pragma once
 
-#include "core/scene/icosphere.h"
+#include "core/geometry/icosphere.h"
 
 #include <glm/ext/vector_uint4_sized.hpp>
 #include <glm/vec3.hpp>

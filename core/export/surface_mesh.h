@@ -2,7 +2,7 @@
 // triangles, one frame of it at a simulated time.
 #pragma once
 
-#include "core/scene/icosphere.h"
+#include "core/geometry/icosphere.h"
 
 #include <glm/vec3.hpp>
 

@@ -1,7 +1,7 @@
 #include "core/integrators/damped_symplectic_euler.h"
 
-#include "core/scene/floor_contact.h"
-#include "core/membrane/volume.h"
+#include "core/contact/floor_contact.h"
+#include "core/geometry/volume.h"
 
 #include <glm/geometric.hpp>
 #include <tbb/blocked_range.h>

@@ -7,7 +7,7 @@
 // ½ vᵀM v + ½ xᵀ(K - h²K M⁻¹K/4) x (Hairer, Lubich & Wanner 2006); that has no x·v cross term, so
 // a damper that only slows relative motion can only lower it. After a whole kick the kept quantity
 // has a cross term (h/2) xᵀK v that a damper can raise: with slime.damping ≥ 0.5 points beside
-// the contact patch were pumped to 0.9 m/s (tests/core/scene/simulation_test.cpp, StifferDamper).
+// the contact patch were pumped to 0.9 m/s (tests/core/simulation/simulation_test.cpp, StifferDamper).
 // and the same results up to floating-point rounding (tests/core/integrators/damped_symplectic_euler_test.cpp
 // checks it), but fused: the split version makes about ten passes over vertices, springs and
 // triangles per substep, this one makes six, and loads nothing it does not use (the elastic
@@ -28,7 +28,7 @@
 // depends on the mesh size only, never on the number of threads.
 #pragma once
 
-#include "core/integrators/particle_state.h"
+#include "core/geometry/particle_state.h"
 #include "core/membrane/springs.h"
 
 #include <glm/vec2.hpp>

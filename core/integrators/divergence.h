@@ -2,7 +2,7 @@
 // moves faster than an absurd speed (the slime dropped from 10 cm lands at about 1.4 m/s).
 #pragma once
 
-#include "core/integrators/particle_state.h"
+#include "core/geometry/particle_state.h"
 
 #include <string>
 

@@ -1,6 +1,6 @@
 #include "core/integrators/implicit_euler.h"
 
-#include "core/membrane/volume.h"
+#include "core/geometry/volume.h"
 
 #include <glm/geometric.hpp>
 

@@ -9,7 +9,7 @@
 #pragma once
 
 #include "core/membrane/force_model.h"
-#include "core/integrators/particle_state.h"
+#include "core/geometry/particle_state.h"
 
 #include <array>
 #include <vector>

@@ -11,7 +11,7 @@
 #pragma once
 
 #include "core/integrators/integrators.h"
-#include "core/integrators/particle_state.h"
+#include "core/geometry/particle_state.h"
 #include "core/membrane/springs.h"
 
 #include <vector>

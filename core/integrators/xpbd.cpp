@@ -1,6 +1,6 @@
 #include "core/integrators/xpbd.h"
 
-#include "core/membrane/volume.h"
+#include "core/geometry/volume.h"
 
 #include <glm/geometric.hpp>
 

@@ -11,7 +11,7 @@
 // w k h² ≪ 1, so substeps should shrink with the subdivision level like an explicit step.
 #pragma once
 
-#include "core/integrators/particle_state.h"
+#include "core/geometry/particle_state.h"
 #include "core/membrane/springs.h"
 
 #include <glm/vec3.hpp>

@@ -1,6 +1,6 @@
 #include "core/membrane/force_model.h"
 
-#include "core/membrane/volume.h"
+#include "core/geometry/volume.h"
 
 namespace slime {
 

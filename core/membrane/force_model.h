@@ -4,7 +4,7 @@
 // (inverse mass 0) get zero acceleration: whoever drives them sets their motion.
 #pragma once
 
-#include "core/integrators/particle_state.h"
+#include "core/geometry/particle_state.h"
 #include "core/membrane/springs.h"
 
 #include <glm/vec3.hpp>

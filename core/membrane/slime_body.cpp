@@ -1,6 +1,6 @@
 #include "core/membrane/slime_body.h"
 
-#include "core/membrane/volume.h"
+#include "core/geometry/volume.h"
 
 #include <glm/geometric.hpp>
 

@@ -14,8 +14,8 @@
 // steps must halve per level.
 #pragma once
 
-#include "core/scene/icosphere.h"
-#include "core/integrators/particle_state.h"
+#include "core/geometry/icosphere.h"
+#include "core/geometry/particle_state.h"
 #include "core/settings/settings.h"
 #include "core/membrane/springs.h"
 

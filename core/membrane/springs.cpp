@@ -1,6 +1,6 @@
 #include "core/membrane/springs.h"
 
-#include "core/scene/icosphere.h"
+#include "core/geometry/icosphere.h"
 
 #include <glm/geometric.hpp>
 

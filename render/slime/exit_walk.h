@@ -13,7 +13,7 @@
 // ray alone.
 #pragma once
 
-#include "core/scene/icosphere.h"
+#include "core/geometry/icosphere.h"
 #include "render/trace/ray.h"
 
 #include <glm/vec3.hpp>

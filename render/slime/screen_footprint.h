@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "core/scene/camera.h"
+#include "core/geometry/camera.h"
 #include "render/slime/convex_outline.h"
 #include "render/trace/shading_parameters.h"
 #include "render/slime/slime_geometry.h"

@@ -10,6 +10,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace slime {
 namespace {
@@ -41,24 +43,58 @@ void splitClusters(const std::vector<glm::vec3>& positions, std::vector<std::uin
 
 }  // namespace
 
-bool SlimeGeometry::update(const std::vector<glm::dvec3>& newPositions, const std::vector<Triangle>& newTriangles) {
-  const bool topologyChanged = newTriangles != triangles || newPositions.size() != vertexCount();
-  if (topologyChanged) triangles = newTriangles;
-  positions.resize(newPositions.size() + 1);
+bool SlimeGeometry::update(std::span<const SurfaceView> surfaces) {
+  std::size_t vertexTotal = 0, triangleTotal = 0;
+  for (const SurfaceView& surface : surfaces) {
+    vertexTotal += surface.positions.size();
+    triangleTotal += surface.triangles.size();
+  }
+  // The topology is the pieces' triangles, each offset by the vertices before its piece.
+  bool topologyChanged = triangleTotal != triangles.size() || vertexTotal != vertexCount();
+  for (std::size_t piece = 0, f = 0, offset = 0; !topologyChanged && piece < surfaces.size(); ++piece) {
+    const Triangle shift(static_cast<std::uint32_t>(offset));
+    for (const Triangle& t : surfaces[piece].triangles)
+      if (triangles[f++] != t + shift) {
+        topologyChanged = true;
+        break;
+      }
+    offset += surfaces[piece].positions.size();
+  }
+  if (topologyChanged) {
+    triangles.clear();
+    triangles.reserve(triangleTotal);
+    std::size_t offset = 0;
+    for (std::size_t piece = 0; piece < surfaces.size(); ++piece) {
+      const std::size_t count = surfaces[piece].positions.size();
+      for (const Triangle& t : surfaces[piece].triangles) {
+        if (t.x >= count || t.y >= count || t.z >= count)
+          throw std::invalid_argument("slime piece " + std::to_string(piece) + ": a triangle indexes vertex " +
+                                      std::to_string(std::max({t.x, t.y, t.z})) + " of its " + std::to_string(count) +
+                                      " (each piece's triangles index its own vertices, from 0)");
+        triangles.push_back(t + Triangle(static_cast<std::uint32_t>(offset)));
+      }
+      offset += count;
+    }
+  }
+  positions.resize(vertexTotal + 1);
   glm::vec3 low(kInfinity), high(-kInfinity);
-  for (std::size_t i = 0; i < newPositions.size(); ++i) {
-    positions[i] = glm::vec3(newPositions[i]);
-    // A non-finite vertex (a diverged simulation) would poison the BVH: pin it to the origin.
-    if (!std::isfinite(positions[i].x + positions[i].y + positions[i].z)) positions[i] = glm::vec3(0.0f);
-    low = glm::min(low, positions[i]);
-    high = glm::max(high, positions[i]);
+  glm::vec3* vertex = positions.data();
+  for (const SurfaceView& surface : surfaces) {
+    for (const glm::dvec3& p : surface.positions) {
+      *vertex = glm::vec3(p);
+      // A non-finite vertex (a diverged simulation) would poison the BVH: pin it to the origin.
+      if (!std::isfinite(vertex->x + vertex->y + vertex->z)) *vertex = glm::vec3(0.0f);
+      low = glm::min(low, *vertex);
+      high = glm::max(high, *vertex);
+      ++vertex;
+    }
   }
   positions.back() = glm::vec3(0.0f);
   if (topologyChanged) buildClusters();
 
   // Vertex normals: the sum of the faces' cross products, i.e. area-weighted face normals.
   // The faces' own unit normals are kept too: a hit then costs a lookup, not three vertex loads.
-  normals.assign(newPositions.size(), glm::vec3(0.0f));
+  normals.assign(vertexTotal, glm::vec3(0.0f));
   faceNormals.resize(triangles.size());
   for (std::size_t i = 0; i < triangles.size(); ++i) {
     const Triangle& t = triangles[i];
@@ -84,10 +120,10 @@ bool SlimeGeometry::update(const std::vector<glm::dvec3>& newPositions, const st
     }
   }
 
-  boundCenter = newPositions.empty() ? glm::vec3(0.0f) : 0.5f * (low + high);
+  boundCenter = vertexTotal == 0 ? glm::vec3(0.0f) : 0.5f * (low + high);
   float radius2 = 0.0f;
   glm::vec3 sum(0.0f);
-  for (std::size_t i = 0; i < newPositions.size(); ++i) {
+  for (std::size_t i = 0; i < vertexTotal; ++i) {
     const glm::vec3 d = positions[i] - boundCenter;
     radius2 = std::max(radius2, glm::dot(d, d));
     sum += positions[i];
@@ -95,8 +131,8 @@ bool SlimeGeometry::update(const std::vector<glm::dvec3>& newPositions, const st
   boundRadius = std::sqrt(radius2);
   meshBoundCenter = boundCenter;
   meshBoundRadius = boundRadius;
-  if (!newPositions.empty()) sphereCenter = sum / static_cast<float>(newPositions.size());
-  analyticSphere = sphereRequested && !newPositions.empty();
+  if (vertexTotal > 0) sphereCenter = sum / static_cast<float>(vertexTotal);
+  analyticSphere = sphereRequested && vertexTotal > 0;
   if (analyticSphere) {
     boundCenter = sphereCenter;
     boundRadius = sphereRadius;

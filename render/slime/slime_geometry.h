@@ -1,9 +1,15 @@
 // The slime as the renderer sees it: float vertex positions (padded for Embree), per-frame vertex
 // normals, triangles, a bounding sphere for culling, and the analytic sphere of slime.shape=sphere.
 // Shared by both intersection back-ends and by shading, so only the intersection differs.
+// The slime may be several pieces (closed surfaces, core/geometry/surface_view.h): they are held as one
+// mesh, piece after piece, each piece's triangles offset by the vertices of the pieces before it. Every
+// structure built on the mesh holds for disjoint closed parts as for one: "supporting" is judged against
+// every vertex of every piece, the exit walk steps only across shared edges (within a piece), and the
+// bounds, outlines and grids bound all the pieces together.
 #pragma once
 
-#include "core/scene/icosphere.h"
+#include "core/geometry/icosphere.h"
+#include "core/geometry/surface_view.h"
 #include "render/trace/ray.h"
 
 #include <glm/geometric.hpp>
@@ -13,6 +19,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace slime {
@@ -90,8 +97,15 @@ struct SlimeGeometry {
 
   std::size_t vertexCount() const { return positions.empty() ? 0 : positions.size() - 1; }
 
-  // Copies the physics state; recomputes normals and bounds. Returns true when the topology changed.
-  bool update(const std::vector<glm::dvec3>& newPositions, const std::vector<Triangle>& newTriangles);
+  // Copies the pieces, one after another, into one mesh; recomputes normals and bounds. Returns true
+  // when the topology changed (the number of pieces, their vertex counts or their triangles). Throws
+  // std::invalid_argument for a triangle whose index lies outside its own piece's vertices.
+  bool update(std::span<const SurfaceView> surfaces);
+  // One piece.
+  bool update(const std::vector<glm::dvec3>& newPositions, const std::vector<Triangle>& newTriangles) {
+    const SurfaceView surface{newPositions, newTriangles};
+    return update(std::span<const SurfaceView>(&surface, 1));
+  }
 
   // The clusters of a new topology and the tree over them (buildClusters), and this frame's
   // supporting triangles and convexity.
@@ -100,7 +114,8 @@ struct SlimeGeometry {
   // nonSupportingTriangles, nonSupportingPrimitives, their sphere and `convex`, from `supporting`.
   void listNonSupporting();
 
-  // Makes the analytic sphere (centre of the vertices, `radius`) the slime, or the mesh again.
+  // Makes the analytic sphere (centre of the vertices, of all pieces together, `radius`) the slime,
+  // or the mesh again.
   void setAnalyticSphere(bool enabled, float radius);
 
   // Whether the segment [tNear, tFar] of the ray can touch the bounding sphere (slack included).

@@ -5,7 +5,7 @@
 // pass asks for it (the tiles, the primary visibility).
 #pragma once
 
-#include "core/scene/camera.h"
+#include "core/geometry/camera.h"
 
 #include <glm/vec3.hpp>
 

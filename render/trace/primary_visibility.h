@@ -12,7 +12,7 @@
 // eye's grid answers otherwise.
 #pragma once
 
-#include "core/scene/camera.h"
+#include "core/geometry/camera.h"
 #include "render/trace/primary_view.h"
 #include "render/trace/ray.h"
 #include "render/slime/slime_geometry.h"

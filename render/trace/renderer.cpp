@@ -1,6 +1,6 @@
 #include "render/trace/renderer.h"
 
-#include "core/scene/camera.h"
+#include "core/geometry/camera.h"
 #include "render/caustics/caustics.h"
 #include "render/trace/brute_tracer.h"
 #include "render/trace/checkerboard.h"
@@ -419,9 +419,9 @@ Renderer::~Renderer() = default;
 
 void Renderer::setProgressiveCaustics(bool progressive) { impl_->progressiveCaustics = progressive; }
 
-void Renderer::updateSlime(const std::vector<glm::dvec3>& positions, const std::vector<Triangle>& triangles) {
+void Renderer::updateSlime(const std::vector<SurfaceView>& surfaces) {
   const auto start = std::chrono::steady_clock::now();
-  const bool topologyChanged = impl_->geometry.update(positions, triangles);
+  const bool topologyChanged = impl_->geometry.update(surfaces);
   impl_->embree.update(impl_->geometry, topologyChanged);
   impl_->refitMs = millisecondsSince(start);
 }

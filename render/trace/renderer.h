@@ -1,13 +1,15 @@
 // The ray tracer: one Embree device and scene holding the slime (a dynamic triangle mesh refitted
-// every frame) over the analytic floor z = 0, traced Whitted-style in parallel TBB tiles.
+// every frame) over the analytic floor z = 0, traced Whitted-style in parallel TBB tiles. The slime is
+// a list of closed surfaces, one per piece (core/geometry/surface_view.h), drawn as one mesh.
 // Rendering is one call: render(settings, image). The window shows the image, the snapshot writes it,
 // the benchmark times it: the same code path.
 //
 // CONTRACT used by app/ (keep these signatures; add whatever else rendering needs):
-//   Image, RayCounts, RenderStats, Renderer(settings), updateSlime, render, pick.
+//   Image, RayCounts, RenderStats, SurfaceView, Renderer(settings), updateSlime(one SurfaceView per piece),
+//   render, pick.
 #pragma once
 
-#include "core/scene/icosphere.h"
+#include "core/geometry/surface_view.h"
 #include "core/settings/settings.h"
 #include "render/image/image.h"  // Image: a linear-RGB float image, row-major, top row first
 
@@ -62,8 +64,11 @@ class Renderer {
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
 
-  // Writes the slime's vertices into the Embree buffer and refits; rebuilds when the topology changes.
-  void updateSlime(const std::vector<glm::dvec3>& positions, const std::vector<Triangle>& triangles);
+  // The slime's pieces, each a closed surface, disjoint from the others (none: no slime). Their vertices
+  // go into the one Embree buffer, piece after piece, and the BVH is refitted; it is rebuilt when the
+  // topology changes (the number of pieces, a piece's vertex count or its triangles). Throws
+  // std::invalid_argument for a triangle that indexes outside its piece.
+  void updateSlime(const std::vector<SurfaceView>& surfaces);
 
   // Traces the scene seen by settings.camera into `image` at the image's current size. With `srgba`,
   // each tile also writes its pixels there as 8-bit sRGB, 4 bytes a pixel (image_io.h's toSrgb8

@@ -8,7 +8,7 @@
 // Arguments: frames, width, height, threads, [PNG of the last frame]. Prints the median wall and CPU
 // (process, all threads) time per frame: CPU time is the steadier figure on a shared machine.
 #include "app/bench/render/bench_bvh.h"
-#include "core/scene/icosphere.h"
+#include "core/geometry/icosphere.h"
 #include "core/settings/settings_io.h"
 #include "render/image/image_io.h"
 #include "render/trace/renderer.h"
@@ -76,7 +76,7 @@ int main(int argc, char** argv) {
     if (!still) settings.camera.yaw = yaw + (frame % 2 ? 1e-3 : -1e-3);  // as bench render's moving camera
     const TriangleMesh& mesh = shapes[frame % shapes.size()];
     const auto refitStart = std::chrono::steady_clock::now();
-    renderer.updateSlime(mesh.positions, mesh.triangles);
+    renderer.updateSlime({mesh});
     refitMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - refitStart).count());
     const auto start = std::chrono::steady_clock::now();
     const double cpuStart = processCpuMilliseconds();

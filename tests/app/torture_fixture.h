@@ -3,10 +3,10 @@
 // does, sampled at every step, and the queries the checks ask of it.
 #pragma once
 
-#include "core/scene/grab.h"
-#include "core/scene/scenario.h"
+#include "core/hands/grab.h"
+#include "core/simulation/scenario.h"
 #include "core/settings/settings_io.h"
-#include "core/scene/simulation.h"
+#include "core/simulation/simulation.h"
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>

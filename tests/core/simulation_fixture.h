@@ -1,7 +1,7 @@
 // Helpers shared by the core tests that run a whole Simulation: run it on, and read where its surface is.
 #pragma once
 
-#include "core/scene/simulation.h"
+#include "core/simulation/simulation.h"
 
 #include <glm/vec3.hpp>
 

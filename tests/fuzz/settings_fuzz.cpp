@@ -2,9 +2,9 @@
 // `--set key=value` overrides and scenario files (parsed, then replayed for a few steps on a small
 // slime). The first byte picks the reader; the rest is the input. Any exception other than
 // SettingsError (or a crash, hang, leak or sanitizer report) is a bug.
-#include "core/scene/scenario.h"
+#include "core/simulation/scenario.h"
 #include "core/settings/settings_io.h"
-#include "core/scene/simulation.h"
+#include "core/simulation/simulation.h"
 
 #include <nlohmann/json.hpp>
 

@@ -1,7 +1,7 @@
 // Helpers shared by the render tests: a small default scene, one-call rendering and image comparison.
 #pragma once
 
-#include "core/scene/icosphere.h"
+#include "core/geometry/icosphere.h"
 #include "core/settings/settings.h"
 #include "core/settings/settings_io.h"
 #include "render/image/image_io.h"
@@ -56,7 +56,7 @@ inline TriangleMesh restingMesh(const Settings& settings) {
 // Renders `mesh` (or nothing when it is empty) with the given settings.
 inline Image renderMesh(const Settings& settings, const TriangleMesh& mesh, RenderStats* stats = nullptr) {
   Renderer renderer(settings);
-  renderer.updateSlime(mesh.positions, mesh.triangles);
+  renderer.updateSlime({mesh});
   Image image;
   image.resize(settings.camera.width, settings.camera.height);
   const RenderStats result = renderer.render(settings, image);

@@ -4,7 +4,7 @@
 #include "app/bench/material/bench_modes.h"
 #include "app/bench/report/bench_timing.h"
 #include "core/bulk/lamb_sphere.h"
-#include "core/scene/simulation.h"
+#include "core/simulation/simulation.h"
 
 #include <cmath>
 #include <cstdio>

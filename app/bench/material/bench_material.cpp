@@ -5,7 +5,7 @@
 #include "app/bench/report/bench_report.h"
 #include "app/bench/report/bench_timing.h"
 #include "core/bulk/lamb_sphere.h"
-#include "core/scene/simulation.h"
+#include "core/simulation/simulation.h"
 #include "core/bulk/viscoelastic.h"
 
 #include <glm/geometric.hpp>

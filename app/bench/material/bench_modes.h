@@ -2,7 +2,7 @@
 // Lamb's frequencies, creep and recovery, energy drift, and the integrators' numerical damping.
 #pragma once
 
-#include "core/scene/simulation.h"
+#include "core/simulation/simulation.h"
 #include "core/settings/settings.h"
 
 #include <glm/vec3.hpp>

@@ -1,6 +1,6 @@
 #include "app/bench/material/bench_tensile.h"
 
-#include "core/scene/simulation.h"
+#include "core/simulation/simulation.h"
 
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>

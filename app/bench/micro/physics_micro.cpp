@@ -6,7 +6,7 @@
 #include "core/membrane/force_model.h"
 #include "core/integrators/integrators.h"
 #include "core/settings/settings_io.h"
-#include "core/scene/simulation.h"
+#include "core/simulation/simulation.h"
 #include "core/membrane/slime_body.h"
 #include "core/membrane/springs.h"
 

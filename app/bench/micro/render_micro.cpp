@@ -2,8 +2,8 @@
 // at the slime's centre) and one whole frame at a small size (160×120), level 4, one thread, and the
 // refit of the slime's BVH after its vertices move; and the floor's pattern alone, looked up where
 // the default view sees it (under and around the slime, pixel footprints of about half a millimetre).
-#include "core/scene/camera.h"
-#include "core/scene/icosphere.h"
+#include "core/geometry/camera.h"
+#include "core/geometry/icosphere.h"
 #include "core/settings/settings_io.h"
 #include "render/floor/floor_texture.h"
 #include "render/trace/renderer.h"
@@ -32,7 +32,7 @@ void renderImage(benchmark::State& state, int width, int height, double fov) {
   lookAt(settings.camera, settings.camera.position, {0.0, 0.0, settings.slime.radius});
   const TriangleMesh mesh = restingMesh(settings);
   Renderer renderer(settings);
-  renderer.updateSlime(mesh.positions, mesh.triangles);
+  renderer.updateSlime({mesh});
   Image image;
   image.resize(width, height);
   std::uint64_t rays = 0;
@@ -52,12 +52,12 @@ void refitSlime(benchmark::State& state) {
   settings.slime.level = static_cast<int>(state.range(0));
   TriangleMesh mesh = restingMesh(settings);
   Renderer renderer(settings);
-  renderer.updateSlime(mesh.positions, mesh.triangles);
+  renderer.updateSlime({mesh});
   double wobble = 0.0;
   for (auto _ : state) {
     wobble = wobble > 0.0 ? -1e-4 : 1e-4;  // a small move so that the refit has work
     for (glm::dvec3& p : mesh.positions) p.z += wobble;
-    renderer.updateSlime(mesh.positions, mesh.triangles);
+    renderer.updateSlime({mesh});
   }
 }
 BENCHMARK(refitSlime)->Arg(4)->Arg(6)->Unit(benchmark::kMicrosecond);

@@ -4,7 +4,7 @@
 // and stepped at a fixed 1 ms. Prints and writes (--json FILE) ms per step and the roundness at
 // rest: aspect = height / width and the spread of the vertices' distances from their centroid.
 //   usage: bullet_ball [--levels 4,6] [--seconds 2] [--json FILE]
-#include "core/scene/icosphere.h"
+#include "core/geometry/icosphere.h"
 
 #include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
 #include <BulletSoftBody/btSoftBodyHelpers.h>

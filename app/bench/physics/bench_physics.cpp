@@ -7,7 +7,7 @@
 #include "app/bench/report/bench_timing.h"
 #include "app/bench/physics/bench_trajectory_error.h"
 #include "core/integrators/integrators.h"
-#include "core/scene/simulation.h"
+#include "core/simulation/simulation.h"
 #include "core/integrators/stability.h"
 
 #include <glm/geometric.hpp>

@@ -1,6 +1,6 @@
 #include "app/bench/physics/bench_stability.h"
 
-#include "core/scene/simulation.h"
+#include "core/simulation/simulation.h"
 
 #include <cmath>
 

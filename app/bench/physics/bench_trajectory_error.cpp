@@ -1,8 +1,8 @@
 #include "app/bench/physics/bench_trajectory_error.h"
 
 #include "app/bench/report/bench_timing.h"
-#include "core/scene/scenario.h"
-#include "core/scene/simulation.h"
+#include "core/simulation/scenario.h"
+#include "core/simulation/simulation.h"
 
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>

@@ -4,8 +4,8 @@
 #include "app/bench/render/bench_render.h"
 #include "app/bench/report/bench_report.h"
 #include "app/bench/report/bench_timing.h"
-#include "core/scene/camera.h"
-#include "core/scene/level_of_detail.h"
+#include "core/geometry/camera.h"
+#include "core/geometry/level_of_detail.h"
 #include "render/image/image_io.h"
 #include "render/trace/renderer.h"
 
@@ -31,7 +31,7 @@ struct Frame {
 
 Frame renderTimed(const Settings& settings, const TriangleMesh& mesh, int frames) {
   Renderer renderer(settings);
-  renderer.updateSlime(mesh.positions, mesh.triangles);
+  renderer.updateSlime({mesh});
   Frame frame;
   frame.image.resize(settings.camera.width, settings.camera.height);
   renderer.render(settings, frame.image);  // untimed: first touches of memory and threads
@@ -148,7 +148,7 @@ json runAccuracyBench(const Settings& baseSettings, const AccuracyBenchOptions& 
 
   // The on-screen sagitta of the smallest level whose mesh is invisible against the sphere at the same
   // depth (smooth normals, the scene's own depth: at depth 1 no refraction shows the facets): the
-  // threshold that slime.level=auto (core/scene/level_of_detail.h) should use.
+  // threshold that slime.level=auto (core/geometry/level_of_detail.h) should use.
   json smallestInvisible;
   for (const json& run : runs)
     if (run["geometric_only"]["invisible"].get<bool>() && run["normals"] == "smooth" &&

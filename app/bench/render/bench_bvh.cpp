@@ -3,7 +3,7 @@
 #include "app/bench/render/bench_embree_replay.h"
 #include "app/bench/render/bench_ray_log.h"
 #include "app/bench/report/bench_timing.h"
-#include "core/scene/simulation.h"
+#include "core/simulation/simulation.h"
 
 #include <glm/common.hpp>
 

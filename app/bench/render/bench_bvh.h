@@ -7,7 +7,7 @@
 
 #include "app/bench/report/bench_progress.h"
 #include "app/bench/report/bench_report.h"
-#include "core/scene/icosphere.h"
+#include "core/geometry/icosphere.h"
 #include "core/settings/settings.h"
 
 #include <glm/vec3.hpp>

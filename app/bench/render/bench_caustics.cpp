@@ -1,6 +1,6 @@
 #include "app/bench/render/bench_caustics.h"
 
-#include "core/scene/icosphere.h"
+#include "core/geometry/icosphere.h"
 #include "render/caustics/caustic_map.h"
 #include "render/caustics/photon_tracer.h"
 #include "render/trace/embree_scene.h"

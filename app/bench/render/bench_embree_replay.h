@@ -5,7 +5,7 @@
 #pragma once
 
 #include "app/bench/render/bench_ray_log.h"
-#include "core/scene/icosphere.h"
+#include "core/geometry/icosphere.h"
 #include "render/trace/embree_scene.h"
 #include "render/slime/slime_geometry.h"
 

@@ -1,6 +1,6 @@
 #include "app/bench/render/bench_ray_log.h"
 
-#include "core/scene/camera.h"
+#include "core/geometry/camera.h"
 #include "render/trace/embree_scene.h"
 #include "render/floor/floor_texture.h"
 #include "render/trace/shading_parameters.h"

@@ -4,7 +4,7 @@
 // WhittedTracer once over every pixel (one sample per pixel) with an intersector that logs each query.
 #pragma once
 
-#include "core/scene/icosphere.h"
+#include "core/geometry/icosphere.h"
 #include "core/settings/settings.h"
 #include "render/trace/ray.h"
 

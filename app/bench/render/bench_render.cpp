@@ -83,7 +83,7 @@ FrameTiming timeFrames(Renderer& renderer, const Settings& stillSettings, const 
     if (plan.motion != CameraMotion::Still) settings.camera.yaw = stillSettings.camera.yaw + (frame % 2 ? 1e-3 : -1e-3);
     const TriangleMesh& shape = shapes.empty() ? mesh : shapes[frame % 2];
     const Stopwatch refitWatch;
-    renderer.updateSlime(shape.positions, shape.triangles);
+    renderer.updateSlime({shape});
     const double refitMs = refitWatch.milliseconds();
     const Stopwatch watch;
     timing.stats = renderer.render(settings, image);
@@ -119,7 +119,7 @@ FrameTiming timeHandledFrames(Renderer& renderer, const Settings& settings, cons
     const int phase = frame % period;
     const TriangleMesh& shape = shapes[count > 1 && phase >= count ? period - phase : std::min(phase, count - 1)];
     const Stopwatch watch;
-    renderer.updateSlime(shape.positions, shape.triangles);
+    renderer.updateSlime({shape});
     timing.stats = renderer.render(settings, image, &bytes, /*buffersKept=*/frame > 0);
     const double ms = watch.milliseconds();
     progress.advance(1.0, what);

@@ -8,7 +8,7 @@
 //  - BVH refit vs rebuild at LOW/MEDIUM/HIGH on a slime stretched by the physics (bench_bvh.h).
 #pragma once
 
-#include "core/scene/icosphere.h"
+#include "core/geometry/icosphere.h"
 #include "core/settings/settings.h"
 
 #include <nlohmann/json.hpp>

@@ -7,7 +7,7 @@
 //    the grabbed patch moved as far and as fast as the grab allows; within 5 s of release the aspect
 //    is within 5 % and the volume within 2 % of an untouched run's.
 //  - slime.model=bulk (the default: a viscoelastic body grabbed by a force-limited mouse spring,
-//    core/scene/grab.h): the hand's force stays within sim.handForce and the body moves as Newton allows
+//    core/hands/grab.h): the hand's force stays within sim.handForce and the body moves as Newton allows
 //    under it, the grabbed point lies where the spring law puts it, a lifted body hangs and droops;
 //    the body creeps back (time constant ≈ 1.5 s), so its shape is compared with an untouched run's
 //    at the same time.
@@ -29,7 +29,7 @@ using namespace fixture;
 
 // ---------------------------------------------------------------------------------------------------
 // The bulk body: the hand is a spring of stiffness kMouseStiffness whose force is capped at
-// sim.handForce (core/scene/grab.h; 16 N by default), so nothing is placed; the checks ask where Newton and the spring law
+// sim.handForce (core/hands/grab.h; 16 N by default), so nothing is placed; the checks ask where Newton and the spring law
 // put the body.
 
 // The most force a hand pulls with in the run (its sim.handForce) and the spring's reach, the farthest
@@ -100,7 +100,7 @@ void bulkYanked(const TortureResult& run, const TortureResult&) {
   }
   const double newtonLimit = 0.5 * (maxForce / mass) * held * held;
   const double frictionLimit = lowerBound;
-  // The sticky floor's share (slime.adhesion, core/scene/floor_adhesion.h). Its strength is no bound
+  // The sticky floor's share (slime.adhesion, core/contact/floor_adhesion.h). Its strength is no bound
   // here: Σ σ(t) A_i over the stuck nodes is 8.6–9.4 N on rk4's resolution-1 body at 8000 Pa, as much
   // as F_max − μ m g was at 10 N (8.4 N), so the contact could in principle hold the base for the whole 0.1 s. What
   // it did take is Newton's other term: each substep it puts held nodes back (Σ m_i Δx_i) and stops

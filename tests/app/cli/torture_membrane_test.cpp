@@ -19,7 +19,7 @@ using namespace fixture;
 
 // tests/scenarios/yank_1m_in_10ms.json: at t = 1 s the top is grabbed and its target jumps 1 m
 // sideways in 10 ms (100 m/s); release at 1.1 s. No slime reaches 100 m/s: the grab follows a jumping
-// target at kGrabSpeed (core/scene/grab.h), so in the 0.1 s held the grabbed patch must travel
+// target at kGrabSpeed (core/hands/grab.h), so in the 0.1 s held the grabbed patch must travel
 // kGrabSpeed · 0.1 s, and the body must come along (its centroid moving at least a third of that).
 void yankedAtTheGrabSpeed(const TortureResult& run, const TortureResult&) {
   constexpr double kGrab = 1.0, kRelease = 1.1, kTargetDistance = 1.0;

@@ -1,6 +1,6 @@
 #include "app/viewer/interaction.h"
 
-#include "core/scene/camera.h"
+#include "core/geometry/camera.h"
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>

@@ -4,7 +4,7 @@
 #include "app/viewer/panels.h"
 #include "app/viewer/ui_snapshot.h"
 #include "app/viewer/viewer.h"
-#include "core/scene/scenario.h"
+#include "core/simulation/scenario.h"
 #include "core/settings/settings_io.h"
 #include "render/image/image_io.h"
 

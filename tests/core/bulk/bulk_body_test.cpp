@@ -1,7 +1,7 @@
 // The bulk slime's pieces: the tetrahedral ball, the embedded drawn surface, the material's stress,
 // and the standard linear solid's flow against its closed-form relaxation and creep.
 #include "core/bulk/bulk_body.h"
-#include "core/scene/icosphere.h"
+#include "core/geometry/icosphere.h"
 #include "core/settings/settings_io.h"
 #include "core/bulk/surface_embedding.h"
 #include "core/bulk/tet_mesh.h"

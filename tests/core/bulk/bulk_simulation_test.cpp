@@ -5,8 +5,8 @@
 #include "simulation_fixture.h"
 #include "core/bulk/lamb_sphere.h"
 #include "core/settings/settings_io.h"
-#include "core/scene/scenario.h"
-#include "core/scene/simulation.h"
+#include "core/simulation/scenario.h"
+#include "core/simulation/simulation.h"
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>

@@ -3,7 +3,7 @@
 // inputs give the same bytes, and the guard itself still catches a state that is broken.
 #include "simulation_fixture.h"
 #include "core/settings/settings_io.h"
-#include "core/scene/simulation.h"
+#include "core/simulation/simulation.h"
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>

@@ -7,7 +7,7 @@
 #include "core/bulk/normal_jumps.h"
 #include "core/bulk/surface_embedding.h"
 #include "core/settings/settings_io.h"
-#include "core/scene/simulation.h"
+#include "core/simulation/simulation.h"
 #include "simulation_fixture.h"
 
 #include <glm/geometric.hpp>

@@ -1,7 +1,7 @@
 // The exported surface read back by independent readers — a small PLY parser here, and assimp for
 // .obj and .glb — holds exactly the simulation's vertex positions and triangles at the export times.
 #include "core/export/mesh_exporter.h"
-#include "core/scene/simulation.h"
+#include "core/simulation/simulation.h"
 #include "core/settings/settings_io.h"
 
 #include <assimp/Importer.hpp>

@@ -5,14 +5,14 @@
 // serially and on threads; threads must not change a bit; and its volume gradient per edge against
 // volume.h's per triangle.
 #include "core/integrators/damped_symplectic_euler.h"
-#include "core/scene/floor_contact.h"
+#include "core/contact/floor_contact.h"
 #include "core/membrane/force_model.h"
-#include "core/scene/icosphere.h"
+#include "core/geometry/icosphere.h"
 #include "core/integrators/integrators.h"
 #include "core/settings/settings_io.h"
-#include "core/scene/simulation.h"
+#include "core/simulation/simulation.h"
 #include "core/membrane/slime_body.h"
-#include "core/membrane/volume.h"
+#include "core/geometry/volume.h"
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>

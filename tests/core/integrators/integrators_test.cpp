@@ -6,7 +6,7 @@
 // unconditionally stable methods at 100× that step.
 #include "core/integrators/integrators.h"
 #include "core/settings/settings_io.h"
-#include "core/scene/simulation.h"
+#include "core/simulation/simulation.h"
 
 #include <gtest/gtest.h>
 

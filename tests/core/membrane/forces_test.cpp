@@ -1,9 +1,9 @@
 // Forces against hand-computed values: Hooke, damper, series rule, volume and its gradient, the
 // fill pressure and the implicit spring damping.
 #include "core/membrane/force_model.h"
-#include "core/scene/icosphere.h"
+#include "core/geometry/icosphere.h"
 #include "core/membrane/springs.h"
-#include "core/membrane/volume.h"
+#include "core/geometry/volume.h"
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>

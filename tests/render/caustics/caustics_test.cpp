@@ -291,7 +291,7 @@ TEST(Caustics, PlainRenderDoesNotDependOnEarlierFrames) {
   const Settings settings = clearSlimeLitFromTheSide(64, 48);
   const TriangleMesh mesh = restingMesh(settings);
   Renderer renderer(settings);
-  renderer.updateSlime(mesh.positions, mesh.triangles);
+  renderer.updateSlime({mesh});
   Image first, second, third;
   first.resize(64, 48), second.resize(64, 48), third.resize(64, 48);
   const RenderStats a = renderer.render(settings, first);
@@ -318,7 +318,7 @@ TEST(Caustics, ProgressiveMapEndsAtThePlainRendersFinishedMap) {
   const TriangleMesh mesh = restingMesh(settings);
   Renderer renderer(settings);
   renderer.setProgressiveCaustics(true);
-  renderer.updateSlime(mesh.positions, mesh.triangles);
+  renderer.updateSlime({mesh});
   Image image;
   image.resize(48, 36);
   const auto moving = static_cast<std::uint64_t>(settings.render.photons / Caustics::kMovingDivisor);

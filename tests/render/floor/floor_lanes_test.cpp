@@ -3,7 +3,7 @@
 // operations of the general path (tracePrimaries, one ray's Whitted tree at a time). The renderer
 // mixes the two in one frame, the footprint deciding which pixel takes which, so the two must agree
 // bit for bit, whatever the number of rays shaded together.
-#include "core/scene/camera.h"
+#include "core/geometry/camera.h"
 #include "render/trace/brute_tracer.h"
 #include "render/floor/floor_texture.h"
 #include "render/trace/shading_parameters.h"

@@ -4,7 +4,7 @@
 // one-ray-at-a-time form bit for bit.
 #include "render/slime/exit_walk.h"
 
-#include "core/scene/icosphere.h"
+#include "core/geometry/icosphere.h"
 #include "render/trace/brute_tracer.h"
 #include "render/trace/optics.h"
 #include "render/slime/slime_geometry.h"

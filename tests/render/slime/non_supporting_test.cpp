@@ -3,8 +3,8 @@
 // alone, and a shadow ray from both its ends (WhittedTracer::findHits, crossFromBothEnds8). The
 // oracle: the same frame traced with no triangle taken as supporting, when every such shortcut
 // falls back to the plain forward query and the walk along the shadow ray.
-#include "core/scene/camera.h"
-#include "core/scene/icosphere.h"
+#include "core/geometry/camera.h"
+#include "core/geometry/icosphere.h"
 #include "render/trace/brute_tracer.h"
 #include "render/trace/embree_scene.h"
 #include "render/floor/floor_texture.h"

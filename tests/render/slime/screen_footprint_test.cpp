@@ -2,8 +2,8 @@
 // slime when its primary ray, its floor point's shadow ray or its floor point's mirror ray can reach
 // the bounding sphere (SlimeGeometry::mayHit, the renderer's own test). Every such pixel must be in
 // the footprint, and the footprint must not be much larger than the set of such pixels.
-#include "core/scene/camera.h"
-#include "core/scene/icosphere.h"
+#include "core/geometry/camera.h"
+#include "core/geometry/icosphere.h"
 #include "core/settings/settings_io.h"
 #include "render/trace/optics.h"
 #include "render/slime/screen_footprint.h"

@@ -3,7 +3,7 @@
 // triangle's plane.
 #include "render/slime/slime_geometry.h"
 
-#include "core/scene/icosphere.h"
+#include "core/geometry/icosphere.h"
 
 #include <gtest/gtest.h>
 

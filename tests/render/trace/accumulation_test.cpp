@@ -39,7 +39,7 @@ TEST(AccumulationBuffer, SixteenOffsetFramesOfAStillSceneEqualTheSixteenSampleSn
 
   const TriangleMesh mesh = restingMesh(settings);
   Renderer renderer(settings);
-  renderer.updateSlime(mesh.positions, mesh.triangles);
+  renderer.updateSlime({mesh});
   AccumulationBuffer buffer(16);
   Image frame, average;
   frame.resize(settings.camera.width, settings.camera.height);
@@ -65,7 +65,7 @@ TEST(AccumulationBuffer, AMovedCameraStartsAgainFromItsFirstFrame) {
   Settings settings = smallScene(48, 36);
   const TriangleMesh mesh = restingMesh(settings);
   Renderer renderer(settings);
-  renderer.updateSlime(mesh.positions, mesh.triangles);
+  renderer.updateSlime({mesh});
   AccumulationBuffer buffer(16);
   Image frame, average;
   frame.resize(settings.camera.width, settings.camera.height);

@@ -2,7 +2,7 @@
 // and frames traced that way against the full trace (the viewer's --check-every aims: ≥ 38 dB).
 #include "render_fixture.h"
 
-#include "core/scene/camera.h"
+#include "core/geometry/camera.h"
 #include "render/slime/screen_footprint.h"
 #include "render/trace/checkerboard.h"
 #include "render/trace/shading_parameters.h"
@@ -65,12 +65,12 @@ void expectMovingFramesCloseToTheFullTrace(bool quarter, bool sixteenth = false)
   Image image;
   image.resize(settings.camera.width, settings.camera.height);
   std::vector<std::uint8_t> bytes;
-  renderer.updateSlime(resting.positions, resting.triangles);
+  renderer.updateSlime({resting});
   renderer.render(settings, image, &bytes, /*buffersKept=*/true);
   for (int frame = 1; frame <= 4; ++frame) {
     TriangleMesh moved = resting;
     for (auto& p : moved.positions) p += glm::dvec3(0.006 * frame, 0.004 * frame, 0.0);
-    renderer.updateSlime(moved.positions, moved.triangles);
+    renderer.updateSlime({moved});
     const RenderStats stats = renderer.render(settings, image, &bytes, /*buffersKept=*/true);
     const std::string what = "frame " + std::to_string(frame);
     EXPECT_EQ(stats.nonFinitePixels, 0u) << what;

@@ -6,7 +6,7 @@
 // level 2 had 13 outliers under Embree, 16 under the brute force, and 0.50 % of pixels differing.
 #include "render_fixture.h"
 
-#include "core/scene/simulation.h"
+#include "core/simulation/simulation.h"
 
 #include <gtest/gtest.h>
 

@@ -2,8 +2,8 @@
 // Embree against the seed's brute-force algorithm, the mesh against the exact sphere, and no NaN.
 #include "render_fixture.h"
 
-#include "core/scene/camera.h"
-#include "core/scene/level_of_detail.h"
+#include "core/geometry/camera.h"
+#include "core/geometry/level_of_detail.h"
 #include "render/trace/optics.h"
 #include "render/slime/screen_footprint.h"
 #include "render/trace/shading_parameters.h"
@@ -86,10 +86,10 @@ TEST(Invariant, FramesFromTheFloorCacheEqualFreshFrames) {
   Image image;
   image.resize(settings.camera.width, settings.camera.height);
   std::vector<std::uint8_t> bytes;  // the window's sRGB bytes, written by the tiles as they go
-  renderer.updateSlime(resting.positions, resting.triangles);
+  renderer.updateSlime({resting});
   renderer.render(settings, image, &bytes);
   auto expectFresh = [&](const Settings& s, const TriangleMesh& mesh, const char* what) {
-    renderer.updateSlime(mesh.positions, mesh.triangles);
+    renderer.updateSlime({mesh});
     const std::vector<std::uint8_t> before = bytes;
     const RenderStats stats = renderer.render(s, image, &bytes, /*buffersKept=*/true);
     expectFrameEquals(image, bytes, renderMesh(s, mesh), what);
@@ -137,7 +137,7 @@ TEST(Invariant, FreshBuffersAreWrittenWhole) {
   const TriangleMesh mesh = restingMesh(settings);
   const Image expected = renderMesh(settings, mesh);
   Renderer renderer(settings);
-  renderer.updateSlime(mesh.positions, mesh.triangles);
+  renderer.updateSlime({mesh});
   Image image;
   image.resize(settings.camera.width, settings.camera.height);
   std::vector<std::uint8_t> bytes;
@@ -205,7 +205,7 @@ TEST(Invariant, FootprintHoldsEveryPixelTheSlimeChanges) {
 }
 
 // The viewer skips tracing a slime whose vertices moved less than kInvisibleMotionPixels since it was
-// last drawn (core/scene/level_of_detail.h). Every vertex moved that far, each in its own random direction
+// last drawn (core/geometry/level_of_detail.h). Every vertex moved that far, each in its own random direction
 // (the worst for the normals), must be invisible by the rule the level of detail rests on
 // (app/bench/render/bench_accuracy.h: at most 1 % of the pixels off by more than 2 steps of 8-bit sRGB; with one
 // sample a pixel, the pixels whose centre a silhouette or a refracted plank edge crosses flip

@@ -5,8 +5,8 @@
 // serve.
 #include "render/trace/primary_visibility.h"
 
-#include "core/scene/camera.h"
-#include "core/scene/icosphere.h"
+#include "core/geometry/camera.h"
+#include "core/geometry/icosphere.h"
 #include "render/trace/brute_tracer.h"
 #include "render/slime/pencil_grid.h"
 #include "render/trace/primary_view.h"

@@ -26,7 +26,7 @@ TEST(RenderBench, DISABLED_LevelsZeroToSixAt734x564) {
     settings.slime.level = level;
     const TriangleMesh mesh = restingMesh(settings);
     Renderer renderer(settings);
-    renderer.updateSlime(mesh.positions, mesh.triangles);
+    renderer.updateSlime({mesh});
     Image image;
     image.resize(settings.camera.width, settings.camera.height);
     renderer.render(settings, image);  // warm-up: thread pool, caches
@@ -34,7 +34,7 @@ TEST(RenderBench, DISABLED_LevelsZeroToSixAt734x564) {
     RenderStats stats;
     for (int frame = 0; frame < frames; ++frame) {
       const std::clock_t cpuStart = std::clock();
-      renderer.updateSlime(mesh.positions, mesh.triangles);
+      renderer.updateSlime({mesh});
       stats = renderer.render(settings, image);
       times.push_back(stats.traceMs + stats.refitMs);
       cpuTimes.push_back(1e3 * static_cast<double>(std::clock() - cpuStart) / CLOCKS_PER_SEC);
@@ -66,7 +66,7 @@ TEST(RenderBench, DISABLED_FloorOnlyAt734x564) {
   const char* threadsText = std::getenv("SLIME_BENCH_THREADS");
   settings.render.threads = threadsText ? std::atoi(threadsText) : 2;
   Renderer renderer(settings);
-  renderer.updateSlime({}, {});
+  renderer.updateSlime({});
   Image image;
   image.resize(settings.camera.width, settings.camera.height);
   renderer.render(settings, image);

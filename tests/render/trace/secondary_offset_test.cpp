@@ -5,7 +5,7 @@
 #include "render/trace/optics.h"
 #include "render/slime/slime_geometry.h"
 
-#include "core/scene/icosphere.h"
+#include "core/geometry/icosphere.h"
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>

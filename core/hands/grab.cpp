@@ -1,0 +1,107 @@
+#include "core/hands/grab.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace slime {
+
+glm::dvec3 closestPointOnTriangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
+                                  const glm::dvec3& c) {
+  // Voronoi regions of the vertices, then the edges, then the face (Ericson §5.1.5).
+  const glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+  if (d1 <= 0.0 && d2 <= 0.0) return a;
+  const glm::dvec3 bp = p - b;
+  const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+  if (d3 >= 0.0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + (d1 / (d1 - d3)) * ab;
+  const glm::dvec3 cp = p - c;
+  const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+  if (d6 >= 0.0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + (d2 / (d2 - d6)) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0)
+    return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+  const double denominator = 1.0 / (va + vb + vc);
+  return a + ab * (vb * denominator) + ac * (vc * denominator);
+}
+
+glm::dvec3 nearestSurfacePoint(const std::vector<glm::dvec3>& positions,
+                               const std::vector<Triangle>& triangles, const glm::dvec3& point) {
+  glm::dvec3 best = positions.empty() ? point : positions[0];
+  double bestDistance = std::numeric_limits<double>::infinity();
+  for (const Triangle& t : triangles) {
+    const glm::dvec3 q = closestPointOnTriangle(point, positions[t.x], positions[t.y], positions[t.z]);
+    const double distance = glm::dot(q - point, q - point);
+    if (distance < bestDistance) {
+      bestDistance = distance;
+      best = q;
+    }
+  }
+  return best;
+}
+
+std::vector<std::uint32_t> pointsWithinRadius(const std::vector<glm::dvec3>& positions,
+                                              const glm::dvec3& center, double radius) {
+  std::vector<std::uint32_t> indices;
+  for (std::size_t i = 0; i < positions.size(); ++i)
+    if (glm::dot(positions[i] - center, positions[i] - center) <= radius * radius)
+      indices.push_back(static_cast<std::uint32_t>(i));
+  return indices;
+}
+
+glm::dvec3 stepTowards(const glm::dvec3& anchor, const glm::dvec3& target, double maxStep) {
+  const glm::dvec3 offset = target - anchor;
+  const double distance = glm::length(offset);
+  if (distance <= maxStep) return target;
+  return anchor + offset * (maxStep / distance);
+}
+
+glm::dvec3 addMouseSpringForces(const MouseSpring& spring, const std::vector<glm::dvec3>& positions,
+                                const std::vector<glm::dvec3>& velocities, std::vector<glm::dvec3>& forces) {
+  glm::dvec3 total(0.0);
+  for (std::size_t k = 0; k < spring.nodes.size(); ++k) {
+    const std::uint32_t i = spring.nodes[k];
+    total += spring.shares[k] * (spring.stiffness * (springTarget(spring, k) - positions[i]) +
+                                 spring.damping * (springTargetVelocity(spring, k) - velocities[i]));
+  }
+  const double magnitude = glm::length(total);
+  const double scale = magnitude > spring.maxForce ? spring.maxForce / magnitude : 1.0;
+  for (std::size_t k = 0; k < spring.nodes.size(); ++k) {
+    const std::uint32_t i = spring.nodes[k];
+    forces[i] += (scale * spring.shares[k]) *
+                 (spring.stiffness * (springTarget(spring, k) - positions[i]) +
+                  spring.damping * (springTargetVelocity(spring, k) - velocities[i]));
+  }
+  return scale * total;
+}
+
+glm::dvec3 applyMouseSpringImplicitly(const MouseSpring& spring, const std::vector<glm::dvec3>& positions,
+                                      const std::vector<double>& inverseMasses, double h,
+                                      std::vector<glm::dvec3>& velocities) {
+  std::vector<glm::dvec3> change(spring.nodes.size(), glm::dvec3(0.0));
+  glm::dvec3 hand(0.0);
+  for (std::size_t k = 0; k < spring.nodes.size(); ++k) {
+    const std::uint32_t i = spring.nodes[k];
+    const double w = inverseMasses[i];
+    if (w <= 0.0) continue;
+    const double mass = 1.0 / w, stiffness = spring.shares[k] * spring.stiffness, damping = spring.shares[k] * spring.damping;
+    const glm::dvec3 v = velocities[i];
+    const glm::dvec3 next =
+        (mass / h * v + stiffness * (springTarget(spring, k) - positions[i]) + damping * springTargetVelocity(spring, k)) /
+        (mass / h + stiffness * h + damping);
+    change[k] = next - v;
+    hand += mass * change[k] / h;
+  }
+  const double magnitude = glm::length(hand);
+  const double scale = magnitude > spring.maxForce ? spring.maxForce / magnitude : 1.0;
+  for (std::size_t k = 0; k < spring.nodes.size(); ++k) velocities[spring.nodes[k]] += scale * change[k];
+  return scale * hand;
+}
+
+}  // namespace slime
