@@ -6,25 +6,12 @@
 // level 2 had 13 outliers under Embree, 16 under the brute force, and 0.50 % of pixels differing.
 #include "render_fixture.h"
 
-#include "core/scene/simulation.h"
-
 #include <gtest/gtest.h>
 
 #include <cstdlib>
 
 namespace slime::testing {
 namespace {
-
-// The slime settled as `slime snapshot` settles it: until no vertex moves faster than 5 mm/s
-// (after 0.3 s), at most 3 s.
-TriangleMesh settledMesh(const Settings& settings) {
-  Simulation simulation(settings);
-  while (simulation.time() < 3.0) {
-    simulation.step();
-    if (simulation.time() > 0.3 && simulation.stepCount() % 10 == 0 && simulation.metrics().maxSpeed < 0.005) break;
-  }
-  return {simulation.positions(), simulation.triangles()};
-}
 
 // Pixels whose 8 neighbours agree within `agree` steps of 1/255 in a channel while the pixel is more
 // than `far` steps from their mean there (sRGB bytes, the border left out).
