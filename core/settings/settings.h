@@ -68,6 +68,7 @@ struct SlimeSettings {
 struct RenderSettings {
   int depth = 16;                    // the most ray segments a path has (1 = primary rays only); it stops
                                      // sooner once what it carries could not change an 8-bit pixel
+  int movingDepth = 3;               // viewer, while things move (checkerboard frames): the cap on a path's segments
   int spp = 1;                       // samples per pixel (1, 4, 9, 16: a stratified n×n grid)
   int threads = 0;                   // worker threads for TBB and Embree, 0 = all cores
   std::string normals = "smooth";    // smooth | flat shading normals

@@ -119,6 +119,9 @@ void forEachField(S& s, Visitor&& visitor) {
   visit("render.depth", s.render.depth, Limits{1, 64, "ray segments"},
         "the most ray segments a path has (1 = primary rays only); a path stops sooner once the light it can "
         "still bring could not change an 8-bit sRGB pixel");
+  visit("render.movingDepth", s.render.movingDepth, Limits{1, 64, "ray segments"},
+        "viewer, while things move (the checkerboard's frames): render.depth's cap for those frames; a path totally "
+        "reflected inside the jelly at the cap takes the floor or sky along its reflection");
   visit("render.spp", s.render.spp, Limits{1, 64, "samples per pixel"},
         "samples per pixel: a stratified n x n grid (1, 4, 9, ..., 64)");
   visit("render.threads", s.render.threads, Limits{0, 256, "threads (0 = all cores)"},

@@ -8,6 +8,7 @@
 #include <glm/vec3.hpp>
 
 #include <algorithm>
+#include <cmath>
 
 namespace slime {
 
@@ -32,11 +33,32 @@ constexpr float kInvisibleRadiance = 0.5f / 255.0f / 12.92f;
 // A weight's largest channel.
 inline float largest(const glm::vec3& v) { return std::max(v.x, std::max(v.y, v.z)); }
 
+// The most the unrounded 8-bit sRGB value of a pixel holding `linear` moves per unit of linear light
+// added to it: the curve's slope there, 12.92 on its linear segment (up to 0.0031308), then
+// 1.055/2.4 · L^(−1.4/2.4), and 0 once the pixel is white (it is clamped). The curve is concave, so no
+// light added moves it faster than this: e(L + Δ) − e(L) ≤ e'(L) Δ.
+inline float srgbSlope(float linear) {
+  if (linear <= 0.0031308f) return 12.92f;
+  if (linear >= 1.0f) return 0.0f;
+  return (1.055f / 2.4f) * std::pow(linear, -1.4f / 2.4f);
+}
+
+// Whether light of at most `most` (per channel) added to a pixel that holds `pixel` so far could move
+// its 8-bit sRGB value by half a step. Light is only ever added, so the pixel ends at least as bright
+// as `pixel` and its slope there bounds the change: e'(pixel) · most ≥ 0.5/255 in some channel. A black
+// pixel makes this most < kInvisibleRadiance, the cheap test first.
+inline bool visibleLight(const glm::vec3& most, const glm::vec3& pixel) {
+  if (!(largest(most) >= kInvisibleRadiance)) return false;
+  for (int c = 0; c < 3; ++c)
+    if (most[c] * srgbSlope(pixel[c]) >= 0.5f / 255.0f) return true;
+  return false;
+}
+
 // Whether a path that still carries `throughput` (per channel: the product of the Fresnel, k_s, k_t
-// and Beer–Lambert factors along it) could change an 8-bit pixel, when nothing it can meet returns
-// more than `brightest` (per channel): the most it adds is throughput × brightest.
-inline bool visibleThroughput(const glm::vec3& throughput, const glm::vec3& brightest) {
-  return largest(throughput * brightest) >= kInvisibleRadiance;
+// and Beer–Lambert factors along it) could change an 8-bit pixel that holds `pixel` so far, when
+// nothing it can meet returns more than `brightest` (per channel): it adds at most throughput × brightest.
+inline bool visibleThroughput(const glm::vec3& throughput, const glm::vec3& brightest, const glm::vec3& pixel = glm::vec3(0.0f)) {
+  return visibleLight(throughput * brightest, pixel);
 }
 
 struct ShadingParameters {

@@ -29,6 +29,25 @@ TEST(PathCutoff, InvisibleRadianceMovesNoPixelByHalfAStep) {
   EXPECT_GT(encodedSteps(0.0, 0.5 / 255.0), 3.0);
 }
 
+TEST(PathCutoff, ABrighterPixelToleratesMoreLight) {
+  // Light that visibleLight calls invisible for a pixel holding `pixel` so far moves it (or anything
+  // brighter it ends at) by under half a step; light just over the line moves it by more.
+  for (int k = 1; k <= 400; ++k) {
+    const float pixel = 1e-4f * std::pow(1.025f, static_cast<float>(k));  // 1e-4 … 2
+    if (pixel >= 1.0f) break;
+    const float limit = 0.5f / 255.0f / srgbSlope(pixel);
+    EXPECT_FALSE(visibleLight(glm::vec3(0.999f * limit), glm::vec3(pixel)));
+    EXPECT_TRUE(visibleLight(glm::vec3(1.001f * limit), glm::vec3(pixel)));
+    for (const float later : {pixel, 1.5f * pixel, 4.0f * pixel})
+      EXPECT_LT(encodedSteps(later, 0.999 * limit), 0.5) << "pixel " << pixel << " ending at " << later;
+    if (pixel > 0.004f && pixel < 0.9f) EXPECT_GT(encodedSteps(pixel, 1.1 * limit), 0.5) << "pixel " << pixel;
+  }
+  // Grey 0.2 takes 12 times the light black does; a white channel takes any.
+  EXPECT_TRUE(visibleLight(glm::vec3(2.0f * kInvisibleRadiance), glm::vec3(0.0f)));
+  EXPECT_FALSE(visibleLight(glm::vec3(2.0f * kInvisibleRadiance), glm::vec3(0.2f)));
+  EXPECT_FALSE(visibleLight(glm::vec3(0.5f, 0.0f, 0.0f), glm::vec3(1.0f, 0.2f, 0.2f)));
+}
+
 TEST(PathCutoff, ThroughputIsComparedChannelByChannelWithTheBrightestRadiance) {
   const glm::vec3 brightest{0.5f, 1.0f, 2.0f};
   // The blue channel carries most: its product decides.
