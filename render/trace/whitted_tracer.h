@@ -12,7 +12,8 @@
 // until it has render.depth segments or carries too little to change an 8-bit pixel
 // (visibleThroughput: the product of its w's and Beer–Lambert factors times the scene's brightest
 // radiance): a path totally reflected inside the jelly keeps all its light and goes on, one that
-// loses it at each partial reflection stops after a few.
+// loses it at each partial reflection stops after a few. At the cap a ray still totally reflected
+// takes the analytic floor or sky along its reflection, as one leaving the jelly there does.
 // The floor's and the sky's own shading (footprint, pattern, light, haze) is in floor_shading.cpp; the
 // shadow rays' walk through the slime in shadow_rays.cpp.
 #pragma once

@@ -140,5 +140,27 @@ TEST(Golden, ClearSlimeLowerHalfShowsTotalInternalReflection) {
   expectImageMatchesReference("clear_slime_128x96", image);
 }
 
+// At the cap, a ray still totally reflected inside the jelly takes the floor or sky along its
+// reflection: the clear slime at depth 3 (what a moving frame shows) is not black in its lower half,
+// but within 20 % of the converged light there (without that lookup it held 56 % of it).
+TEST(Golden, ClearSlimeAtTheCapTakesTheSkyNotBlack) {
+  Settings settings = clearSlimeScene();
+  settings.slime.position = defaultSettings().slime.position;
+  const TriangleMesh mesh = settledMesh(settings);
+  Settings capped = settings;
+  capped.render.depth = 3;
+  const LowerHalf half = lowerHalf(capped, mesh, renderMesh(capped, mesh)), converged = lowerHalf(settings, mesh, renderMesh(settings, mesh));
+  EXPECT_GT(half.mean, 0.8 * converged.mean) << "depth 3: mean radiance " << half.mean << " in the lower half, "
+                                              << converged.mean << " at the cap of " << settings.render.depth;
+  EXPECT_LT(half.mean, 1.2 * converged.mean);
+}
+
+TEST(Golden, DefaultScenePhysical) {
+  Settings settings = smallScene(96, 72);
+  settings.slime.level = 3;
+  settings.render.shading = "physical";
+  expectMatchesReference("default_physical_96x72", settings);
+}
+
 }  // namespace
 }  // namespace slime::testing
