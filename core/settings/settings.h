@@ -66,11 +66,14 @@ struct SlimeSettings {
 };
 
 struct RenderSettings {
-  int depth = 3;                     // Whitted recursion depth (1 = primary rays only)
+  int depth = 3;                     // the most ray segments a path has (1 = primary rays only); it stops
+                                     // sooner once what it carries could not change an 8-bit pixel
+  int movingDepth = 3;               // viewer, while things move (checkerboard frames): the cap on a path's segments
   int spp = 1;                       // samples per pixel (1, 4, 9, 16: a stratified n×n grid)
   int threads = 0;                   // worker threads for TBB and Embree, 0 = all cores
   std::string normals = "smooth";    // smooth | flat shading normals
   std::string optics = "fresnel";    // fresnel (dielectric) | seed (constant k_s / k_t weights)
+  std::string shading = "classic";   // classic (the seed's Phong terms on the jelly) | physical (Fresnel and absorption only)
   std::string backend = "embree";    // embree | brute (the seed's algorithm, the oracle)
   double scale = 1.0;                // resolution scale of the viewer's traced image (0.1..1)
   double targetFps = 0.0;            // viewer: the frame rate its adaptive resolution aims for, 0 = off

@@ -116,8 +116,12 @@ void forEachField(S& s, Visitor&& visitor) {
   visit("slime.ambient", s.slime.ambient, Limits{0.0, 1.0, ""}, "k_a: ambient reflection");
   visit("slime.shininess", s.slime.shininess, Limits{1.0, 10000.0, "Phong exponent"}, "Phong exponent n");
   // Render
-  visit("render.depth", s.render.depth, Limits{1, 16, "bounces"},
-        "Whitted recursion depth (1 = primary rays only)");
+  visit("render.depth", s.render.depth, Limits{1, 64, "ray segments"},
+        "the most ray segments a path has (1 = primary rays only); a path stops sooner once the light it can "
+        "still bring could not change an 8-bit sRGB pixel");
+  visit("render.movingDepth", s.render.movingDepth, Limits{1, 64, "ray segments"},
+        "viewer, while things move (the checkerboard's frames): render.depth's cap for those frames; a path totally "
+        "reflected inside the jelly at the cap takes the floor or sky along its reflection");
   visit("render.spp", s.render.spp, Limits{1, 64, "samples per pixel"},
         "samples per pixel: a stratified n x n grid (1, 4, 9, ..., 64)");
   visit("render.threads", s.render.threads, Limits{0, 256, "threads (0 = all cores)"},
@@ -125,6 +129,9 @@ void forEachField(S& s, Visitor&& visitor) {
   visit("render.normals", s.render.normals, Choices{"smooth", "flat"}, "shading normals");
   visit("render.optics", s.render.optics, Choices{"fresnel", "seed"},
         "fresnel (dielectric) or seed (constant k_s, k_t weights)");
+  visit("render.shading", s.render.shading, Choices{"classic", "physical"},
+        "classic (the seed's ambient, diffuse and Phong terms on the jelly) or physical (Fresnel reflection and "
+        "refraction only; colour and k_t become absorption per metre; implies render.optics=fresnel)");
   visit("render.backend", s.render.backend, Choices{"embree", "brute"},
         "embree, or brute (the seed's algorithm, the oracle)");
   visit("render.scale", s.render.scale, Limits{0.1, 1.0, "of the window size"},

@@ -440,7 +440,7 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
     bytes = srgba->data();
   }
 
-  const ShadingParameters parameters = makeShadingParameters(settings, image.height);
+  ShadingParameters parameters = makeShadingParameters(settings, image.height);  // its depth settled below
   const Camera camera = makeCamera(settings.camera, image.width, image.height);
   const int samplesPerAxis = std::max(1, static_cast<int>(std::lround(std::sqrt(std::max(1, settings.render.spp)))));
   const bool brute = settings.render.backend == "brute";
@@ -528,6 +528,9 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
   impl.halved = settings.render.checkerboard && impl.imageInPlace && !brute;
   impl.quartered = impl.halved && settings.render.checkerboardQuarter;
   impl.sixteenth = impl.quartered && settings.render.checkerboardSixteenth;
+  // A checkerboarded frame is a moving one: its paths stop at render.movingDepth segments (a totally
+  // reflected one looks up the floor or sky there), the still frames after it go the whole way.
+  if (impl.halved) parameters.depth = std::min(parameters.depth, settings.render.movingDepth);
   if (impl.halved) {
     impl.parity ^= 1;  // the other colour from the last halved frame
     if (impl.parity == 0) impl.phase ^= 1;  // and every other time, the other rows of the quarter

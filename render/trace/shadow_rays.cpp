@@ -87,7 +87,7 @@ bool WhittedTracer::crossShadowSurface(Ray& ray, const SlimeHit& hit, glm::vec3&
   const bool entering = glm::dot(ray.direction, outward) < 0.0f;
   if (!entering) transmittance *= beerLambert(p.slimeAbsorption, hit.t);
   transmittance *= surfaceTransmission(std::abs(glm::dot(ray.direction, outward)), entering);
-  if (largest(transmittance) < kMinRayWeight) {
+  if (!visibleThroughput(transmittance, p.brightest)) {
     transmittance = glm::vec3(0.0f);
     return false;
   }
@@ -146,7 +146,7 @@ glm::vec3 WhittedTracer::transmittanceAlong(const Ray& ray, const SegmentCrossin
     if (++counted > kMaxShadowCrossings) return glm::vec3(0.0f);  // the walk's limit: blocked
     if (!entering) transmittance *= beerLambert(p.slimeAbsorption, hit.t - lastT);
     transmittance *= surfaceTransmission(std::abs(glm::dot(ray.direction, outward)), entering);
-    if (largest(transmittance) < kMinRayWeight) return glm::vec3(0.0f);
+    if (!visibleThroughput(transmittance, p.brightest)) return glm::vec3(0.0f);
     lastT = hit.t;
     lastEntering = entering;
   }
@@ -216,13 +216,13 @@ void WhittedTracer::crossFromBothEnds8(Ray* rays, bool* walking, glm::vec3* visi
     glm::vec3& transmittance = visible[i];
     transmittance *= surfaceTransmission(-glm::dot(ray.direction, nearNormal), true);
     walking[i] = false;
-    if (largest(transmittance) < kMinRayWeight) {
+    if (!visibleThroughput(transmittance, p.brightest)) {
       transmittance = glm::vec3(0.0f);
       continue;
     }
     transmittance *= beerLambert(p.slimeAbsorption, ray.tFar - near.t - far.t);
     transmittance *= surfaceTransmission(glm::dot(ray.direction, farNormal), false);
-    if (largest(transmittance) < kMinRayWeight) transmittance = glm::vec3(0.0f);
+    if (!visibleThroughput(transmittance, p.brightest)) transmittance = glm::vec3(0.0f);
   }
 }
 

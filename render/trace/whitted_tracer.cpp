@@ -426,7 +426,7 @@ void WhittedTracer::shadeSlimes8(const PendingRay* const* pending, int count, Wa
     }
     const float fresnel = refracted ? fresnels[i] : 1.0f;
     const glm::vec3 inside = enters ? glm::vec3(1.0f) : glm::vec3(absorbed[0][i], absorbed[1][i], absorbed[2][i]);
-    if (enters) {
+    if (enters && p.shading == ShadingModel::Classic) {  // the jelly's own light: the seed's Phong terms
       pixel += ray.factor * (p.ambient * p.ambientLight * p.slimeColor);
       if (lit[i]) {
         // (R·V)^n; cos^n < 2^-12 (invisible) once n (1 − cos) ≳ 8.3: no pow there.
@@ -463,14 +463,14 @@ void WhittedTracer::shadeSlimes8(const PendingRay* const* pending, int count, Wa
       child.hitKnown = kind == Kind::Environment;
     };
     if (path.segment < p.depth) {
-      if (reflectWeight > 0.0f && largest(weight * reflectWeight) >= kMinRayWeight) {
+      if (reflectWeight > 0.0f && visibleThroughput(weight * reflectWeight, p.brightest, pixel)) {
         glm::vec3 reflected = reflect(direction, normal);
         if (glm::dot(reflected, facing) <= 0.0f) reflected = reflect(direction, facing);
         ++counters.rays.reflection;
         spawn(Kind::Reflection, reflected, weight * reflectWeight, !enters, enters && geometry_.supports(ray.hit.primitive),
               ray.factor * inside * reflectWeight);
       }
-      if (refracted && refractWeight > 0.0f && largest(weight * refractWeight) >= kMinRayWeight) {
+      if (refracted && refractWeight > 0.0f && visibleThroughput(weight * refractWeight, p.brightest, pixel)) {
         ++counters.rays.refraction;
         spawn(Kind::Refraction, transmitted, weight * refractWeight, enters, !enters && geometry_.supports(ray.hit.primitive),
               ray.factor * inside * refractWeight);
@@ -480,6 +480,13 @@ void WhittedTracer::shadeSlimes8(const PendingRay* const* pending, int count, Wa
       // looked up with the next generation's floors (no query, no shadow, no mirror).
       ++counters.rays.refraction;
       spawn(Kind::Environment, transmitted, glm::vec3(1.0f), false, false, ray.factor * inside * refractWeight);
+    } else if (!enters && !refracted && reflectWeight > 0.0f) {
+      // Out of segments under total internal reflection: the light it keeps leaves the jelly somewhere
+      // after more reflections; it is taken as the floor or sky along the reflected ray, not as black.
+      glm::vec3 reflected = reflect(direction, normal);
+      if (glm::dot(reflected, facing) <= 0.0f) reflected = reflect(direction, facing);
+      ++counters.rays.reflection;
+      spawn(Kind::Environment, reflected, glm::vec3(1.0f), false, false, ray.factor * inside * reflectWeight);
     }
   }
 }
@@ -519,7 +526,8 @@ void WhittedTracer::shadeFloorWith(const Ray& ray, float t, const FloorShading& 
       colors[pixel] += nearFactor * shading.lit;
     }
   }
-  if (path.segment < p.depth && p.floorSpecular > 0.0f && largest(path.weight * p.floorSpecular) >= kMinRayWeight) {
+  if (path.segment < p.depth && p.floorSpecular > 0.0f &&
+      visibleThroughput(path.weight * p.floorSpecular, p.brightest, colors[pixel])) {
     // The varnish mirrors what is above: the reflected ray (d_x, d_y, −d_z).
     ++counters.rays.reflection;
     PendingRay& child = wavefront.next.emplace_back();  // written in place (see shadeSlimes8)

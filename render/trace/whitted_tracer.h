@@ -8,6 +8,12 @@
 //   fresnel mode: w_r = F (dielectric Fresnel), w_t = (1 − F)·k_t entering, (1 − F) leaving;
 //   seed mode:    w_r = k_s, w_t = k_t (constants, as the seed);
 // and the light inside attenuated by Beer–Lambert exp(−σ l) over the path length l in the jelly.
+// Physical shading (ShadingModel) has no local Phong and k_t = 1 (folded into σ). A path branches
+// until it has render.depth segments or carries too little to change an 8-bit pixel
+// (visibleThroughput: the product of its w's and Beer–Lambert factors times the scene's brightest
+// radiance): a path totally reflected inside the jelly keeps all its light and goes on, one that
+// loses it at each partial reflection stops after a few. At the cap a ray still totally reflected
+// takes the analytic floor or sky along its reflection, as one leaving the jelly there does.
 // The floor's and the sky's own shading (footprint, pattern, light, haze) is in floor_shading.cpp; the
 // shadow rays' walk through the slime in shadow_rays.cpp.
 #pragma once
@@ -95,7 +101,7 @@ class WhittedTracer {
   enum class Kind { Primary, Reflection, Refraction, Environment };
   struct Path {
     int segment = 1;            // 1 for primary rays
-    glm::vec3 weight{1.0f};     // product of the optical factors so far (decides whether a ray is worth tracing)
+    glm::vec3 weight{1.0f};     // product of the optical factors so far, its throughput (visibleThroughput)
     float travelled = 0.0f;     // distance from the eye to the ray origin (footprint cone)
     bool inside = false;        // the ray runs inside the slime
     bool leavesSlime = false;   // the ray leaves the slime's surface outwards through a supporting triangle

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "core/geometry/icosphere.h"
+#include "core/simulation/simulation.h"
 #include "core/settings/settings.h"
 #include "core/settings/settings_io.h"
 #include "render/image/image_io.h"
@@ -51,6 +52,17 @@ inline Settings invisibleSlimeScene() {
 
 inline TriangleMesh restingMesh(const Settings& settings) {
   return makeIcosphere(settings.slime.level, settings.slime.radius, settings.slime.position);
+}
+
+// The slime settled as `slime snapshot` settles it: dropped from its start position, until no vertex
+// moves faster than 5 mm/s (after 0.3 s), at most 3 s.
+inline TriangleMesh settledMesh(const Settings& settings) {
+  Simulation simulation(settings);
+  while (simulation.time() < 3.0) {
+    simulation.step();
+    if (simulation.time() > 0.3 && simulation.stepCount() % 10 == 0 && simulation.metrics().maxSpeed < 0.005) break;
+  }
+  return {simulation.positions(), simulation.triangles()};
 }
 
 // Renders `mesh` (or nothing when it is empty) with the given settings.

@@ -7,6 +7,7 @@ bare (#anchor), must be a heading of the target page as GitHub names it (lower c
 <a name="..."> / id="...". Links to other sites are not fetched (CI has no network).
 Every picture under docs/ (.png, .svg, .gif) must be linked or shown by some page, so that no chart is
 left behind when a page is rewritten.
+README's "Known limits" has at most 8 bullets of at most 240 characters each.
 Usage: doc_links_test.py [repository root]; prints each broken link and exits 1 if there is one.
 """
 import os
@@ -63,6 +64,22 @@ def pages(root):
                 yield os.path.join(folder, name)
 
 
+def known_limits_problems(readme):
+    """README's "Known limits" stays a list a reader takes in: at most 8 bullets of 240 characters."""
+    problems, bullets, inside = [], 0, False
+    for number, line in prose_lines(readme):
+        heading = HEADING.match(line)
+        if heading:
+            inside = heading.group(2).strip().lower() == 'known limits'
+        elif inside and line.startswith('- '):
+            bullets += 1
+            if len(line.rstrip()) > 240:
+                problems.append(f'README.md:{number}: a known limit of {len(line.rstrip())} characters (at most 240)')
+    if bullets > 8:
+        problems.append(f'README.md: {bullets} known limits (at most 8)')
+    return problems
+
+
 def main():
     root = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), '..', '..'))
     broken, checked, linked = [], 0, set()
@@ -90,6 +107,7 @@ def main():
                 picture = os.path.normpath(os.path.join(folder, name))
                 if picture not in linked:
                     broken.append(f'{os.path.relpath(picture, root)} is shown or linked by no page')
+    broken += known_limits_problems(os.path.join(root, 'README.md'))
     for line in broken:
         print(line)
     print(f'doc links: {checked} checked, {pictures} pictures, {len(broken)} broken')

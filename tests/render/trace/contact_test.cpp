@@ -15,17 +15,6 @@
 namespace slime::testing {
 namespace {
 
-// The slime settled as `slime snapshot` settles it: until no vertex moves faster than 5 mm/s
-// (after 0.3 s), at most 3 s.
-TriangleMesh settledMesh(const Settings& settings) {
-  Simulation simulation(settings);
-  while (simulation.time() < 3.0) {
-    simulation.step();
-    if (simulation.time() > 0.3 && simulation.stepCount() % 10 == 0 && simulation.metrics().maxSpeed < 0.005) break;
-  }
-  return {simulation.positions(), simulation.triangles()};
-}
-
 // Pixels whose 8 neighbours agree within `agree` steps of 1/255 in a channel while the pixel is more
 // than `far` steps from their mean there (sRGB bytes, the border left out).
 int isolatedOutliers(const Image& image, int agree = 12, double far = 30.0) {
