@@ -1,0 +1,287 @@
+#include "core/simulation/bulk_piece.h"
+
+#include "core/bulk/element_pass.h"
+#include "core/contact/floor_contact.h"
+#include "core/geometry/volume.h"
+#include "core/hands/grab.h"
+#include "core/integrators/stability.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace slime {
+namespace {
+
+constexpr double kExactDamperStepFactor = 12.0;  // see largestStableStep
+// Steps between the Maxwell branches' flow updates (exact over the interval for the strain at its end;
+// 4 ms against relaxation times of 10 ms and more). Every step it cost a quarter of the step. The explicit
+// step's interval also follows τ (maxwellFlowInterval, viscoelastic.h), never below this.
+constexpr int kRelaxInterval = 4;
+// An explicit substep moves no node farther than this share of the body's shortest rest edge
+// (a collision's CFL rule: the stability bound of largestStableStep is for small vibrations, and a
+// landing at 4.4 m/s pushed the lowest layer 4.4 mm — 40 % of an element — into the floor in one
+// 1 ms substep, which inverted elements and made the guard roll back twice).
+constexpr double kTravelPerSubstep = 0.25;
+// Steps between estimates of the body's highest frequency while a hand holds it or it is still
+// stretched (beginStep): 41 force evaluations, a fifth of a step's forces a step every 200 steps;
+// every 50 took 19 % of a held slime's physics (perf, drag_top_in_circles_6s).
+constexpr int kFrequencyInterval = 200;
+
+// Sets every drawn vertex below the floor (z < 0) on it. The physics holds the element map's vertices
+// on the floor (resolveDrawnFloorContact); the smooth map that places the drawn surface differs by
+// millimetres (most at the contact's rim and under a press) and may dip under it: drawn on the floor.
+void liftOntoFloor(std::vector<glm::dvec3>& drawn) {
+  for (glm::dvec3& p : drawn) p.z = std::max(p.z, 0.0);
+}
+
+}  // namespace
+
+BulkPiece::BulkPiece(BulkBody body) : body_(std::move(body)) {
+  adhesion_.reset(body_.mesh.surface, body_.mesh.surfaceNodes);
+}
+
+std::unique_ptr<Piece> BulkPiece::clone() const {
+  auto copy = std::make_unique<BulkPiece>(*this);
+  copy->bindAccelerations();
+  return copy;
+}
+
+void BulkPiece::bindAccelerations() {
+  accelerationField_ = [this](const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v,
+                              std::vector<glm::dvec3>& a) { accelerations(x, v, a); };
+}
+
+void BulkPiece::rebuildModels(const Settings& settings, Integrator integrator) {
+  settings_ = settings;
+  integrator_ = integrator;
+  // The Maxwell state moves between the projective solver's stretches U_v and the body's metrics G_v.
+  if (projectiveActive_) projective_.storeMaxwell(body_);
+  projectiveActive_ = integrator_ == Integrator::Projective;
+  if (projectiveActive_) {
+    projective_.loadMaxwell(body_);
+    projective_.invalidate();
+  }
+  bindAccelerations();
+  highestFrequency_ = restFrequency_ = bulkHighestFrequency(body_, scratch_);
+  deformedFrequency_ = false;
+  // symplectic_euler integrates the dampers exactly; the explicit methods feel their rate.
+  dampingRate_ = bulkHighestDampingRate(body_);
+  highestDampingRate_ = integrator_ == Integrator::SymplecticEuler ? 0.0 : dampingRate_;
+  scratch_.decayStep = -1.0;
+  shortestEdge_ = std::numeric_limits<double>::infinity();
+  for (const glm::u32vec2& e : body_.edges)
+    shortestEdge_ = std::min(shortestEdge_, glm::length(body_.mesh.positions[e.y] - body_.mesh.positions[e.x]));
+}
+
+double BulkPiece::largestStableStep() const {
+  const double step = Piece::largestStableStep();
+  // The exact dampers are a contraction pair by pair, but one pair after another between the
+  // kicks not unconditionally stable: on the lightest slime (slime.mass=0.01, Gershgorin rate 7.3e4/s),
+  // colour after colour (edge_colours.h), 0.2 ms held and 0.225 ms rolled back, so the step is capped
+  // at kExactDamperStepFactor / rate = 12 / rate (0.164 ms there; no cap at the defaults: 4.4 ms).
+  if (integrator_ == Integrator::SymplecticEuler && dampingRate_ > 0.0)
+    return std::min(step, kExactDamperStepFactor / dampingRate_);
+  return step;
+}
+
+int BulkPiece::travelSubstepsNeeded() const {
+  if (integrator_ == Integrator::Projective) return 1;
+  double fastest = 0.0;
+  for (const glm::dvec3& v : body_.state.velocities) fastest = std::max(fastest, glm::dot(v, v));
+  const double travel = std::sqrt(fastest) * settings_.sim.dt;
+  return static_cast<int>(std::min(std::ceil(travel / (kTravelPerSubstep * shortestEdge_)), 1.0e4));
+}
+
+void BulkPiece::beginStep(const StepContext& context) {
+  travelSubsteps_ = travelSubstepsNeeded();
+  // The explicit step limit 2/ω_max follows the shape. A stretched body's thinner elements raise ω (×1.5
+  // in a 5× strand, issue 29): the estimate runs every 200 steps while held or deformed. An inverted
+  // element's volumetric stress raises it within steps (flung and slammed at resolution 3: J to −2.5, ω
+  // 2,400 → 13,000 /s in 20 steps, a rollback): it runs every step that one meets a body fast enough for
+  // the travel rule (a landing's J stays above 0.1).
+  const bool explicitStep = context.automaticSubsteps && !projectiveActive_;
+  const bool invertedAndFast =
+      explicitStep && travelSubsteps_ > 1 && invertedBulkElements(body_, body_.state.positions) > 0;
+  if (invertedAndFast ||
+      (explicitStep && (anyGrabbing() || deformedFrequency_) && context.stepCount % kFrequencyInterval == 0)) {
+    const double now = bulkHighestFrequencyAt(body_, body_.state.positions, scratch_);
+    highestFrequency_ = std::max(restFrequency_, now);
+    deformedFrequency_ = now > restFrequency_;
+  }
+  // Each mouse target moves to where dragTo put it over this step.
+  for (Hand& hand : hands_) {
+    if (!hand.holding) continue;
+    hand.spring.targetVelocity = (hand.pendingTarget - hand.spring.target) / settings_.sim.dt;
+    hand.spring.target = hand.pendingTarget;
+  }
+}
+
+// a = (internal forces + mouse spring) / m + g; pinned nodes (w = 0) do not move.
+void BulkPiece::accelerations(const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v,
+                              std::vector<glm::dvec3>& a) {
+  bulkInternalForces(body_, x, v, a);
+  for (Hand& hand : hands_)
+    if (hand.holding) hand.force = addMouseSpringForces(hand.spring, x, v, a);
+  const glm::dvec3 gravity{0.0, 0.0, -settings_.sim.gravity};
+  const std::vector<double>& w = body_.state.inverseMasses;
+  for (std::size_t i = 0; i < a.size(); ++i) a[i] = w[i] > 0.0 ? a[i] * w[i] + gravity : glm::dvec3(0.0);
+}
+
+// symplectic_euler: v += h a(x), the dampers exactly, x += h v; explicit_euler and rk4 integrate the
+// same accelerations, dampers included, through integrators.h. Then the floor on every node and the
+// volume projection, which leaves the nodes on the floor where they are (projective's: on the drawn
+// surface's floor; the drawn surface's own contact follows once per step, in endStep).
+void BulkPiece::substep(double h) {
+  ParticleState& state = body_.state;
+  // The sticky floor reads a stuck node's pull from the kick-drift step's Δx = h²F/m; projective's implicit step
+  // is not that, and holding its nodes back made it roll back (21 times in a two-hand pull at 6000 Pa): no adhesion.
+  const double adhesion = integrator_ == Integrator::Projective ? 0.0 : settings_.slime.adhesion;
+  const double friction = settings_.slime.friction;
+  bool floorDone = false;  // the floor contact on every node, fused with the drift below
+  if (adhesion > 0.0) adhesion_.beginSubstep(state);
+  switch (integrator_) {
+    case Integrator::ExplicitEuler: explicitEulerStep(state, h, accelerationField_, integratorScratch_); break;
+    case Integrator::Rk4: rk4Step(state, h, accelerationField_, integratorScratch_); break;
+    case Integrator::Projective: {
+      ProjectiveStep options;
+      options.h = h;
+      options.iterations = settings_.sim.iterations;
+      options.gravity = glm::dvec3(0.0, 0.0, -settings_.sim.gravity);
+      options.friction = settings_.slime.friction;
+      // The first holding hand goes through the solver (as with one hand); a second one is applied
+      // the same way just before it.
+      Hand* first = nullptr;
+      for (Hand& hand : hands_) {
+        if (!hand.holding) continue;
+        if (first == nullptr) {
+          first = &hand;
+          continue;
+        }
+        hand.force = applyMouseSpringImplicitly(hand.spring, state.positions, state.inverseMasses, h, state.velocities);
+      }
+      options.mouse = first != nullptr ? &first->spring : nullptr;
+      const glm::dvec3 force = projective_.step(body_, scratch_, options);
+      if (first != nullptr) first->force = force;
+      break;
+    }
+    default: {
+      // Kick with every force but the dampers, the dampers exactly (dampEdges), then drift.
+      std::vector<glm::dvec3>& a = scratch_.forces;
+      bulkInternalForces(body_, state.positions, state.velocities, a, false);
+      for (Hand& hand : hands_)
+        if (hand.holding) hand.force = addMouseSpringForces(hand.spring, state.positions, state.velocities, a);
+      const glm::dvec3 gravity{0.0, 0.0, -settings_.sim.gravity};
+      for (std::size_t i = 0; i < state.size(); ++i) {
+        const double w = state.inverseMasses[i];
+        if (w != 0.0) state.velocities[i] += h * (a[i] * w + gravity);
+      }
+      dampEdges(body_, h, scratch_, state);
+      // Drift and the floor in one pass (the floor moves only the node it holds).
+      for (std::size_t i = 0; i < state.size(); ++i) {
+        if (state.inverseMasses[i] == 0.0) continue;
+        state.positions[i] += h * state.velocities[i];
+        if (state.inverseMasses[i] > 0.0) resolveFloorContactAt(state.positions[i], state.velocities[i], friction);
+      }
+      floorDone = true;
+      break;
+    }
+  }
+  if (!floorDone)
+    for (std::size_t i = 0; i < state.size(); ++i)
+      if (state.inverseMasses[i] > 0.0) resolveFloorContactAt(state.positions[i], state.velocities[i], friction);
+  projectBulkVolume(body_, h, scratch_, state, projectiveActive_ ? &projective_.floorHeights() : nullptr);
+  if (adhesion > 0.0) adhesion_.endSubstep(state, body_.mesh.surface, body_.freeInverseMasses, adhesion, h);
+}
+
+void BulkPiece::endStep(const StepContext& context) {
+  // projective flows its Maxwell branches every substep; the body's metrics follow as a copy.
+  const int flowInterval = projectiveActive_
+                               ? kRelaxInterval
+                               : maxwellFlowInterval(settings_.slime.relaxation, settings_.sim.dt, kRelaxInterval);
+  if (context.stepCount % flowInterval == 0) {
+    if (projectiveActive_) projective_.storeMaxwell(body_);
+    else relaxBulk(body_, flowInterval * settings_.sim.dt);
+  }
+  const bool touching = resolveDrawnFloorContact(body_, settings_.slime.friction) > 0;
+  // The floor's rolling resistance acts on the bulk slime too: Coulomb friction lets a ball roll,
+  // and the bulk's own viscosity barely slows a bun rolling on its patch (a yanked slime rolled 3 m).
+  if (context.stepCount % kRollingInterval == 0)
+    dampTurningOnFloor(body_.state, settings_.slime.rolling, kRollingInterval * settings_.sim.dt, touching);
+  drawnStale_ = true;
+}
+
+void BulkPiece::saveGoodState() {
+  if (projectiveActive_) projective_.storeMaxwell(body_);
+  goodState_ = body_.state;
+  goodMaxwell_ = body_.maxwell;
+}
+
+void BulkPiece::rollBack() {
+  body_.state = goodState_;
+  body_.maxwell = goodMaxwell_;
+  refreshMaxwellForceMaps(body_);  // M follows B_v (element_pass.h)
+  if (projectiveActive_) projective_.loadMaxwell(body_);
+  drawnStale_ = true;
+}
+
+const std::vector<glm::dvec3>& BulkPiece::drawnPositions() const {
+  if (drawnStale_) {
+    placeEmbedded(body_.embedding, body_.state.positions, drawnPositions_);
+    liftOntoFloor(drawnPositions_);  // the smooth map may dip under the floor the element map rests on
+    drawnStale_ = false;
+  }
+  return drawnPositions_;
+}
+
+double BulkPiece::volume() const { return enclosedVolume(body_.state.positions, body_.mesh.surface); }
+
+bool BulkPiece::grab(const glm::dvec3& point, double radius, int index) {
+  Hand& hand = hands_[index];
+  // The drawn surface point nearest to `point`, and the body's nodes within `radius` of it (or,
+  // when none is that close, the nodes that carry the nearest drawn vertex). The surface as the
+  // element map places it, as the floor contact sees it (the physics never evaluates the smooth map,
+  // which differs by millimetres: a press grabbed through the smooth map left the body flat in
+  // BulkTorture's press_top_to_the_floor, aspect 0.48 against 0.66, where main's grab recovers).
+  std::vector<glm::dvec3> drawn;
+  placeByElements(body_.embedding, body_.state.positions, drawn);
+  const glm::dvec3 surface = nearestSurfacePoint(drawn, body_.drawn.triangles, point);
+  const ParticleState& state = body_.state;
+  std::vector<std::uint32_t> nodes = pointsWithinRadius(state.positions, surface, radius);
+  if (nodes.empty()) {
+    std::uint32_t nearest = 0;
+    for (std::uint32_t i = 1; i < drawn.size(); ++i)
+      if (glm::length(drawn[i] - surface) < glm::length(drawn[nearest] - surface)) nearest = i;
+    const Tetrahedron& t = body_.embedding.nodes[nearest];
+    nodes = {t.x, t.y, t.z, t.w};
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  }
+  MouseSpring& spring = hand.spring;
+  spring = MouseSpring{};
+  double mass = 0.0;
+  // The body's bottom: under a grabbed node lie z_i − bottom of material, which a press onto the floor
+  // squeezes no thinner than kPressStopFraction of that (grab.h), wherever the body is when grabbed.
+  double bottom = std::numeric_limits<double>::infinity();
+  for (const glm::dvec3& x : state.positions) bottom = std::min(bottom, x.z);
+  for (std::uint32_t i : nodes) {
+    spring.offsets.push_back(state.positions[i] - surface);
+    spring.shares.push_back(1.0 / static_cast<double>(nodes.size()));
+    spring.lowest.push_back(kPressStopFraction * std::max(state.positions[i].z - bottom, 0.0));
+    mass += 1.0 / body_.freeInverseMasses[i];
+  }
+  spring.nodes = nodes;
+  spring.target = surface;
+  spring.damping = kMouseDampingRatio * 2.0 * std::sqrt(spring.stiffness * mass);
+  spring.maxForce = settings_.sim.handForce;
+  hand.pendingTarget = surface;
+  hand.holding = true;
+  hand.nodes = std::move(nodes);
+  hand.target = surface;
+  hand.radius = radius;
+  return true;
+}
+
+}  // namespace slime

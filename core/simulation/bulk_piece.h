@@ -1,0 +1,66 @@
+// The viscoelastic body as a piece (slime.model=bulk, the default): a tetrahedral body carrying the
+// drawn icosphere (core/bulk/bulk_body.h), stepped by symplectic_euler, explicit_euler, rk4 or
+// projective, with the sticky floor; a hand pulls its nodes with a mouse spring.
+#pragma once
+
+#include "core/bulk/bulk_body.h"
+#include "core/bulk/projective_dynamics.h"
+#include "core/contact/floor_adhesion.h"
+#include "core/simulation/piece.h"
+
+namespace slime {
+
+class BulkPiece final : public Piece {
+ public:
+  explicit BulkPiece(BulkBody body);
+
+  std::unique_ptr<Piece> clone() const override;
+  bool bulk() const override { return true; }
+  void rebuildModels(const Settings& settings, Integrator integrator) override;
+  void applyMaterial(const SlimeSettings& slime) override { applyBulkMaterial(body_, slime); }
+  void beginStep(const StepContext& context) override;
+  void substep(double h) override;
+  void endStep(const StepContext& context) override;
+  double largestStableStep() const override;
+  void saveGoodState() override;
+  void rollBack() override;
+
+  const ParticleState& state() const override { return body_.state; }
+  ParticleState& state() override { return body_.state; }
+  const std::vector<glm::dvec3>& drawnPositions() const override;
+  const std::vector<Triangle>& drawnTriangles() const override { return body_.drawn.triangles; }
+  double volume() const override;
+  double restVolume() const override { return body_.restVolume; }
+  SlimeMetrics metrics() const override { return metricsOf(body_.freeInverseMasses, body_.mesh.surfaceNodes); }
+  std::size_t elementCount() const override { return body_.mesh.tetrahedra.size(); }
+  double elasticEnergy() const override { return bulkElasticEnergy(body_, body_.state.positions); }
+  std::size_t invertedElements() const override { return invertedBulkElements(body_, body_.state.positions); }
+
+  bool grab(const glm::dvec3& point, double radius, int hand) override;
+
+  const BulkBody& body() const { return body_; }
+  const FloorAdhesion& adhesion() const { return adhesion_; }
+
+ private:
+  const glm::dvec3& grabOffset(const Hand& hand, std::size_t k) const override { return hand.spring.offsets[k]; }
+  void bindAccelerations();  // accelerationField_, for this object
+  void accelerations(const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v, std::vector<glm::dvec3>& a);
+  int travelSubstepsNeeded() const;  // substeps so that no node crosses kTravelPerSubstep of an edge
+
+  BulkBody body_;
+  BulkScratch scratch_;
+  FloorAdhesion adhesion_;  // the sticky floor (slime.adhesion)
+  mutable std::vector<glm::dvec3> drawnPositions_;  // placed from the body when first asked for
+  mutable bool drawnStale_ = true;
+  double restFrequency_ = 0.0;     // ω_max at the rest shape; highestFrequency_ never drops below it
+  bool deformedFrequency_ = false; // highestFrequency_ is above the rest one (a stretched body)
+  double dampingRate_ = 0.0;       // the dampers' Gershgorin rate, for symplectic_euler's cap
+  ProjectiveSolver projective_;     // sim.integrator=projective
+  bool projectiveActive_ = false;   // its Maxwell stretches are the live ones (the body's metrics a copy)
+  AccelerationField accelerationField_;
+  IntegratorScratch integratorScratch_;
+  double shortestEdge_ = 0.0;  // the tetrahedra's shortest rest edge, m
+  std::vector<MaxwellBlock> goodMaxwell_;  // the guard's B_v and G_v
+};
+
+}  // namespace slime
