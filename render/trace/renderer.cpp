@@ -428,12 +428,25 @@ void Renderer::updateSlime(const std::vector<glm::dvec3>& positions, const std::
 
 RenderStats Renderer::render(const Settings& settings, Image& image, std::vector<std::uint8_t>* srgba,
                              bool buffersKept, glm::vec2 pixelOffset) {
+  return trace(settings, image, srgba, buffersKept, pixelOffset, 0, image.height);
+}
+
+RenderStats Renderer::renderRows(const Settings& settings, Image& image, glm::vec2 pixelOffset, int rowBegin, int rowEnd) {
+  return trace(settings, image, nullptr, false, pixelOffset, std::clamp(rowBegin, 0, image.height),
+               std::clamp(rowEnd, 0, image.height));
+}
+
+RenderStats Renderer::trace(const Settings& settings, Image& image, std::vector<std::uint8_t>* srgba, bool buffersKept,
+                            glm::vec2 pixelOffset, int rowBegin, int rowEnd) {
   Impl& impl = *impl_;
+  // A band of the rows leaves the view's caches and the last frame's record alone: they hold the
+  // whole image of the view a window's next render() reuses.
+  const bool wholeImage = rowBegin == 0 && rowEnd == image.height;
   const auto start = std::chrono::steady_clock::now();
   impl.sync(settings);
   RenderStats stats;
   stats.refitMs = impl.refitMs;
-  if (image.width <= 0 || image.height <= 0) return stats;
+  if (image.width <= 0 || image.height <= 0 || rowEnd <= rowBegin) return stats;
   std::uint8_t* bytes = nullptr;
   if (srgba) {
     srgba->resize(4 * image.pixels.size());
@@ -460,7 +473,7 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
 
   FloorShading* floorShadings = nullptr;  // the caches, with one sample per pixel while the view holds
   const bool lastKeptCaches = impl.lastKeptCaches;
-  impl.lastKeptCaches = false;  // until this frame is finished
+  impl.lastKeptCaches = false;  // until this frame is finished (a band: until the next whole image)
   impl.imageInPlace = impl.bytesInPlace = false;
   // Outside the footprint a pixel sees only the floor or the sky, whatever its samples. Beside it,
   // the grids of the triangles as the light and the eye see them, which answer the shadow rays' and
@@ -499,7 +512,7 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
   tracer.setCaustics(causticMap);
   stats.causticPhotons = impl.caustics.photons();
   const ScreenFootprint* footprint = &impl.footprint;
-  if (samplesPerAxis == 1) {
+  if (samplesPerAxis == 1 && wholeImage) {
     const FloorCacheKey view = floorCacheKey(camera, parameters, image.width, image.height, pixelOffset);
     const bool viewChanged = !impl.lastViewValid || view != impl.lastView;
     const bool keepsMoving = viewChanged && impl.lastViewChanged;
@@ -543,12 +556,12 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
   stats.threads = brute ? 1 : impl.arena->max_concurrency();
   if (brute) {
     // The seed's algorithm is the oracle: one thread, no packets that matter, every triangle.
-    impl.traceTile(tracer, intersector, camera, samplesPerAxis, pixelOffset, 0, image.height, 0, image.width, image, bytes,
+    impl.traceTile(tracer, intersector, camera, samplesPerAxis, pixelOffset, rowBegin, rowEnd, 0, image.width, image, bytes,
                    floorShadings, footprint, impl.counters.local());
   } else {
     handOff(&impl);  // the frame's inputs, to the workers
     impl.arena->execute([&] {
-      tbb::parallel_for(tbb::blocked_range2d<int>(0, image.height, kTileRows, 0, image.width, kTileColumns),
+      tbb::parallel_for(tbb::blocked_range2d<int>(rowBegin, rowEnd, kTileRows, 0, image.width, kTileColumns),
                         [&](const tbb::blocked_range2d<int>& tile) {
                           takeOver(&impl);
                           impl.traceTile(tracer, intersector, camera, samplesPerAxis, pixelOffset, tile.rows().begin(),
@@ -593,6 +606,10 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
     stats.tracedFillPixels += counts.tracedFillPixels;
     stats.busyMs += counts.busyMs;
     stats.bytesWritten = stats.bytesWritten.unitedWith(counts.bytesWritten);
+  }
+  if (!wholeImage) {
+    stats.traceMs = millisecondsSince(start);
+    return stats;
   }
   impl.lastPixels = image.pixels.data();
   impl.lastBytes = bytes;
