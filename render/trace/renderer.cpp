@@ -120,6 +120,11 @@ struct Renderer::Impl {
   // With the sixteenth (render.checkerboardSixteenth), the traced pixel of each 4 × 4 block instead,
   // (blockX, blockY), which visits all 16 in 16 frames (blockFrame counts them).
   bool halved = false, quartered = false, sixteenth = false;
+  // renderRows: the view and pixel offset of the last band's setup, its caustic map, and whether the
+  // next band of the same key may reuse them (nothing rendered whole or moved since).
+  FloorCacheKey bandView{};
+  const CausticMap* bandCausticMap = nullptr;
+  bool bandSetupValid = false;
   int parity = 0, phase = 0, blockX = 0, blockY = 0, blockFrame = 0;
   std::vector<std::uint8_t> skipped;
 
@@ -136,6 +141,7 @@ struct Renderer::Impl {
   // Keeps the floor texture, thread count and slime shape in step with the settings of this frame.
   void sync(const Settings& settings) {
     if (!sameFloor(settings.floor, floorSettings)) {
+      bandSetupValid = false;
       floor = FloorTexture(settings.floor);
       floorSettings = settings.floor;
       floorCacheValid = false;
@@ -144,6 +150,7 @@ struct Renderer::Impl {
     const bool sphere = settings.slime.shape == "sphere";
     const float radius = static_cast<float>(settings.slime.radius);
     if (sphere != geometry.sphereRequested || (sphere && radius != geometry.sphereRadius)) {
+      bandSetupValid = false;
       geometry.setAnalyticSphere(sphere, radius);
       embree.update(geometry, false);
     }
@@ -421,6 +428,7 @@ void Renderer::setProgressiveCaustics(bool progressive) { impl_->progressiveCaus
 
 void Renderer::updateSlime(const std::vector<glm::dvec3>& positions, const std::vector<Triangle>& triangles) {
   const auto start = std::chrono::steady_clock::now();
+  impl_->bandSetupValid = false;
   const bool topologyChanged = impl_->geometry.update(positions, triangles);
   impl_->embree.update(impl_->geometry, topologyChanged);
   impl_->refitMs = millisecondsSince(start);
@@ -487,7 +495,12 @@ RenderStats Renderer::trace(const Settings& settings, Image& image, std::vector<
     if (!found) impl.visibility.clear();
     impl.embree.prepareEye(impl.geometry, glm::vec3(camera.position), !found);
   };
-  if (brute) {
+  const FloorCacheKey view = floorCacheKey(camera, parameters, image.width, image.height, pixelOffset);
+  const bool setupKept = !wholeImage && impl.bandSetupValid && view == impl.bandView;
+  impl.bandSetupValid = false;
+  if (setupKept) {
+    causticMap = impl.bandCausticMap;  // the band before's setup holds
+  } else if (brute) {
     causticsOfTheFrame();
     footprintOfTheSlime();
     impl.visibility.clear();
@@ -509,11 +522,15 @@ RenderStats Renderer::trace(const Settings& settings, Image& image, std::vector<
     });
     takeOver(&impl);
   }
+  if (!wholeImage) {
+    impl.bandView = view;
+    impl.bandCausticMap = causticMap;
+    impl.bandSetupValid = true;
+  }
   tracer.setCaustics(causticMap);
   stats.causticPhotons = impl.caustics.photons();
   const ScreenFootprint* footprint = &impl.footprint;
   if (samplesPerAxis == 1 && wholeImage) {
-    const FloorCacheKey view = floorCacheKey(camera, parameters, image.width, image.height, pixelOffset);
     const bool viewChanged = !impl.lastViewValid || view != impl.lastView;
     const bool keepsMoving = viewChanged && impl.lastViewChanged;
     impl.lastView = view;

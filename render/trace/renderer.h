@@ -83,9 +83,11 @@ class Renderer {
 
   // The rows [rowBegin, rowEnd) of a render(settings, image, nullptr, false, pixelOffset), the other
   // rows of `image` left as they are: a still image's refinement sample traced a band per frame, so
-  // that no frame holds a whole-image trace. The bands of one sample may use caustic maps of
-  // different photon counts (each call, like render(), adds a progressive budget). The floor caches
-  // kept for the next buffersKept render() are neither used nor disturbed.
+  // that no frame holds a whole-image trace. Bands of the same view and pixelOffset in a row, with no
+  // render() or updateSlime between them, share the first one's setup (its caustic map, the slime's
+  // footprint, the light's and the eye's grids): the caller changes nothing else between the bands
+  // of one sample. The floor caches kept for the next buffersKept render() are neither used nor
+  // disturbed.
   RenderStats renderRows(const Settings& settings, Image& image, glm::vec2 pixelOffset, int rowBegin, int rowEnd);
 
   // Caustics (render.caustics) gathered progressively: each render() while the slime, the light and the

@@ -205,6 +205,48 @@ TEST(Invariant, FootprintHoldsEveryPixelTheSlimeChanges) {
   }
 }
 
+// A refinement sample traced in bands of rows (Renderer::renderRows, the later bands reusing the
+// first one's setup) is, pixel for pixel, the image one render() traces at the same offset; so is
+// the next sample, at another offset, and a band after the slime moved. The bands leave the floor
+// caches to the window's next frame, which must still equal a fresh frame.
+TEST(Invariant, BandsOfRowsMakeTheWholeImage) {
+  Settings settings = smallScene(160, 120);  // caustics on: the bands share the first one's map
+  const TriangleMesh mesh = restingMesh(settings);
+  Renderer renderer(settings);
+  renderer.updateSlime(mesh.positions, mesh.triangles);
+  Image frame;  // the window's frame, with its bytes: its caches are made
+  frame.resize(160, 120);
+  std::vector<std::uint8_t> bytes;
+  renderer.render(settings, frame, &bytes, true);
+  const auto banded = [&](glm::vec2 offset) {
+    Image image;
+    image.resize(160, 120);
+    for (int row = 0; row < 120; row += 24) renderer.renderRows(settings, image, offset, row, row + 24);
+    return image;
+  };
+  const auto whole = [&](glm::vec2 offset, const TriangleMesh& slime) {
+    Renderer fresh(settings);
+    fresh.updateSlime(slime.positions, slime.triangles);
+    Image image;
+    image.resize(160, 120);
+    fresh.render(settings, image, nullptr, false, offset);
+    return image;
+  };
+  for (const glm::vec2 offset : {glm::vec2(0.125f, 0.375f), glm::vec2(0.875f, 0.625f)}) {
+    const ImageDifference d = compareImages(banded(offset), whole(offset, mesh), 0.0);
+    EXPECT_EQ(d.fractionAbove, 0.0) << "offset " << offset.x << ", " << offset.y << ": largest " << d.largest;
+  }
+  TriangleMesh moved = mesh;
+  for (glm::dvec3& p : moved.positions) p.x += 0.2 * settings.slime.radius;
+  renderer.updateSlime(moved.positions, moved.triangles);
+  const ImageDifference afterMove = compareImages(banded({0.125f, 0.375f}), whole({0.125f, 0.375f}, moved), 0.0);
+  EXPECT_EQ(afterMove.fractionAbove, 0.0) << "after the slime moved: largest " << afterMove.largest;
+  renderer.render(settings, frame, &bytes, true);  // the window's next frame, from its caches
+  const Image fresh = whole({0.5f, 0.5f}, moved);
+  const ImageDifference next = compareImages(frame, fresh, 0.0);
+  EXPECT_EQ(next.fractionAbove, 0.0) << "the window's frame after the bands: largest " << next.largest;
+}
+
 // The viewer skips tracing a slime whose vertices moved less than kInvisibleMotionPixels since it was
 // last drawn (core/scene/level_of_detail.h). Every vertex moved that far, each in its own random direction
 // (the worst for the normals), must be invisible by the rule the level of detail rests on
