@@ -423,11 +423,14 @@ bool Viewer::refineImage(glm::ivec2 size) {
   tracedRows_ = rows;
   stats_.stages.caustics = render.causticsMs;
   stats_.causticPhotons = render.causticPhotons;
-  // The band's cost, setup (the caustic photons, the footprint, the grids) and rows apart, smoothed.
-  const double rowMs = std::max(0.0, render.traceMs - render.setupMs) / rows;
+  // The band's cost, for the next samples' bands: a sample's first band sets up (the caustic photons,
+  // the footprint, the grids) and the later ones reuse it; the rows' cost is kept per block of
+  // kRefineBandRowStep rows, as rows through the slime cost several times those of the floor or sky.
   constexpr double kWeight = 0.3;
-  bandSetupMs_ = bandSetupMs_ < 0.0 ? render.setupMs : (1.0 - kWeight) * bandSetupMs_ + kWeight * render.setupMs;
-  bandRowMs_ = bandRowMs_ <= 0.0 ? rowMs : (1.0 - kWeight) * bandRowMs_ + kWeight * rowMs;
+  if (sampleRow_ == 0)
+    firstBandSetupMs_ = firstBandSetupMs_ < 0.0 ? render.setupMs : (1.0 - kWeight) * firstBandSetupMs_ + kWeight * render.setupMs;
+  const double blockMs = std::max(0.0, render.traceMs - render.setupMs) * kRefineBandRowStep / rows;
+  for (int row = sampleRow_; row < sampleRow_ + rows; row += kRefineBandRowStep) blockMs_[row / kRefineBandRowStep] = blockMs;
   sampleRow_ += rows;
   if (sampleRow_ < size.y) return false;  // the sample is not whole yet: the image shown stays
   sampleRow_ = 0;
@@ -435,13 +438,21 @@ bool Viewer::refineImage(glm::ivec2 size) {
   return refinement_.add(sampleImage_, image_, &imageBytes_);
 }
 
-int Viewer::refineBandRows(int height) const {
+int Viewer::refineBandRows(int height) {
   const int step = kRefineBandRowStep;
+  const int blocks = (height + step - 1) / step;
+  if (static_cast<int>(blockMs_.size()) != blocks) blockMs_.assign(blocks, -1.0);
   const int half = std::max(step, (height / 2) / step * step);  // never the whole sample in one frame
-  if (bandSetupMs_ < 0.0) return std::min(half, std::max(step, (height / 8) / step * step));  // a first guess
-  const double rowMs = std::max(bandRowMs_, 1e-4);
-  const int fit = static_cast<int>(std::min(1e6, (options_.refineBandMs - bandSetupMs_) / rowMs)) / step * step;
-  return std::clamp(fit, step, half);
+  const int first = sampleRow_ / step;
+  if (blockMs_[first] < 0.0) return std::min(half, std::max(step, (height / 8) / step * step));  // not yet measured
+  double budget = options_.refineBandMs - (sampleRow_ == 0 ? std::max(0.0, firstBandSetupMs_) : 0.0);
+  int rows = step;
+  budget -= blockMs_[first];
+  for (int block = first + 1; block < blocks && rows < half && blockMs_[block] >= 0.0 && blockMs_[block] <= budget; ++block) {
+    budget -= blockMs_[block];
+    rows += step;
+  }
+  return rows;
 }
 
 // The image this frame shows (traced now or kept from an earlier frame) against the full trace of the

@@ -122,7 +122,7 @@ class Viewer {
   glm::ivec2 tracedImageSize() const;   // ... scaled by render.scale and the adaptive resolution
   void traceImage();
   bool refineImage(glm::ivec2 size);    // traces a band of the next sample of a still image; true if it shows
-  int refineBandRows(int height) const;  // rows of that band: refineBandMs by the last bands' cost
+  int refineBandRows(int height);        // rows of that band: refineBandMs by the last samples' cost
   FramePhase framePhase() const;         // what the slime and the camera did this frame (frame_log.h)
   void uploadImage();
   // --check-every: the image this frame shows against the full trace of the same state (image_check.h);
@@ -189,8 +189,8 @@ class Viewer {
   AccumulationBuffer refinement_;         // a still image's frames, averaged (progressive AA)
   Image sampleImage_;                     // one of those frames, traced off the pixels' centres
   int sampleRow_ = 0;                     // ... traced a band a frame: its rows above this are done
-  double bandSetupMs_ = -1.0;             // a band's cost: per band, smoothed (< 0: none traced yet)
-  double bandRowMs_ = 0.0;                // ... and per row
+  double firstBandSetupMs_ = -1.0;        // a sample's first band's setup, smoothed (< 0: none traced yet)
+  std::vector<double> blockMs_;           // per block of kRefineBandRowStep rows, their cost when last traced (< 0: not yet)
   int tracedRows_ = 0;                    // rows this frame traced (a new image's or a band's)
   PixelRect imageChanged_;                // the pixels of imageBytes_ the last trace wrote
   FrameCompositor compositor_;
