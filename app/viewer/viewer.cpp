@@ -383,7 +383,9 @@ void Viewer::traceImage() {
   framesSinceNewImage_ = 0;
   stats_.samplesPerPixel = 1;
   image_.resize(size.x, size.y);
-  const RenderStats render = renderer_.render(frameSettings(size), image_, &imageBytes_, /*buffersKept=*/true);
+  // The buffers hold the last render()'s pixels unless a refinement's average has been shown in them.
+  const RenderStats render = renderer_.render(frameSettings(size), image_, &imageBytes_, /*buffersKept=*/!imageAveraged_);
+  imageAveraged_ = false;
   rendered_ = true;
   tracedRows_ = size.y;
   imageChanged_ = render.bytesWritten;
@@ -435,7 +437,9 @@ bool Viewer::refineImage(glm::ivec2 size) {
   if (sampleRow_ < size.y) return false;  // the sample is not whole yet: the image shown stays
   sampleRow_ = 0;
   imageChanged_ = {0, 0, size.x, size.y};  // the average of every pixel
-  return refinement_.add(sampleImage_, image_, &imageBytes_);
+  const bool shown = refinement_.add(sampleImage_, image_, &imageBytes_);
+  imageAveraged_ = imageAveraged_ || shown;
+  return shown;
 }
 
 int Viewer::refineBandRows(int height) {

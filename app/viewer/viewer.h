@@ -192,6 +192,7 @@ class Viewer {
   double firstBandSetupMs_ = -1.0;        // a sample's first band's setup, smoothed (< 0: none traced yet)
   std::vector<double> blockMs_;           // per block of kRefineBandRowStep rows, their cost when last traced (< 0: not yet)
   int tracedRows_ = 0;                    // rows this frame traced (a new image's or a band's)
+  bool imageAveraged_ = false;            // image_ holds an average of samples, not the last render()'s pixels
   PixelRect imageChanged_;                // the pixels of imageBytes_ the last trace wrote
   FrameCompositor compositor_;
   CameraController cameraController_;

@@ -481,7 +481,7 @@ RenderStats Renderer::trace(const Settings& settings, Image& image, std::vector<
 
   FloorShading* floorShadings = nullptr;  // the caches, with one sample per pixel while the view holds
   const bool lastKeptCaches = impl.lastKeptCaches;
-  impl.lastKeptCaches = false;  // until this frame is finished (a band: until the next whole image)
+  if (wholeImage) impl.lastKeptCaches = false;  // until this frame is finished
   impl.imageInPlace = impl.bytesInPlace = false;
   // Outside the footprint a pixel sees only the floor or the sky, whatever its samples. Beside it,
   // the grids of the triangles as the light and the eye see them, which answer the shadow rays' and

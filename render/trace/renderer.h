@@ -86,8 +86,9 @@ class Renderer {
   // that no frame holds a whole-image trace. Bands of the same view and pixelOffset in a row, with no
   // render() or updateSlime between them, share the first one's setup (its caustic map, the slime's
   // footprint, the light's and the eye's grids): the caller changes nothing else between the bands
-  // of one sample. The floor caches kept for the next buffersKept render() are neither used nor
-  // disturbed.
+  // of one sample. The floor caches and the record of the last render() are neither used nor
+  // disturbed: the next buffersKept render() still leaves the pixels that cannot have changed as
+  // they are, if its caller has not written over its buffers since (an average of samples has).
   RenderStats renderRows(const Settings& settings, Image& image, glm::vec2 pixelOffset, int rowBegin, int rowEnd);
 
   // Caustics (render.caustics) gathered progressively: each render() while the slime, the light and the
