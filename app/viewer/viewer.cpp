@@ -383,12 +383,13 @@ void Viewer::traceImage() {
   framesSinceNewImage_ = 0;
   stats_.samplesPerPixel = 1;
   image_.resize(size.x, size.y);
-  // The buffers hold the last render()'s pixels unless a refinement's average has been shown in them.
-  const RenderStats render = renderer_.render(frameSettings(size), image_, &imageBytes_, /*buffersKept=*/!imageAveraged_);
-  imageAveraged_ = false;
+  // image_ and imageBytes_ hold the last render()'s pixels (a refinement's average is kept apart), so
+  // the pixels the slime cannot have changed stay as they are.
+  const RenderStats render = renderer_.render(frameSettings(size), image_, &imageBytes_, /*buffersKept=*/true);
   rendered_ = true;
   tracedRows_ = size.y;
-  imageChanged_ = render.bytesWritten;
+  imageChanged_ = showingAverage_ ? PixelRect{0, 0, size.x, size.y} : render.bytesWritten;  // the window showed the average
+  showingAverage_ = false;
   stats_.stages.trace = traceTime.milliseconds();
   stats_.stages.caustics = render.causticsMs;
   stats_.causticPhotons = render.causticPhotons;
@@ -437,8 +438,8 @@ bool Viewer::refineImage(glm::ivec2 size) {
   if (sampleRow_ < size.y) return false;  // the sample is not whole yet: the image shown stays
   sampleRow_ = 0;
   imageChanged_ = {0, 0, size.x, size.y};  // the average of every pixel
-  const bool shown = refinement_.add(sampleImage_, image_, &imageBytes_);
-  imageAveraged_ = imageAveraged_ || shown;
+  const bool shown = refinement_.add(sampleImage_, averageImage_, &averageBytes_);
+  showingAverage_ = showingAverage_ || shown;
   return shown;
 }
 
@@ -477,7 +478,8 @@ double Viewer::checkImage() {
   framePsnrDb_ = -1.0;
   if (!checkStateKept_) return 0.0;
   const glm::ivec2 full = fullImageSize();
-  if (full.x <= 0 || image_.width <= 0 || imageBytes_.size() != 4 * image_.pixels.size()) return 0.0;
+  const std::vector<std::uint8_t>& shown = shownBytes();
+  if (full.x <= 0 || image_.width <= 0 || shown.size() != 4 * image_.pixels.size()) return 0.0;
   // A still image part-way through its refinement averages several points of each pixel: neither the
   // one-sample nor the refined reference. Once refined fully it is the render.spp = target image.
   Settings reference = frameSettings(full);
@@ -488,7 +490,7 @@ double Viewer::checkImage() {
   }
   if (samples > 1) reference.render.spp = refinement_.target();
   const double before = check_.milliseconds();
-  framePsnrDb_ = check_.check(reference, checkPositions_, checkTriangles_, imageBytes_, image_.width,
+  framePsnrDb_ = check_.check(reference, checkPositions_, checkTriangles_, shown, image_.width,
                               image_.height, checkHandled_);
   const double spent = check_.milliseconds() - before;
   checkSecondsToSkip_ = spent / 1000.0;
@@ -497,7 +499,7 @@ double Viewer::checkImage() {
 
 void Viewer::uploadImage() {
   const Stopwatch uploadTime;
-  if (imageTraced_) compositor_.upload(imageBytes_, image_.width, image_.height, imageChanged_);
+  if (imageTraced_) compositor_.upload(shownBytes(), image_.width, image_.height, imageChanged_);
   stats_.stages.upload = uploadTime.milliseconds();
 }
 

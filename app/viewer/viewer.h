@@ -125,6 +125,7 @@ class Viewer {
   int refineBandRows(int height);        // rows of that band: refineBandMs by the last samples' cost
   FramePhase framePhase() const;         // what the slime and the camera did this frame (frame_log.h)
   void uploadImage();
+  const std::vector<std::uint8_t>& shownBytes() const { return showingAverage_ ? averageBytes_ : imageBytes_; }
   // --check-every: the image this frame shows against the full trace of the same state (image_check.h);
   // returns the milliseconds it took, which the frame's time and the physics clock leave out.
   double checkImage();
@@ -186,13 +187,15 @@ class Viewer {
   Renderer renderer_;
   Image image_;
   std::vector<std::uint8_t> imageBytes_;  // image_ as sRGB RGBA bytes, for the blit
-  AccumulationBuffer refinement_;         // a still image's frames, averaged (progressive AA)
+  AccumulationBuffer refinement_;         // a still image's frames, averaged (progressive AA) ...
+  Image averageImage_;                    // ... into these, apart from image_, which keeps the last
+  std::vector<std::uint8_t> averageBytes_;  // render()'s pixels for the next one to reuse
+  bool showingAverage_ = false;           // the window shows averageBytes_, not imageBytes_
   Image sampleImage_;                     // one of those frames, traced off the pixels' centres
   int sampleRow_ = 0;                     // ... traced a band a frame: its rows above this are done
   double firstBandSetupMs_ = -1.0;        // a sample's first band's setup, smoothed (< 0: none traced yet)
   std::vector<double> blockMs_;           // per block of kRefineBandRowStep rows, their cost when last traced (< 0: not yet)
   int tracedRows_ = 0;                    // rows this frame traced (a new image's or a band's)
-  bool imageAveraged_ = false;            // image_ holds an average of samples, not the last render()'s pixels
   PixelRect imageChanged_;                // the pixels of imageBytes_ the last trace wrote
   FrameCompositor compositor_;
   CameraController cameraController_;
