@@ -1,15 +1,30 @@
 #include "app/viewer/frame_log.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 
 namespace slime {
 
+const char* nameOf(FramePhase phase) {
+  switch (phase) {
+    case FramePhase::Falling: return "falling";
+    case FramePhase::Settling: return "settling";
+    case FramePhase::Creeping: return "creeping";
+    case FramePhase::Resting: return "resting";
+    case FramePhase::Held: return "held";
+    case FramePhase::Stretched: return "stretched";
+    case FramePhase::Orbiting: return "orbiting";
+  }
+  return "unknown";
+}
+
 bool writeFrameLogCsv(const std::vector<FrameRecord>& records, const std::string& path) {
   std::ofstream file(path);
   file << "frame,end_s,frame_ms,physics_ms,refit_ms,trace_ms,upload_ms,ui_ms,"
-          "traced,full_resolution,width,height,scale,grabbed,simulated_s,check_psnr_db,caustics_ms,caustic_photons\n";
+          "traced,full_resolution,width,height,scale,grabbed,simulated_s,check_psnr_db,caustics_ms,caustic_photons,"
+          "traced_rows,phase\n";
   char line[360];
   for (std::size_t index = 0; index < records.size(); ++index) {
     const FrameRecord& frame = records[index];
@@ -24,7 +39,8 @@ bool writeFrameLogCsv(const std::vector<FrameRecord>& records, const std::string
       std::snprintf(line, sizeof line, "%.2f", frame.checkPsnrDb);
       file << line;
     }
-    std::snprintf(line, sizeof line, ",%.3f,%llu\n", stages.caustics, static_cast<unsigned long long>(frame.causticPhotons));
+    std::snprintf(line, sizeof line, ",%.3f,%llu,%d,%s\n", stages.caustics,
+                  static_cast<unsigned long long>(frame.causticPhotons), frame.tracedRows, nameOf(frame.phase));
     file << line;
   }
   file.flush();
@@ -65,6 +81,33 @@ FrameSummary summarizeFrames(const std::vector<FrameRecord>& records, bool (*inc
     summary.meanStages.caustics /= static_cast<double>(traced);
   }
   return summary;
+}
+
+std::vector<PhaseSummary> summarizePhases(const std::vector<FrameRecord>& records, double afterSeconds) {
+  std::vector<double> frameMs[kFramePhases];
+  for (const FrameRecord& record : records)
+    if (record.endSeconds >= afterSeconds) frameMs[static_cast<int>(record.phase)].push_back(record.frameMs);
+  // The nearest-rank percentile: the smallest frame time that p of the frames do not exceed.
+  const auto percentile = [](const std::vector<double>& sorted, double p) {
+    const std::size_t rank = static_cast<std::size_t>(std::ceil(p * static_cast<double>(sorted.size())));
+    return sorted[std::clamp<std::size_t>(rank, 1, sorted.size()) - 1];
+  };
+  std::vector<PhaseSummary> summaries;
+  for (int phase = 0; phase < kFramePhases; ++phase) {
+    std::vector<double>& times = frameMs[phase];
+    if (times.empty()) continue;
+    std::sort(times.begin(), times.end());
+    PhaseSummary summary;
+    summary.phase = static_cast<FramePhase>(phase);
+    summary.frames = static_cast<std::int64_t>(times.size());
+    for (const double ms : times) summary.seconds += ms / 1000.0;
+    summary.medianMs = percentile(times, 0.5);
+    summary.p95Ms = percentile(times, 0.95);
+    summary.p99Ms = percentile(times, 0.99);
+    summary.longestMs = times.back();
+    summaries.push_back(summary);
+  }
+  return summaries;
 }
 
 }  // namespace slime

@@ -12,6 +12,16 @@
 
 namespace slime {
 
+// What the slime and the camera did in a frame, for the figures per phase (issue 43): the slow frames
+// a person notices come in some phases and not others. The first that applies, in this order:
+// stretched (both hands hold it), held (one hand), orbiting (the camera moved), falling (not yet on
+// the floor), settling (its fastest point moves kSettlingPixelsPerSecond on screen or more), creeping
+// (slower, but more than kStillMotionPixels a second), resting.
+enum class FramePhase { Falling, Settling, Creeping, Resting, Held, Stretched, Orbiting };
+constexpr int kFramePhases = 7;
+const char* nameOf(FramePhase phase);  // "falling", "settling", ...
+constexpr double kSettlingPixelsPerSecond = 30.0;  // a pixel a frame at 30 frames a second
+
 struct FrameRecord {
   double endSeconds = 0.0;        // wall time from the start of the first frame to the end of this one
   double frameMs = 0.0;           // wall time of this frame
@@ -25,11 +35,13 @@ struct FrameRecord {
   double simulatedSeconds = 0.0;  // simulation time at the frame's end
   double checkPsnrDb = -1.0;      // --check-every: the shown image's PSNR against the full trace; < 0: unchecked
   std::uint64_t causticPhotons = 0;  // photons behind the caustic map of the frame's trace (0: none)
+  int tracedRows = 0;             // image rows traced: a new image's, or a band of a refinement sample
+  FramePhase phase = FramePhase::Resting;
 };
 
 // One line per frame under a header naming the columns (units in the names: _s, _ms, _db; an
-// unchecked frame leaves check_psnr_db empty; caustics_ms and caustic_photons come last, so the
-// plot scripts' column numbers hold). Returns false
+// unchecked frame leaves check_psnr_db empty; caustics_ms, caustic_photons, traced_rows and phase
+// come last, so the plot scripts' column numbers hold). Returns false
 // if the file cannot be written.
 bool writeFrameLogCsv(const std::vector<FrameRecord>& records, const std::string& path);
 
@@ -43,5 +55,16 @@ struct FrameSummary {
   std::int64_t reducedResolutionFrames = 0;
 };
 FrameSummary summarizeFrames(const std::vector<FrameRecord>& records, bool (*include)(const FrameRecord&));
+
+// Frame times of one phase: the slow frames, not only the typical one.
+struct PhaseSummary {
+  FramePhase phase = FramePhase::Resting;
+  std::int64_t frames = 0;
+  double seconds = 0.0;  // their summed wall time
+  double medianMs = 0.0, p95Ms = 0.0, p99Ms = 0.0, longestMs = 0.0;
+};
+// One summary per phase that has frames, in FramePhase's order. `afterSeconds`: frames ending before
+// this wall time (the window's first frames, shaders and caches warming) are left out.
+std::vector<PhaseSummary> summarizePhases(const std::vector<FrameRecord>& records, double afterSeconds = 0.0);
 
 }  // namespace slime

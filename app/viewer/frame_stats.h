@@ -31,6 +31,7 @@ struct FrameStats {
   std::uint64_t causticPhotons = 0;      // photons behind the last traced frame's caustic map (0: none)
   int physicsSteps = 0;                  // fixed steps run in the last frame
   int samplesPerPixel = 1;               // samples averaged in the image shown (progressive anti-aliasing)
+  int tracedRows = 0;                    // image rows the last frame traced: a new image's, or a band of a sample's
   int imageWidth = 0;                    // traced image size of the last frame
   int imageHeight = 0;
   double renderScale = 1.0;              // its size / the full size (render.scale × the adaptive factor)

@@ -19,4 +19,13 @@ int PhysicsClock::stepsFor(double wallSeconds, double timeScale, double dt) {
   return static_cast<int>(steps);
 }
 
+void PhysicsClock::giveBack(int steps, double dt) {
+  if (steps <= 0 || !(dt > 0.0)) return;
+  backlogSeconds_ += steps * dt;
+  if (backlogSeconds_ > kMaxCatchUpSeconds) {
+    droppedSeconds_ += backlogSeconds_ - kMaxCatchUpSeconds;
+    backlogSeconds_ = kMaxCatchUpSeconds;
+  }
+}
+
 }  // namespace slime

@@ -8,6 +8,7 @@
 #include "core/geometry/level_of_detail.h"
 #include "core/settings/settings_io.h"
 
+#include <glm/geometric.hpp>
 #include <imgui.h>
 
 #include <algorithm>
@@ -159,6 +160,7 @@ FrameInput Viewer::readInput() {
 }
 
 void Viewer::handleInput(const FrameInput& input) {
+  cameraMoved_ = false;
   if (input.closeRequested || (input.escapePressed && !input.keyboardCapturedByUi)) quit_ = true;
   if (input.screenshotRequested)
     requestScreenshot(options_.screenshotPrefix + "-" + std::to_string(++screenshotCount_) + ".png");
@@ -166,7 +168,7 @@ void Viewer::handleInput(const FrameInput& input) {
   if (input.saveRequested) saveScene();
   if (input.loadRequested) loadScene();
   if (!input.keyboardCapturedByUi && cameraController_.applyKeys(input, settings_.camera)) {
-    sceneChanged_ = true;
+    sceneChanged_ = cameraMoved_ = true;
     lastInteraction_ = wallClock_;
   }
   for (const MouseButtonEvent& event : input.buttons) handleButton(event, input);
@@ -181,7 +183,7 @@ void Viewer::handleInput(const FrameInput& input) {
     if (grab_.target(camera, input.windowSize) != before) lastInteraction_ = wallClock_;
   }
   if (cameraController_.applyMouse(input.cursor, input.windowSize, wheel, slimeCentre(), settings_.camera)) {
-    sceneChanged_ = true;
+    sceneChanged_ = cameraMoved_ = true;
     lastInteraction_ = wallClock_;
   }
 }
@@ -261,8 +263,8 @@ Viewer::PhysicsOutcome Viewer::stepPhysics(double wallSeconds, const glm::dvec3&
     }
     if (scenario_ && !scenario_->finished()) playScenarioAt(simulation_.time(), outcome);
     simulation_.step();
-    if (physicsTime.milliseconds() > kPhysicsBudgetMs) {  // out of time: give up the rest of the backlog
-      clock_.reset();
+    if (physicsTime.milliseconds() > kPhysicsBudgetMs && done + 1 < steps) {  // out of time: the rest waits
+      if (!settings_.sim.paused) clock_.giveBack(steps - done - 1, settings_.sim.dt);
       ++done;
       break;
     }
@@ -305,6 +307,8 @@ void Viewer::applyPhysicsOutcome(const PhysicsOutcome& outcome) {
   if (outcome.steps > 0) {
     slimeMoved_ = true;
     metrics_ = outcome.metrics;
+    // Touched down: the lowest point within a fiftieth of the radius of the floor (z = 0).
+    if (metrics_.minZ < 0.02 * settings_.slime.radius) landed_ = true;
     if (outcome.grabbing) peakHeightWhileGrabbing_ = std::max(peakHeightWhileGrabbing_, metrics_.height);
     if (outcome.twoHands) peakWidthWhileTwoHands_ = std::max(peakWidthWhileTwoHands_, metrics_.width);
   }
@@ -321,8 +325,11 @@ void Viewer::applyPhysicsOutcome(const PhysicsOutcome& outcome) {
 
 // --- refit, trace, upload --------------------------------------------------------------------------
 
-// The slime is drawn again when the scene changed anyway or its motion since it was last drawn
-// would show (kInvisibleMotionPixels); slow creep is traced once it adds up.
+// The slime is drawn again when the scene changed anyway or its motion since it was last drawn would
+// show (kStillMotionPixels). drawnPositions_ is the state the image shows, the one its refinement
+// started from: creep is measured against it, not against the last frame, so it cannot add up unseen;
+// once it crosses the threshold the slime is traced again, in its footprint (its shadow and caustic
+// included; the rest of the image is copied: RenderStats::reusedPixels), and the refinement restarts.
 void Viewer::refitSlime() {
   const Stopwatch refitTime;
   if (slimeMoved_ && (sceneChanged_ || motionWouldShow())) {
@@ -337,7 +344,7 @@ void Viewer::refitSlime() {
 bool Viewer::motionWouldShow() const {
   const glm::ivec2 size = tracedImageSize();
   return size.y <= 0 || largestMotionPixels(drawnPositions_, simulation_.positions(), settings_.camera.position,
-                                            settings_.camera.fov, size.y) >= kInvisibleMotionPixels;
+                                            settings_.camera.fov, size.y) >= kStillMotionPixels;
 }
 
 glm::ivec2 Viewer::fullImageSize() const {
@@ -360,25 +367,29 @@ glm::ivec2 Viewer::tracedImageSize() const {
 
 void Viewer::traceImage() {
   imageTraced_ = newImageTraced_ = rendered_ = false;
+  tracedRows_ = 0;
   const glm::ivec2 size = tracedImageSize();
   tracedAtFullSize_ = size == fullImageSize();
   if (size.x <= 0) return;
   const Stopwatch traceTime;
   if (!sceneChanged_ && size == glm::ivec2(image_.width, image_.height)) {  // nothing new: refine it
-    if (refineImage(size)) {
-      stats_.stages.trace = traceTime.milliseconds();
-      imageTraced_ = true;
-    }
+    imageTraced_ = refineImage(size);
+    if (rendered_) stats_.stages.trace = traceTime.milliseconds();
     stats_.samplesPerPixel = std::max(1, refinement_.samples());
     return;
   }
   refinement_.reset();
+  sampleRow_ = 0;
   framesSinceNewImage_ = 0;
   stats_.samplesPerPixel = 1;
   image_.resize(size.x, size.y);
+  // image_ and imageBytes_ hold the last render()'s pixels (a refinement's average is kept apart), so
+  // the pixels the slime cannot have changed stay as they are.
   const RenderStats render = renderer_.render(frameSettings(size), image_, &imageBytes_, /*buffersKept=*/true);
   rendered_ = true;
-  imageChanged_ = render.bytesWritten;
+  tracedRows_ = size.y;
+  imageChanged_ = showingAverage_ ? PixelRect{0, 0, size.x, size.y} : render.bytesWritten;  // the window showed the average
+  showingAverage_ = false;
   stats_.stages.trace = traceTime.milliseconds();
   stats_.stages.caustics = render.causticsMs;
   stats_.causticPhotons = render.causticPhotons;
@@ -394,26 +405,59 @@ void Viewer::traceImage() {
   imageTraced_ = newImageTraced_ = true;
 }
 
-// Progressive anti-aliasing: once nothing has moved for kRefineAfterSeconds, each frame traces the
-// image once more at another point of every pixel until ViewerOptions::refineSamples are averaged; any change
-// (camera, slime, settings, size) resets it in traceImage. Supersampled settings (render.spp > 1)
-// already average their own samples.
+// Progressive anti-aliasing: once nothing has moved for kRefineAfterSeconds, the image is traced once
+// more at another point of every pixel, and again, until ViewerOptions::refineSamples are averaged; any
+// change (camera, slime, settings, size) resets it in traceImage. Each sample is traced a band of rows
+// per frame (refineBandRows) and added once whole. Supersampled settings (render.spp > 1) already
+// average their own samples.
 bool Viewer::refineImage(glm::ivec2 size) {
   // Nothing may have moved lately: the user for kRefineAfterSeconds, the slime for kStillFramesBeforeRefining
   // frames. A slime creeping past the redraw threshold every other frame would otherwise alternate a
-  // footprint frame with a whole-image refinement sample that its next move throws away.
+  // footprint frame with refinement bands that its next move throws away.
   framesSinceNewImage_ = std::min(framesSinceNewImage_ + 1, kStillFramesBeforeRefining);
   if (framesSinceNewImage_ < kStillFramesBeforeRefining) return false;
   if (interacting() || refinement_.converged() || settings_.render.spp > 1) return false;
   if (resolution_.scale() < 1.0) return false;  // the adaptive resolution returns to full first
-  sampleImage_.resize(size.x, size.y);
+  if (sampleRow_ == 0) sampleImage_.resize(size.x, size.y);
+  const int rows = std::min(refineBandRows(size.y), size.y - sampleRow_);
   const RenderStats render =
-      renderer_.render(frameSettings(size), sampleImage_, nullptr, /*buffersKept=*/false, refinement_.nextOffset());
+      renderer_.renderRows(frameSettings(size), sampleImage_, refinement_.nextOffset(), sampleRow_, sampleRow_ + rows);
+  rendered_ = true;
+  tracedRows_ = rows;
   stats_.stages.caustics = render.causticsMs;
   stats_.causticPhotons = render.causticPhotons;
-  rendered_ = true;
+  // The band's cost, for the next samples' bands: a sample's first band sets up (the caustic photons,
+  // the footprint, the grids) and the later ones reuse it; the rows' cost is kept per block of
+  // kRefineBandRowStep rows, as rows through the slime cost several times those of the floor or sky.
+  constexpr double kWeight = 0.3;
+  if (sampleRow_ == 0)
+    firstBandSetupMs_ = firstBandSetupMs_ < 0.0 ? render.setupMs : (1.0 - kWeight) * firstBandSetupMs_ + kWeight * render.setupMs;
+  const double blockMs = std::max(0.0, render.traceMs - render.setupMs) * kRefineBandRowStep / rows;
+  for (int row = sampleRow_; row < sampleRow_ + rows; row += kRefineBandRowStep) blockMs_[row / kRefineBandRowStep] = blockMs;
+  sampleRow_ += rows;
+  if (sampleRow_ < size.y) return false;  // the sample is not whole yet: the image shown stays
+  sampleRow_ = 0;
   imageChanged_ = {0, 0, size.x, size.y};  // the average of every pixel
-  return refinement_.add(sampleImage_, image_, &imageBytes_);
+  const bool shown = refinement_.add(sampleImage_, averageImage_, &averageBytes_);
+  showingAverage_ = showingAverage_ || shown;
+  return shown;
+}
+
+int Viewer::refineBandRows(int height) {
+  const int step = kRefineBandRowStep;
+  const int blocks = (height + step - 1) / step;
+  if (static_cast<int>(blockMs_.size()) != blocks) blockMs_.assign(blocks, -1.0);
+  const int half = std::max(step, (height / 2) / step * step);  // never the whole sample in one frame
+  const int first = sampleRow_ / step;
+  if (blockMs_[first] < 0.0) return std::min(half, std::max(step, (height / 8) / step * step));  // not yet measured
+  double budget = options_.refineBandMs - (sampleRow_ == 0 ? std::max(0.0, firstBandSetupMs_) : 0.0);
+  int rows = step;
+  budget -= blockMs_[first];
+  for (int block = first + 1; block < blocks && rows < half && blockMs_[block] >= 0.0 && blockMs_[block] <= budget; ++block) {
+    budget -= blockMs_[block];
+    rows += step;
+  }
+  return rows;
 }
 
 // The image this frame shows (traced now or kept from an earlier frame) against the full trace of the
@@ -434,7 +478,8 @@ double Viewer::checkImage() {
   framePsnrDb_ = -1.0;
   if (!checkStateKept_) return 0.0;
   const glm::ivec2 full = fullImageSize();
-  if (full.x <= 0 || image_.width <= 0 || imageBytes_.size() != 4 * image_.pixels.size()) return 0.0;
+  const std::vector<std::uint8_t>& shown = shownBytes();
+  if (full.x <= 0 || image_.width <= 0 || shown.size() != 4 * image_.pixels.size()) return 0.0;
   // A still image part-way through its refinement averages several points of each pixel: neither the
   // one-sample nor the refined reference. Once refined fully it is the render.spp = target image.
   Settings reference = frameSettings(full);
@@ -445,7 +490,7 @@ double Viewer::checkImage() {
   }
   if (samples > 1) reference.render.spp = refinement_.target();
   const double before = check_.milliseconds();
-  framePsnrDb_ = check_.check(reference, checkPositions_, checkTriangles_, imageBytes_, image_.width,
+  framePsnrDb_ = check_.check(reference, checkPositions_, checkTriangles_, shown, image_.width,
                               image_.height, checkHandled_);
   const double spent = check_.milliseconds() - before;
   checkSecondsToSkip_ = spent / 1000.0;
@@ -454,7 +499,7 @@ double Viewer::checkImage() {
 
 void Viewer::uploadImage() {
   const Stopwatch uploadTime;
-  if (imageTraced_) compositor_.upload(imageBytes_, image_.width, image_.height, imageChanged_);
+  if (imageTraced_) compositor_.upload(shownBytes(), image_.width, image_.height, imageChanged_);
   stats_.stages.upload = uploadTime.milliseconds();
 }
 
@@ -465,6 +510,7 @@ void Viewer::followTargetFps() {
 }
 
 void Viewer::finishFrame(double frameMs) {
+  stats_.tracedRows = tracedRows_;
   stats_.recordStages(imageTraced_, tracedAtFullSize_);
   stats_.recordFrame(frameMs);
   resolution_.update(frameMs, newImageTraced_ ? stats_.stages.trace : 0.0, newImageTraced_);
@@ -473,8 +519,10 @@ void Viewer::finishFrame(double frameMs) {
   record.endSeconds = stats_.totalFrameMs / 1000.0;
   record.frameMs = frameMs;
   record.stages = stats_.stages;
-  if (!imageTraced_) record.stages.trace = record.stages.refit = record.stages.caustics = 0.0;
+  if (!imageTraced_ && tracedRows_ == 0) record.stages.trace = record.stages.refit = record.stages.caustics = 0.0;
   record.causticPhotons = stats_.causticPhotons;
+  record.tracedRows = tracedRows_;
+  record.phase = framePhase();
   record.traced = imageTraced_;
   record.fullResolution = imageTraced_ && tracedAtFullSize_;
   record.imageWidth = image_.width;
@@ -484,6 +532,21 @@ void Viewer::finishFrame(double frameMs) {
   record.simulatedSeconds = simulation_.time();
   record.checkPsnrDb = framePsnrDb_;
   frameRecords_.push_back(record);
+}
+
+FramePhase Viewer::framePhase() const {
+  if (simulation_.grabbing(0) && simulation_.grabbing(1)) return FramePhase::Stretched;
+  if (simulation_.anyGrabbing()) return FramePhase::Held;
+  if (cameraMoved_) return FramePhase::Orbiting;
+  if (!landed_) return FramePhase::Falling;
+  // The fastest point's speed on screen, at the slime's distance.
+  const glm::ivec2 size = fullImageSize();
+  const double distance = glm::length(settings_.camera.position - slimeCentre());
+  if (size.y <= 0 || !(distance > 0.0)) return FramePhase::Resting;
+  const double pixelsPerSecond = metrics_.maxSpeed * pixelsPerMetre(distance, settings_.camera.fov, size.y);
+  if (pixelsPerSecond >= kSettlingPixelsPerSecond) return FramePhase::Settling;
+  if (pixelsPerSecond > kStillMotionPixels) return FramePhase::Creeping;
+  return FramePhase::Resting;
 }
 
 // --- present ---------------------------------------------------------------------------------------

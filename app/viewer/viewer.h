@@ -42,6 +42,7 @@ struct ViewerOptions {
   std::string scenePath = "slime-scene.json";       // where Ctrl+S saves and Ctrl+O loads (panel field)
   int refineSamples = 16;  // samples per pixel a still image accumulates (1: none, as `snapshot` shows it)
   int checkEvery = 0;      // every K-th frame, the image shown against a full trace (image_check.h); 0: never
+  double refineBandMs = 14.0;  // wall time a frame may spend on a band of a refinement sample (Viewer::refineBandRows)
 };
 
 // validateSettings, and what only the renderer finds out: that a floor image can be read
@@ -57,9 +58,16 @@ class Viewer {
   // A frame that traced nothing new (the scene still, the image refined) lasts at least this long
   // unless input arrives: a still window shows 60 frames a second, not as many as a core can draw.
   static constexpr double kIdleFrameSeconds = 1.0 / 60.0;
-  // Wall time physics may take per frame. When steps cost more than real time allows, the slime runs
+  // Wall time physics may take per frame: the steps left when it runs out are given back to the clock
+  // and run in the next frames' slices (PhysicsClock::giveBack), so no frame waits on a long physics
+  // step (35–41 ms in single frames before). The steps run beside the trace, whose own frame is
+  // about this long while the slime moves. When steps cost more than real time allows, the slime runs
   // slower than real time (the Stats panel says how much) instead of the window freezing.
-  static constexpr double kPhysicsBudgetMs = 60.0;
+  static constexpr double kPhysicsBudgetMs = 20.0;
+  // A still image's refinement sample is traced a band of rows per frame, as many as the last bands'
+  // cost predicts to fit ViewerOptions::refineBandMs, at most half the image, so a whole-image sample
+  // (about 60 ms at 1280×720 on two cores) is spread over several frames.
+  static constexpr int kRefineBandRowStep = 8;  // bands are multiples of the renderer's tile rows
 
   Viewer(ViewerBackend& backend, const Settings& settings, ViewerOptions options = {});
   ~Viewer();
@@ -113,8 +121,11 @@ class Viewer {
   glm::ivec2 fullImageSize() const;     // the view's framebuffer pixels; {0, 0} when minimised
   glm::ivec2 tracedImageSize() const;   // ... scaled by render.scale and the adaptive resolution
   void traceImage();
-  bool refineImage(glm::ivec2 size);    // traces one more sample of a still image; true if it shows
+  bool refineImage(glm::ivec2 size);    // traces a band of the next sample of a still image; true if it shows
+  int refineBandRows(int height);        // rows of that band: refineBandMs by the last samples' cost
+  FramePhase framePhase() const;         // what the slime and the camera did this frame (frame_log.h)
   void uploadImage();
+  const std::vector<std::uint8_t>& shownBytes() const { return showingAverage_ ? averageBytes_ : imageBytes_; }
   // --check-every: the image this frame shows against the full trace of the same state (image_check.h);
   // returns the milliseconds it took, which the frame's time and the physics clock leave out.
   double checkImage();
@@ -176,8 +187,15 @@ class Viewer {
   Renderer renderer_;
   Image image_;
   std::vector<std::uint8_t> imageBytes_;  // image_ as sRGB RGBA bytes, for the blit
-  AccumulationBuffer refinement_;         // a still image's frames, averaged (progressive AA)
+  AccumulationBuffer refinement_;         // a still image's frames, averaged (progressive AA) ...
+  Image averageImage_;                    // ... into these, apart from image_, which keeps the last
+  std::vector<std::uint8_t> averageBytes_;  // render()'s pixels for the next one to reuse
+  bool showingAverage_ = false;           // the window shows averageBytes_, not imageBytes_
   Image sampleImage_;                     // one of those frames, traced off the pixels' centres
+  int sampleRow_ = 0;                     // ... traced a band a frame: its rows above this are done
+  double firstBandSetupMs_ = -1.0;        // a sample's first band's setup, smoothed (< 0: none traced yet)
+  std::vector<double> blockMs_;           // per block of kRefineBandRowStep rows, their cost when last traced (< 0: not yet)
+  int tracedRows_ = 0;                    // rows this frame traced (a new image's or a band's)
   PixelRect imageChanged_;                // the pixels of imageBytes_ the last trace wrote
   FrameCompositor compositor_;
   CameraController cameraController_;
@@ -203,6 +221,8 @@ class Viewer {
   bool slimeMoved_ = true;         // the mesh changed since the last refit
   std::vector<glm::dvec3> drawnPositions_;  // the vertices as the renderer last got them
   bool sceneChanged_ = true;       // camera, settings or size changed since the last trace
+  bool cameraMoved_ = false;       // this frame's input moved the camera
+  bool landed_ = false;            // the slime has touched the floor since it was (re)built
   bool imageTraced_ = false;       // this frame traced an image (a new one, or a refinement sample)
   bool newImageTraced_ = false;    // ... a new one: the view changed
   bool tracedAtFullSize_ = false;  // ... at the full size of the view

@@ -72,6 +72,7 @@ void Viewer::loadScene() {
   slimeMoved_ = true;
   sceneChanged_ = true;
   drawnPositions_.clear();
+  landed_ = false;
   metrics_ = simulation_.metrics();
   std::printf("slime: %s\n", fileMessage_.c_str());
 }
@@ -91,6 +92,20 @@ nlohmann::json summaryJson(const FrameSummary& summary) {
           {"mean_stage_ms", stagesJson(summary.meanStages)},
           {"traced_full_resolution_frames", summary.fullResolutionFrames},
           {"traced_reduced_resolution_frames", summary.reducedResolutionFrames}};
+}
+
+// Per phase (frame_log.h), after the first second: frames, their fps, and the median, 95th and 99th
+// percentile and longest frame times.
+nlohmann::json phasesJson(const std::vector<PhaseSummary>& phases) {
+  nlohmann::json json = nlohmann::json::object();
+  for (const PhaseSummary& phase : phases)
+    json[nameOf(phase.phase)] = {{"frames", phase.frames},
+                                 {"fps", phase.seconds > 0.0 ? static_cast<double>(phase.frames) / phase.seconds : 0.0},
+                                 {"median_ms", phase.medianMs},
+                                 {"p95_ms", phase.p95Ms},
+                                 {"p99_ms", phase.p99Ms},
+                                 {"longest_ms", phase.longestMs}};
+  return json;
 }
 
 nlohmann::json psnrJson(const PsnrFigures& figures) {
@@ -128,6 +143,7 @@ void Viewer::writeReport() const {
          return frame.grabbed;
        }))},
       {"mean_stage_ms", stagesJson(stats_.meanStages())},
+      {"phases", phasesJson(summarizePhases(frameRecords_, 1.0))},
       {"framebuffer", {framebuffer.x, framebuffer.y}},
       {"simulated_seconds", simulation_.time()},
       {"steps", simulation_.stepCount()},

@@ -127,6 +127,7 @@ void Viewer::reloadSlime() {
   clock_.reset();
   slimeMoved_ = true;
   drawnPositions_.clear();  // a new mesh: draw it whatever it moved
+  landed_ = false;
   metrics_ = simulation_.metrics();
 }
 

@@ -39,6 +39,14 @@ double pixelsPerMetre(double distance, double fovDegrees, int imageHeight);
 // creep is drawn once it adds up.
 constexpr double kInvisibleMotionPixels = 0.01;
 
+// Creep in pixels, measured from the vertices a still image's refinement started from, below which the
+// viewer keeps refining that image instead of tracing it again. Judged by the refined image (16
+// samples a pixel, the caustic map finished), not the one-sample frame's pixel centres: the creeps of a
+// resting slime (a slide, a spreading) moved this far change under 0.5 % of its pixels by more than 2
+// steps of 8-bit sRGB, the floor seen through the lens and the caustic included: half what the level of
+// detail's rule calls invisible (tests/render/trace/invariant_test.cpp, figures in docs/rendering.md).
+constexpr double kStillMotionPixels = 0.1;
+
 // How far, in pixels, the vertex that moved most between `drawn` and `now` appears to move: its
 // displacement seen at the nearest depth of `now`'s bounding sphere from the eye. Infinite when
 // the two differ in size or the eye is inside that sphere (nothing then bounds the motion on screen).

@@ -120,6 +120,11 @@ struct Renderer::Impl {
   // With the sixteenth (render.checkerboardSixteenth), the traced pixel of each 4 × 4 block instead,
   // (blockX, blockY), which visits all 16 in 16 frames (blockFrame counts them).
   bool halved = false, quartered = false, sixteenth = false;
+  // renderRows: the view and pixel offset of the last band's setup, its caustic map, and whether the
+  // next band of the same key may reuse them (nothing rendered whole or moved since).
+  FloorCacheKey bandView{};
+  const CausticMap* bandCausticMap = nullptr;
+  bool bandSetupValid = false;
   int parity = 0, phase = 0, blockX = 0, blockY = 0, blockFrame = 0;
   std::vector<std::uint8_t> skipped;
 
@@ -136,6 +141,7 @@ struct Renderer::Impl {
   // Keeps the floor texture, thread count and slime shape in step with the settings of this frame.
   void sync(const Settings& settings) {
     if (!sameFloor(settings.floor, floorSettings)) {
+      bandSetupValid = false;
       floor = FloorTexture(settings.floor);
       floorSettings = settings.floor;
       floorCacheValid = false;
@@ -144,6 +150,7 @@ struct Renderer::Impl {
     const bool sphere = settings.slime.shape == "sphere";
     const float radius = static_cast<float>(settings.slime.radius);
     if (sphere != geometry.sphereRequested || (sphere && radius != geometry.sphereRadius)) {
+      bandSetupValid = false;
       geometry.setAnalyticSphere(sphere, radius);
       embree.update(geometry, false);
     }
@@ -421,6 +428,7 @@ void Renderer::setProgressiveCaustics(bool progressive) { impl_->progressiveCaus
 
 void Renderer::updateSlime(const std::vector<SurfaceView>& surfaces) {
   const auto start = std::chrono::steady_clock::now();
+  impl_->bandSetupValid = false;
   const bool topologyChanged = impl_->geometry.update(surfaces);
   impl_->embree.update(impl_->geometry, topologyChanged);
   impl_->refitMs = millisecondsSince(start);
@@ -428,12 +436,25 @@ void Renderer::updateSlime(const std::vector<SurfaceView>& surfaces) {
 
 RenderStats Renderer::render(const Settings& settings, Image& image, std::vector<std::uint8_t>* srgba,
                              bool buffersKept, glm::vec2 pixelOffset) {
+  return trace(settings, image, srgba, buffersKept, pixelOffset, 0, image.height);
+}
+
+RenderStats Renderer::renderRows(const Settings& settings, Image& image, glm::vec2 pixelOffset, int rowBegin, int rowEnd) {
+  return trace(settings, image, nullptr, false, pixelOffset, std::clamp(rowBegin, 0, image.height),
+               std::clamp(rowEnd, 0, image.height));
+}
+
+RenderStats Renderer::trace(const Settings& settings, Image& image, std::vector<std::uint8_t>* srgba, bool buffersKept,
+                            glm::vec2 pixelOffset, int rowBegin, int rowEnd) {
   Impl& impl = *impl_;
+  // A band of the rows leaves the view's caches and the last frame's record alone: they hold the
+  // whole image of the view a window's next render() reuses.
+  const bool wholeImage = rowBegin == 0 && rowEnd == image.height;
   const auto start = std::chrono::steady_clock::now();
   impl.sync(settings);
   RenderStats stats;
   stats.refitMs = impl.refitMs;
-  if (image.width <= 0 || image.height <= 0) return stats;
+  if (image.width <= 0 || image.height <= 0 || rowEnd <= rowBegin) return stats;
   std::uint8_t* bytes = nullptr;
   if (srgba) {
     srgba->resize(4 * image.pixels.size());
@@ -460,7 +481,7 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
 
   FloorShading* floorShadings = nullptr;  // the caches, with one sample per pixel while the view holds
   const bool lastKeptCaches = impl.lastKeptCaches;
-  impl.lastKeptCaches = false;  // until this frame is finished
+  if (wholeImage) impl.lastKeptCaches = false;  // until this frame is finished
   impl.imageInPlace = impl.bytesInPlace = false;
   // Outside the footprint a pixel sees only the floor or the sky, whatever its samples. Beside it,
   // the grids of the triangles as the light and the eye see them, which answer the shadow rays' and
@@ -474,7 +495,12 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
     if (!found) impl.visibility.clear();
     impl.embree.prepareEye(impl.geometry, glm::vec3(camera.position), !found);
   };
-  if (brute) {
+  const FloorCacheKey view = floorCacheKey(camera, parameters, image.width, image.height, pixelOffset);
+  const bool setupKept = !wholeImage && impl.bandSetupValid && view == impl.bandView;
+  impl.bandSetupValid = false;
+  if (setupKept) {
+    causticMap = impl.bandCausticMap;  // the band before's setup holds
+  } else if (brute) {
     causticsOfTheFrame();
     footprintOfTheSlime();
     impl.visibility.clear();
@@ -496,11 +522,15 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
     });
     takeOver(&impl);
   }
+  if (!wholeImage) {
+    impl.bandView = view;
+    impl.bandCausticMap = causticMap;
+    impl.bandSetupValid = true;
+  }
   tracer.setCaustics(causticMap);
   stats.causticPhotons = impl.caustics.photons();
   const ScreenFootprint* footprint = &impl.footprint;
-  if (samplesPerAxis == 1) {
-    const FloorCacheKey view = floorCacheKey(camera, parameters, image.width, image.height, pixelOffset);
+  if (samplesPerAxis == 1 && wholeImage) {
     const bool viewChanged = !impl.lastViewValid || view != impl.lastView;
     const bool keepsMoving = viewChanged && impl.lastViewChanged;
     impl.lastView = view;
@@ -546,12 +576,12 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
   stats.threads = brute ? 1 : impl.arena->max_concurrency();
   if (brute) {
     // The seed's algorithm is the oracle: one thread, no packets that matter, every triangle.
-    impl.traceTile(tracer, intersector, camera, samplesPerAxis, pixelOffset, 0, image.height, 0, image.width, image, bytes,
+    impl.traceTile(tracer, intersector, camera, samplesPerAxis, pixelOffset, rowBegin, rowEnd, 0, image.width, image, bytes,
                    floorShadings, footprint, impl.counters.local());
   } else {
     handOff(&impl);  // the frame's inputs, to the workers
     impl.arena->execute([&] {
-      tbb::parallel_for(tbb::blocked_range2d<int>(0, image.height, kTileRows, 0, image.width, kTileColumns),
+      tbb::parallel_for(tbb::blocked_range2d<int>(rowBegin, rowEnd, kTileRows, 0, image.width, kTileColumns),
                         [&](const tbb::blocked_range2d<int>& tile) {
                           takeOver(&impl);
                           impl.traceTile(tracer, intersector, camera, samplesPerAxis, pixelOffset, tile.rows().begin(),
@@ -596,6 +626,10 @@ RenderStats Renderer::render(const Settings& settings, Image& image, std::vector
     stats.tracedFillPixels += counts.tracedFillPixels;
     stats.busyMs += counts.busyMs;
     stats.bytesWritten = stats.bytesWritten.unitedWith(counts.bytesWritten);
+  }
+  if (!wholeImage) {
+    stats.traceMs = millisecondsSince(start);
+    return stats;
   }
   impl.lastPixels = image.pixels.data();
   impl.lastBytes = bytes;

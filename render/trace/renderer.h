@@ -86,6 +86,16 @@ class Renderer {
   RenderStats render(const Settings& settings, Image& image, std::vector<std::uint8_t>* srgba = nullptr,
                      bool buffersKept = false, glm::vec2 pixelOffset = {0.5f, 0.5f});
 
+  // The rows [rowBegin, rowEnd) of a render(settings, image, nullptr, false, pixelOffset), the other
+  // rows of `image` left as they are: a still image's refinement sample traced a band per frame, so
+  // that no frame holds a whole-image trace. Bands of the same view and pixelOffset in a row, with no
+  // render() or updateSlime between them, share the first one's setup (its caustic map, the slime's
+  // footprint, the light's and the eye's grids): the caller changes nothing else between the bands
+  // of one sample. The floor caches and the record of the last render() are neither used nor
+  // disturbed: the next buffersKept render() still leaves the pixels that cannot have changed as
+  // they are, if its caller has not written over its buffers since (an average of samples has).
+  RenderStats renderRows(const Settings& settings, Image& image, glm::vec2 pixelOffset, int rowBegin, int rowEnd);
+
   // Caustics (render.caustics) gathered progressively: each render() while the slime, the light and the
   // optics stay adds one budget of photons (render.photons) to the map, up to its finished count, and
   // any change starts again from one budget: the interactive viewer's frames. Off (the default: a
@@ -97,6 +107,9 @@ class Renderer {
   std::optional<glm::dvec3> pick(const Settings& settings, double u, double v) const;
 
  private:
+  RenderStats trace(const Settings& settings, Image& image, std::vector<std::uint8_t>* srgba, bool buffersKept,
+                    glm::vec2 pixelOffset, int rowBegin, int rowEnd);
+
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -55,6 +55,8 @@ TEST(FrameLog, CsvHasAHeaderAndOneLinePerFrame) {
   frame.checkPsnrDb = 41.257;
   frame.stages.caustics = 3.25;
   frame.causticPhotons = 20000;
+  frame.tracedRows = 90;
+  frame.phase = FramePhase::Held;
   ASSERT_TRUE(writeFrameLogCsv({record(40.0, true, true, false), frame}, path.string()));
   std::ifstream file(path);
   std::string header, first, second, extra;
@@ -64,9 +66,44 @@ TEST(FrameLog, CsvHasAHeaderAndOneLinePerFrame) {
   EXPECT_FALSE(std::getline(file, extra));
   EXPECT_EQ(header,
             "frame,end_s,frame_ms,physics_ms,refit_ms,trace_ms,upload_ms,ui_ms,"
-            "traced,full_resolution,width,height,scale,grabbed,simulated_s,check_psnr_db,caustics_ms,caustic_photons");
-  EXPECT_EQ(second, "1,0.0000,33.500,5.000,0.000,40.000,0.000,8.000,1,0,320,180,0.500,1,0.0000,41.26,3.250,20000");
-  EXPECT_EQ(first.substr(first.size() - 16), ",0.0000,,0.000,0");  // unchecked: check_psnr_db empty
+            "traced,full_resolution,width,height,scale,grabbed,simulated_s,check_psnr_db,caustics_ms,caustic_photons,"
+            "traced_rows,phase");
+  EXPECT_EQ(second,
+            "1,0.0000,33.500,5.000,0.000,40.000,0.000,8.000,1,0,320,180,0.500,1,0.0000,41.26,3.250,20000,90,held");
+  EXPECT_EQ(first.substr(first.size() - 26), ",0.0000,,0.000,0,0,resting");  // unchecked: check_psnr_db empty
+}
+
+// Per phase: the median, 95th and 99th percentile (nearest rank) and the longest frame, the first
+// second left out; phases without frames are not listed.
+TEST(FrameLog, PhasesHaveTheirPercentilesAndLongestFrame) {
+  std::vector<FrameRecord> records;
+  for (int i = 1; i <= 100; ++i) {  // resting: 1 .. 100 ms
+    FrameRecord frame = record(static_cast<double>(i), false, false, false);
+    frame.endSeconds = 2.0;
+    frame.phase = FramePhase::Resting;
+    records.push_back(frame);
+  }
+  FrameRecord held = record(30.0, true, true, true);
+  held.endSeconds = 2.0;
+  held.phase = FramePhase::Held;
+  records.push_back(held);
+  FrameRecord early = record(500.0, true, true, false);  // the first second: left out
+  early.endSeconds = 0.5;
+  early.phase = FramePhase::Falling;
+  records.push_back(early);
+  const std::vector<PhaseSummary> phases = summarizePhases(records, 1.0);
+  ASSERT_EQ(phases.size(), 2u);
+  EXPECT_EQ(phases[0].phase, FramePhase::Resting);
+  EXPECT_EQ(phases[0].frames, 100);
+  EXPECT_EQ(phases[0].medianMs, 50.0);
+  EXPECT_EQ(phases[0].p95Ms, 95.0);
+  EXPECT_EQ(phases[0].p99Ms, 99.0);
+  EXPECT_EQ(phases[0].longestMs, 100.0);
+  EXPECT_NEAR(phases[0].seconds, 5.05, 1e-9);
+  EXPECT_EQ(phases[1].phase, FramePhase::Held);
+  EXPECT_EQ(phases[1].frames, 1);
+  EXPECT_EQ(phases[1].p99Ms, 30.0);
+  EXPECT_STREQ(nameOf(FramePhase::Orbiting), "orbiting");
 }
 
 TEST(FrameLog, AnUnwritablePathIsReported) {

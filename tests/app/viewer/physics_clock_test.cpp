@@ -35,6 +35,21 @@ TEST(PhysicsClock, ASlowFrameIsCappedAndItsBacklogDroppedSoTheNextFrameIsNotSlow
   EXPECT_EQ(clock.stepsFor(0.01, 1.0, 0.001), 10);  // no backlog left to catch up on
 }
 
+// A frame whose time budget ran out gives its unrun steps back: the next frames step them (in slices of
+// their own budget), and only what exceeds kMaxCatchUpSeconds is dropped.
+TEST(PhysicsClock, StepsGivenBackAreSteppedByTheNextFrames) {
+  PhysicsClock clock;
+  const int given = clock.stepsFor(0.1, 1.0, 0.001);
+  ASSERT_EQ(given, 100);
+  clock.giveBack(70, 0.001);  // the budget ran out after 30
+  EXPECT_EQ(clock.droppedSeconds(), 0.0);
+  EXPECT_NEAR(clock.stepsFor(0.01, 1.0, 0.001), 80, 1);  // the 70 given back and the frame's own 10
+  clock.giveBack(400, 0.001);  // more than kMaxCatchUpSeconds: the excess is dropped
+  EXPECT_NEAR(clock.droppedSeconds(), 0.4 - PhysicsClock::kMaxCatchUpSeconds, 1e-9);
+  EXPECT_EQ(clock.stepsFor(0.0, 1.0, 0.001), 0);  // no wall time: nothing to step, the backlog waits
+  EXPECT_EQ(clock.stepsFor(1e-6, 1.0, 0.001), static_cast<int>(PhysicsClock::kMaxCatchUpSeconds / 0.001));
+}
+
 TEST(PhysicsClock, NoTimeOrABadStepGivesNoSteps) {
   PhysicsClock clock;
   EXPECT_EQ(clock.stepsFor(0.0, 1.0, 0.001), 0);

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <random>
 #include <string>
 
@@ -204,6 +205,58 @@ TEST(Invariant, FootprintHoldsEveryPixelTheSlimeChanges) {
   }
 }
 
+// A refinement sample traced in bands of rows (Renderer::renderRows, the later bands reusing the
+// first one's setup) is, pixel for pixel, the image one render() traces at the same offset; so is
+// the next sample, at another offset, and a band after the slime moved. The bands leave the floor
+// caches and the last frame's pixels to the window's next frame: it is the frame drawn without them.
+TEST(Invariant, BandsOfRowsMakeTheWholeImage) {
+  Settings settings = smallScene(160, 120);  // caustics on: the bands share the first one's map
+  const TriangleMesh mesh = restingMesh(settings);
+  Renderer renderer(settings);
+  renderer.updateSlime(mesh.positions, mesh.triangles);
+  Image frame;  // the window's frame, with its bytes: its caches are made
+  frame.resize(160, 120);
+  std::vector<std::uint8_t> bytes;
+  renderer.render(settings, frame, &bytes, true);
+  const auto banded = [&](glm::vec2 offset) {
+    Image image;
+    image.resize(160, 120);
+    for (int row = 0; row < 120; row += 24) renderer.renderRows(settings, image, offset, row, row + 24);
+    return image;
+  };
+  const auto whole = [&](glm::vec2 offset, const TriangleMesh& slime) {
+    Renderer fresh(settings);
+    fresh.updateSlime(slime.positions, slime.triangles);
+    Image image;
+    image.resize(160, 120);
+    fresh.render(settings, image, nullptr, false, offset);
+    return image;
+  };
+  for (const glm::vec2 offset : {glm::vec2(0.125f, 0.375f), glm::vec2(0.875f, 0.625f)}) {
+    const ImageDifference d = compareImages(banded(offset), whole(offset, mesh), 0.0);
+    EXPECT_EQ(d.fractionAbove, 0.0) << "offset " << offset.x << ", " << offset.y << ": largest " << d.largest;
+  }
+  TriangleMesh moved = mesh;
+  for (glm::dvec3& p : moved.positions) p.x += 0.2 * settings.slime.radius;
+  renderer.updateSlime(moved.positions, moved.triangles);
+  const ImageDifference afterMove = compareImages(banded({0.125f, 0.375f}), whole({0.125f, 0.375f}, moved), 0.0);
+  EXPECT_EQ(afterMove.fractionAbove, 0.0) << "after the slime moved: largest " << afterMove.largest;
+  renderer.render(settings, frame, &bytes, true);  // the window's next frame, from its caches
+  // ... is the frame a window draws with no bands between its two frames.
+  Renderer window(settings);
+  window.updateSlime(mesh.positions, mesh.triangles);
+  Image unbanded;
+  unbanded.resize(160, 120);
+  std::vector<std::uint8_t> unbandedBytes;
+  window.render(settings, unbanded, &unbandedBytes, true);
+  window.updateSlime(moved.positions, moved.triangles);
+  const RenderStats kept = window.render(settings, unbanded, &unbandedBytes, true);
+  EXPECT_GT(kept.reusedPixels, 0u);
+  const ImageDifference next = compareImages(frame, unbanded, 0.0);
+  EXPECT_EQ(next.fractionAbove, 0.0) << "the window's frame after the bands: largest " << next.largest;
+  EXPECT_TRUE(bytes == unbandedBytes);
+}
+
 // The viewer skips tracing a slime whose vertices moved less than kInvisibleMotionPixels since it was
 // last drawn (core/geometry/level_of_detail.h). Every vertex moved that far, each in its own random direction
 // (the worst for the normals), must be invisible by the rule the level of detail rests on
@@ -246,6 +299,82 @@ TEST(Invariant, MotionBelowTheRedrawThresholdDoesNotShow) {
   EXPECT_GT(visible.fractionAbove, kFraction) << "a one-pixel move must show, or this test proves nothing";
   std::printf("motion %.2f px: %.3f %% of pixels (%.0f) over 2 steps; 1 px: %.2f %%\n", kInvisibleMotionPixels,
               100 * d.fractionAbove, d.fractionAbove * drawn.width * drawn.height, 100 * visible.fractionAbove);
+}
+
+// The creeps a resting slime makes, for the still threshold's tests: a slide along the floor and a
+// spreading (wider by ε, lower by 2ε about the floor: its volume kept), moved `pixels` as the viewer
+// measures motion (largestMotionPixels: the vertex that moved most, seen at the slime's nearest depth).
+struct Creep {
+  const char* what;
+  std::function<glm::dvec3(const glm::dvec3&)> field;
+};
+
+std::vector<Creep> restingCreeps(const Settings& settings) {
+  const glm::dvec3 centre = settings.slime.position;
+  return {Creep{"slide", [](const glm::dvec3&) { return glm::dvec3(1.0, 0.3, 0.0); }},
+          Creep{"spread", [centre](const glm::dvec3& p) { return glm::dvec3(p.x - centre.x, p.y - centre.y, -2.0 * p.z); }}};
+}
+
+TriangleMesh creptBy(const Settings& settings, const TriangleMesh& mesh, const Creep& creep, double pixels) {
+  TriangleMesh moved = mesh;
+  for (glm::dvec3& p : moved.positions) p += 1e-6 * creep.field(p);
+  const double perUnit = largestMotionPixels(mesh.positions, moved.positions, settings.camera.position, settings.camera.fov,
+                                             settings.camera.height);
+  for (std::size_t i = 0; i < moved.positions.size(); ++i)
+    moved.positions[i] = mesh.positions[i] + (moved.positions[i] - mesh.positions[i]) * (pixels / perUnit);
+  return moved;
+}
+
+// The refined image the viewer keeps while the slime creeps: 16 samples a pixel, the caustic map
+// finished, the default view at half size (the fraction of pixels a creep changes halves at full size:
+// the slime's outline doubles, the image's area quadruples).
+Settings refinedScene() {
+  Settings settings = smallScene(367, 282);
+  settings.render.spp = 16;
+  return settings;
+}
+
+// The viewer keeps refining a still image while the slime has crept less than kStillMotionPixels
+// from where the refinement started (core/geometry/level_of_detail.h). No threshold keeps every pixel
+// within 2 steps: a refined pixel averages 16 fixed points, and one of them crossing an edge of 150
+// steps moves it by 9 (so does a creep of 0.01 px, the one-sample redraw threshold). The rule is the
+// level of detail's (app/bench/bench_accuracy.h: at most 1 % of the pixels off by more than 2 steps of
+// 8-bit sRGB is invisible), with a margin of two: a creep to the threshold changes at most 0.5 % of the
+// refined image's pixels by more than 2 steps, the lens, the floor seen through it, the shadow's edge
+// and the caustic included, and a creep four times as far shows (over 1 %).
+TEST(Invariant, CreepBelowTheStillThresholdDoesNotShowInTheRefinedImage) {
+  const Settings settings = refinedScene();
+  const TriangleMesh mesh = restingMesh(settings);
+  const Image drawn = renderMesh(settings, mesh);
+  for (const Creep& creep : restingCreeps(settings)) {
+    const Image still = renderMesh(settings, creptBy(settings, mesh, creep, kStillMotionPixels));
+    const ImageDifference d = compareImages(drawn, still, 2.0);
+    EXPECT_LE(d.fractionAbove, 0.005) << creep.what << " by " << kStillMotionPixels << " px: " << 100 * d.fractionAbove
+                                      << " % of pixels over 2 steps";
+    if (d.fractionAbove > 0.005) writePng(differenceImage(drawn, still), outputPath(std::string("creep_") + creep.what + "_diff.png"));
+    const ImageDifference shows =
+        compareImages(drawn, renderMesh(settings, creptBy(settings, mesh, creep, 4.0 * kStillMotionPixels)), 2.0);
+    EXPECT_GT(shows.fractionAbove, 0.01) << creep.what << ": four times the threshold must show, or this test proves nothing";
+    std::printf("%s %.2f px: %.3f %% of pixels over 2 steps (mean %.3f steps); %.2f px: %.3f %%\n", creep.what,
+                kStillMotionPixels, 100 * d.fractionAbove, d.mean, 4.0 * kStillMotionPixels, 100 * shows.fractionAbove);
+  }
+}
+
+// The figures behind kStillMotionPixels (docs/rendering.md), run on demand:
+//   render_tests --gtest_also_run_disabled_tests --gtest_filter='Invariant.DISABLED_CreepTable'
+TEST(Invariant, DISABLED_CreepTable) {
+  const Settings settings = refinedScene();
+  const TriangleMesh mesh = restingMesh(settings);
+  const Image drawn = renderMesh(settings, mesh);
+  std::printf("creep | pixels | largest change, steps | pixels over 2 steps, %% | mean change, steps\n");
+  for (const Creep& creep : restingCreeps(settings)) {
+    for (const double pixels : {0.01, 0.025, 0.05, 0.1, 0.2, 0.4}) {
+      const Image moved = renderMesh(settings, creptBy(settings, mesh, creep, pixels));
+      const ImageDifference d = compareImages(drawn, moved, 2.0);
+      std::printf("%s | %.3f | %.0f | %.3f | %.4f\n", creep.what, pixels, d.largest, 100.0 * d.fractionAbove, d.mean);
+      writePng(differenceImage(drawn, moved), outputPath("creep_" + std::string(creep.what) + "_" + std::to_string(pixels) + "_diff.png"));
+    }
+  }
 }
 
 // The seed's algorithm (bounding sphere, then every triangle) and Embree must agree.
