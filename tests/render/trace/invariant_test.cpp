@@ -213,7 +213,7 @@ TEST(Invariant, BandsOfRowsMakeTheWholeImage) {
   Settings settings = smallScene(160, 120);  // caustics on: the bands share the first one's map
   const TriangleMesh mesh = restingMesh(settings);
   Renderer renderer(settings);
-  renderer.updateSlime(mesh.positions, mesh.triangles);
+  renderer.updateSlime({mesh});
   Image frame;  // the window's frame, with its bytes: its caches are made
   frame.resize(160, 120);
   std::vector<std::uint8_t> bytes;
@@ -226,7 +226,7 @@ TEST(Invariant, BandsOfRowsMakeTheWholeImage) {
   };
   const auto whole = [&](glm::vec2 offset, const TriangleMesh& slime) {
     Renderer fresh(settings);
-    fresh.updateSlime(slime.positions, slime.triangles);
+    fresh.updateSlime({slime});
     Image image;
     image.resize(160, 120);
     fresh.render(settings, image, nullptr, false, offset);
@@ -238,18 +238,18 @@ TEST(Invariant, BandsOfRowsMakeTheWholeImage) {
   }
   TriangleMesh moved = mesh;
   for (glm::dvec3& p : moved.positions) p.x += 0.2 * settings.slime.radius;
-  renderer.updateSlime(moved.positions, moved.triangles);
+  renderer.updateSlime({moved});
   const ImageDifference afterMove = compareImages(banded({0.125f, 0.375f}), whole({0.125f, 0.375f}, moved), 0.0);
   EXPECT_EQ(afterMove.fractionAbove, 0.0) << "after the slime moved: largest " << afterMove.largest;
   renderer.render(settings, frame, &bytes, true);  // the window's next frame, from its caches
   // ... is the frame a window draws with no bands between its two frames.
   Renderer window(settings);
-  window.updateSlime(mesh.positions, mesh.triangles);
+  window.updateSlime({mesh});
   Image unbanded;
   unbanded.resize(160, 120);
   std::vector<std::uint8_t> unbandedBytes;
   window.render(settings, unbanded, &unbandedBytes, true);
-  window.updateSlime(moved.positions, moved.triangles);
+  window.updateSlime({moved});
   const RenderStats kept = window.render(settings, unbanded, &unbandedBytes, true);
   EXPECT_GT(kept.reusedPixels, 0u);
   const ImageDifference next = compareImages(frame, unbanded, 0.0);
