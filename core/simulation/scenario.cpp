@@ -97,7 +97,7 @@ ScenarioEvent readEvent(const json& item, const EventReader& reader) {
     event.kind = ScenarioEvent::Kind::Release;
   } else if (item.contains("press")) {
     const json& press = item["press"];
-    reader.allowOnly(press, "press", {"point", "direction", "depth", "duration", "radius"});
+    reader.allowOnly(press, "press", {"point", "direction", "depth", "duration", "hold", "radius"});
     event.kind = ScenarioEvent::Kind::Press;
     event.point = reader.vector(press, "press", "point");
     event.direction = reader.vector(press, "press", "direction");
@@ -106,6 +106,7 @@ ScenarioEvent readEvent(const json& item, const EventReader& reader) {
     event.direction /= length;
     event.depth = reader.number(press, "press", "depth", 0.0, true, 0.0);
     event.duration = reader.number(press, "press", "duration", 0.0, false, 0.0);
+    event.hold = reader.number(press, "press", "hold", 0.0, false, 0.0);
     event.radius = reader.number(press, "press", "radius", kDefaultGrabRadius, false, 1e-6);
   } else {
     const json& values = item["set"];
@@ -167,7 +168,7 @@ void ScenarioPlayer::fire(const ScenarioEvent& event, Simulation& simulation, Se
       break;
     case ScenarioEvent::Kind::Drag:
       if (!simulation.grabbing(event.hand)) break;
-      motion = Motion{true, false, event.time, event.duration, simulation.grabTarget(event.hand), event.to};
+      motion = Motion{true, false, event.time, event.duration, 0.0, simulation.grabTarget(event.hand), event.to};
       break;
     case ScenarioEvent::Kind::Release:
       motion.active = false;
@@ -176,7 +177,7 @@ void ScenarioPlayer::fire(const ScenarioEvent& event, Simulation& simulation, Se
     case ScenarioEvent::Kind::Press:
       motion.active = false;
       if (!simulation.grab(event.point, event.radius, event.hand)) break;
-      motion = Motion{true, true, event.time, event.duration, simulation.grabTarget(event.hand),
+      motion = Motion{true, true, event.time, event.duration, event.hold, simulation.grabTarget(event.hand),
                       simulation.grabTarget(event.hand) + event.depth * event.direction};
       break;
     case ScenarioEvent::Kind::Set:
@@ -196,7 +197,8 @@ void ScenarioPlayer::advanceTo(double t, Simulation& simulation, Settings& setti
     const double progress =
         motion.duration > 0.0 ? std::clamp((t - motion.start) / motion.duration, 0.0, 1.0) : 1.0;
     simulation.dragTo(motion.from + progress * (motion.to - motion.from), hand);
-    if (progress >= 1.0) {
+    // A press stays at its depth for its hold, then lets go.
+    if (progress >= 1.0 && t >= motion.start + motion.duration + motion.hold - kTimeTolerance) {
       motion.active = false;
       if (motion.releaseAtEnd) simulation.release(hand);
     }

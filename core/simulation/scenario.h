@@ -8,7 +8,8 @@
 // Grab, drag, release and press take an optional "hand": 0 or 1 beside "t" (default 0), which of the
 // two hands acts: {"t":4.0,"hand":1,"grab":{...}}; each hand has its own drag or press in progress.
 // `point` means the surface point nearest to it. A press grabs the region within `radius` (default
-// 0.015 m) of that point, pushes it `depth` along `direction` over `duration`, then lets go.
+// 0.015 m) of that point, pushes it `depth` along `direction` over `duration`, holds it there for
+// `hold` s (default 0), then lets go.
 // A bad file is a SettingsError that names the file, the event and what is wrong.
 #pragma once
 
@@ -36,6 +37,7 @@ struct ScenarioEvent {
   glm::dvec3 direction{0.0, 0.0, -1.0};  // press: unit direction
   double depth = 0.0;       // press: m
   double duration = 0.0;    // drag, press: s (0 = at once)
+  double hold = 0.0;        // press: s held at its depth before letting go
   nlohmann::json values;    // set: {"dotted.key": value, ...}
   int hand = 0;             // grab, drag, release, press: which hand (0 or 1)
 };
@@ -62,6 +64,7 @@ class ScenarioPlayer {
     bool active = false;
     bool releaseAtEnd = false;
     double start = 0.0, duration = 0.0;
+    double hold = 0.0;  // a press: s kept at `to` before the release
     glm::dvec3 from{0.0}, to{0.0};
   };
   void fire(const ScenarioEvent& event, Simulation& simulation, Settings& settings);

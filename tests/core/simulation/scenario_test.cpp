@@ -66,6 +66,8 @@ TEST(Scenario, BadFilesAreSettingsErrorsThatNameTheProblem) {
   expectError(R"({"events":[{"t":1,"press":{"point":[0,0,0],"direction":[0,0,0],"depth":0.01}}]})",
               "direction must not be zero");
   expectError(R"({"events":[{"t":1,"press":{"point":[0,0,0],"direction":[0,0,1]}}]})", "press.depth is missing");
+  expectError(R"({"events":[{"t":1,"press":{"point":[0,0,0],"direction":[0,0,1],"depth":0.01,"hold":-1}}]})",
+              "press.hold must be at least 0");
   expectError(R"({"events":[{"t":1,"set":{"slime.stifness":80}}]})", "slime.stifness");
   expectError(R"({"events":[{"t":1,"set":{"slime.level":99}}]})", "slime.level");
   expectError(R"({"events":[{"t":1,"set":{}}]})", "set must be an object");
