@@ -127,7 +127,7 @@ int runSim(const SimOptions& options) {
   }
   const auto exportIfDue = [&] {
     if (exporter && exporter->due(simulation.stepCount()))
-      exporter->add(simulation.time(), simulation.positions(), simulation.triangles(),
+      exporter->add(simulation.time(), simulation.surfaces(),
                     exportMaterialOf(settings.slime));  // the scene's optics, as a scenario left them
   };
   exportIfDue();
