@@ -59,7 +59,7 @@ double threadSeconds() {
   return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
 }
 
-// One point of the report's series: kept as plain numbers (32 bytes) while the run goes, turned into
+// One point of the report's series: kept as plain numbers while the run goes, turned into
 // JSON once at the end, so a long run's memory grows by its data and not by JSON nodes.
 // Each hand: whether it holds, where its part of the surface is (m) and its force on the body (N).
 struct HandSample {
@@ -75,10 +75,24 @@ struct SeriesSample {
   double t, volumeRatio, height, width, kineticEnergy;
   HandSample hands[kHands];
   double strand[3] = {-1.0, -1.0, -1.0};  // −1: not both hands holding
+  std::vector<EnclosedSolid> pieces;      // each piece's drawn volume and centroid
 };
 
+// The report's "pieces": how many, the total volume their drawn surfaces enclose (m³), and each
+// piece's volume (m³) and centroid (m, of the enclosed solid), in the order Simulation::surfaces gives.
+json piecesJson(const std::vector<EnclosedSolid>& pieces) {
+  json each = json::array();
+  double total = 0.0;
+  for (const EnclosedSolid& piece : pieces) {
+    total += piece.volume;
+    each.push_back({{"volume", piece.volume}, {"centroid", {piece.centroid.x, piece.centroid.y, piece.centroid.z}}});
+  }
+  return {{"count", pieces.size()}, {"total_volume", total}, {"each", each}};
+}
+
 SeriesSample metricsSample(double t, const SlimeMetrics& metrics, const Simulation& simulation) {
-  SeriesSample sample{t, metrics.volumeRatio, metrics.height, metrics.width, metrics.kineticEnergy, {}};
+  SeriesSample sample{t, metrics.volumeRatio, metrics.height, metrics.width, metrics.kineticEnergy, {}, {-1.0, -1.0, -1.0},
+                      simulation.pieceSolids()};
   for (int hand = 0; hand < kHands; ++hand)
     if (simulation.grabbing(hand))
       sample.hands[hand] = {true, simulation.grabbedPoint(hand), simulation.handForce(hand)};
@@ -103,7 +117,7 @@ json seriesJson(const std::vector<SeriesSample>& series) {
                        {"force", {hand.force.x, hand.force.y, hand.force.z}}});
     }
     samples.push_back({{"t", s.t}, {"volume_ratio", s.volumeRatio}, {"height", s.height}, {"width", s.width},
-                       {"kinetic_energy", s.kineticEnergy}, {"hands", hands}});
+                       {"kinetic_energy", s.kineticEnergy}, {"hands", hands}, {"pieces", piecesJson(s.pieces)}});
     if (s.strand[0] >= 0.0) samples.back()["strand"] = {s.strand[0], s.strand[1], s.strand[2]};
   }
   return samples;
@@ -210,7 +224,8 @@ int runSim(const SimOptions& options) {
                    // Counted at the end only: counted at the series' samples, between the timed steps, it
                    // made resolution 4's measured step 5-10 % dearer (AMD EPYC, shared; not understood).
                    {"inverted_elements", simulation.invertedElements()},
-                   {"centroid", {finalCentroid.x, finalCentroid.y, finalCentroid.z}}}},
+                   {"centroid", {finalCentroid.x, finalCentroid.y, finalCentroid.z}},
+                   {"pieces", piecesJson(simulation.pieceSolids())}}},
         {"range", {{"volume_ratio_min", volumeMin}, {"volume_ratio_max", volumeMax}, {"min_z", minZ},
                    {"max_speed", maxSpeed}}},
         {"series", seriesJson(series)},
