@@ -10,6 +10,7 @@
 #include "core/simulation/simulation.h"
 #include "core/geometry/strand_profile.h"
 
+#include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -52,6 +53,23 @@ glm::dvec3 centroid(const std::vector<glm::dvec3>& positions) {
   return sum / static_cast<double>(positions.size());
 }
 
+// The figures of the simulated bodies alone, as SlimeMetrics gives them: the summed volume over the
+// summed rest volume, and the fastest point.
+struct BodyFigures {
+  double volumeRatio = 0.0, maxSpeed = 0.0;
+};
+
+BodyFigures bodyFiguresOf(const Simulation& simulation) {
+  double volume = 0.0, rest = 0.0, fastest = 0.0;
+  for (std::size_t k = 0; k < simulation.pieceCount(); ++k) {
+    const Piece& piece = simulation.piece(k);
+    volume += piece.volume();
+    rest += piece.restVolume();
+    for (const glm::dvec3& v : piece.state().velocities) fastest = std::max(fastest, glm::dot(v, v));
+  }
+  return {volume / rest, std::sqrt(fastest)};
+}
+
 // CPU time of this thread: ms per step stays meaningful on a machine shared with other jobs.
 double threadSeconds() {
   timespec now{};
@@ -59,7 +77,7 @@ double threadSeconds() {
   return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
 }
 
-// One point of the report's series: kept as plain numbers (32 bytes) while the run goes, turned into
+// One point of the report's series: kept as plain numbers while the run goes, turned into
 // JSON once at the end, so a long run's memory grows by its data and not by JSON nodes.
 // Each hand: whether it holds, where its part of the surface is (m) and its force on the body (N).
 struct HandSample {
@@ -75,10 +93,24 @@ struct SeriesSample {
   double t, volumeRatio, height, width, kineticEnergy;
   HandSample hands[kHands];
   double strand[3] = {-1.0, -1.0, -1.0};  // −1: not both hands holding
+  std::vector<EnclosedSolid> pieces;      // each piece's drawn volume and centroid
 };
 
+// The report's "pieces": how many, the total volume their drawn surfaces enclose (m³), and each
+// piece's volume (m³) and centroid (m, of the enclosed solid), in the order Simulation::surfaces gives.
+json piecesJson(const std::vector<EnclosedSolid>& pieces) {
+  json each = json::array();
+  double total = 0.0;
+  for (const EnclosedSolid& piece : pieces) {
+    total += piece.volume;
+    each.push_back({{"volume", piece.volume}, {"centroid", {piece.centroid.x, piece.centroid.y, piece.centroid.z}}});
+  }
+  return {{"count", pieces.size()}, {"total_volume", total}, {"each", each}};
+}
+
 SeriesSample metricsSample(double t, const SlimeMetrics& metrics, const Simulation& simulation) {
-  SeriesSample sample{t, metrics.volumeRatio, metrics.height, metrics.width, metrics.kineticEnergy, {}};
+  SeriesSample sample{t, metrics.volumeRatio, metrics.height, metrics.width, metrics.kineticEnergy, {}, {-1.0, -1.0, -1.0},
+                      simulation.pieceSolids()};
   for (int hand = 0; hand < kHands; ++hand)
     if (simulation.grabbing(hand))
       sample.hands[hand] = {true, simulation.grabbedPoint(hand), simulation.handForce(hand)};
@@ -103,7 +135,7 @@ json seriesJson(const std::vector<SeriesSample>& series) {
                        {"force", {hand.force.x, hand.force.y, hand.force.z}}});
     }
     samples.push_back({{"t", s.t}, {"volume_ratio", s.volumeRatio}, {"height", s.height}, {"width", s.width},
-                       {"kinetic_energy", s.kineticEnergy}, {"hands", hands}});
+                       {"kinetic_energy", s.kineticEnergy}, {"hands", hands}, {"pieces", piecesJson(s.pieces)}});
     if (s.strand[0] >= 0.0) samples.back()["strand"] = {s.strand[0], s.strand[1], s.strand[2]};
   }
   return samples;
@@ -127,7 +159,7 @@ int runSim(const SimOptions& options) {
   }
   const auto exportIfDue = [&] {
     if (exporter && exporter->due(simulation.stepCount()))
-      exporter->add(simulation.time(), simulation.positions(), simulation.triangles(),
+      exporter->add(simulation.time(), simulation.surfaces(),
                     exportMaterialOf(settings.slime));  // the scene's optics, as a scenario left them
   };
   exportIfDue();
@@ -150,13 +182,18 @@ int runSim(const SimOptions& options) {
     stepSeconds += threadSeconds() - start;
     ++stepsRun;
     exportIfDue();
-    metrics = simulation.metrics();
-    volumeMin = std::min(volumeMin, metrics.volumeRatio);
-    volumeMax = std::max(volumeMax, metrics.volumeRatio);
-    minZ = std::min(minZ, metrics.minZ);
-    maxSpeed = std::max(maxSpeed, metrics.maxSpeed);
-    if (simulation.stepCount() % sampleEvery == 0)
+    // Every step, what the step itself holds (the bodies' volume, the points' speed); the shape, which
+    // places the drawn surface (for the bulk body the smooth map, twice a step's cost at level 4), at
+    // the series' samples.
+    const BodyFigures body = bodyFiguresOf(simulation);
+    volumeMin = std::min(volumeMin, body.volumeRatio);
+    volumeMax = std::max(volumeMax, body.volumeRatio);
+    maxSpeed = std::max(maxSpeed, body.maxSpeed);
+    if (simulation.stepCount() % sampleEvery == 0) {
+      metrics = simulation.metrics();
+      minZ = std::min(minZ, metrics.minZ);
       series.push_back(metricsSample(static_cast<double>(simulation.stepCount()) * dt, metrics, simulation));
+    }
   }
   const double wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
   if (exporter) {
@@ -164,6 +201,7 @@ int runSim(const SimOptions& options) {
     std::printf("exported %d frames of the surface to %s\n", exporter->frames(), options.exportMesh.c_str());
   }
   metrics = simulation.metrics();
+  minZ = std::min(minZ, metrics.minZ);
   const bool nan = !std::isfinite(metrics.volumeRatio) || !std::isfinite(metrics.kineticEnergy) ||
                    std::any_of(simulation.divergences().begin(), simulation.divergences().end(),
                                [](const DivergenceEvent& e) { return e.what.find("NaN") != std::string::npos; });
@@ -210,7 +248,8 @@ int runSim(const SimOptions& options) {
                    // Counted at the end only: counted at the series' samples, between the timed steps, it
                    // made resolution 4's measured step 5-10 % dearer (AMD EPYC, shared; not understood).
                    {"inverted_elements", simulation.invertedElements()},
-                   {"centroid", {finalCentroid.x, finalCentroid.y, finalCentroid.z}}}},
+                   {"centroid", {finalCentroid.x, finalCentroid.y, finalCentroid.z}},
+                   {"pieces", piecesJson(simulation.pieceSolids())}}},
         {"range", {{"volume_ratio_min", volumeMin}, {"volume_ratio_max", volumeMax}, {"min_z", minZ},
                    {"max_speed", maxSpeed}}},
         {"series", seriesJson(series)},

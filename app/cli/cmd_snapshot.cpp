@@ -51,7 +51,7 @@ void runSnapshot(const SnapshotOptions& options) {
       settleForSnapshot(simulation, settings, options.settle, options.scene.scenarioFile);
       if (!options.exportMesh.empty())
         writeSurfaceMesh(options.exportMesh,
-                         surfaceMeshOf(simulation.time(), simulation.positions(), simulation.triangles()),
+                         surfaceMeshOf(simulation.time(), simulation.surfaces()),
                          exportMaterialOf(simulation.settings().slime), objUp);
     }, api);
     if (!options.exportMesh.empty()) std::printf("wrote %s (the frame's surface)\n", options.exportMesh.c_str());

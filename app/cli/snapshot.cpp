@@ -68,7 +68,7 @@ SnapshotResult takeSnapshot(const Settings& initialSettings, double settleSecond
   result.simulatedSeconds = simulation.time();
   result.metrics = simulation.metrics();
   result.divergences = simulation.divergences().size();
-  result.surface = surfaceMeshOf(simulation.time(), simulation.positions(), simulation.triangles());
+  result.surface = surfaceMeshOf(simulation.time(), simulation.surfaces());
   result.slime = settings.slime;
   renderer.updateSlime(simulation.surfaces());
   result.image.resize(settings.camera.width, settings.camera.height);

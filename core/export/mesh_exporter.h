@@ -47,10 +47,11 @@ class MeshExporter {
   MeshExporter(std::string pattern, double every, double dt, double seconds, UpAxis objUp = UpAxis::Y);
 
   bool due(std::int64_t step) const { return step == nextStep_; }
-  // Adds the frame at `time` with the slime's material then: a .ply or .obj (and its .mtl) is written
-  // now, a .glb's frames are kept for finish().
-  void add(double time, const std::vector<glm::dvec3>& positions, const std::vector<Triangle>& triangles,
-           const ExportMaterial& material);
+  // Adds the frame at `time`, every piece of it in the one file (surfaceMeshOf), with the slime's
+  // material then: a .ply or .obj (and its .mtl) is written now, a .glb's frames are kept for finish().
+  // A .glb holds one set of pieces for the whole run (gltf_animation.h): a frame whose pieces differ
+  // from the first frame's in number or in triangles throws std::runtime_error saying so.
+  void add(double time, std::span<const SurfaceView> surfaces, const ExportMaterial& material);
   void finish();  // writes the .glb, with the first frame's material
   int frames() const { return frames_; }
   std::string pathOf(int frame) const;  // the file frame `frame` goes to

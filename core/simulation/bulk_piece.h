@@ -31,7 +31,7 @@ class BulkPiece final : public Piece {
   const std::vector<Triangle>& drawnTriangles() const override { return body_.drawn.triangles; }
   double volume() const override;
   double restVolume() const override { return body_.restVolume; }
-  SlimeMetrics metrics() const override { return metricsOf(body_.freeInverseMasses, body_.mesh.surfaceNodes); }
+  SlimeMetrics metrics() const override { return metricsOf(body_.freeInverseMasses); }
   std::size_t elementCount() const override { return body_.mesh.tetrahedra.size(); }
   double elasticEnergy() const override { return bulkElasticEnergy(body_, body_.state.positions); }
   std::size_t invertedElements() const override { return invertedBulkElements(body_, body_.state.positions); }

@@ -34,7 +34,7 @@ class MembranePiece final : public Piece {
   const std::vector<Triangle>& drawnTriangles() const override { return body_.triangles; }
   double volume() const override;
   double restVolume() const override { return body_.restVolume; }
-  SlimeMetrics metrics() const override { return metricsOf(body_.freeInverseMasses, body_.state.size()); }
+  SlimeMetrics metrics() const override { return metricsOf(body_.freeInverseMasses); }
   std::size_t elementCount() const override { return body_.springs.size(); }
 
   bool grab(const glm::dvec3& point, double radius, int hand) override;

@@ -45,26 +45,33 @@ glm::dvec3 Piece::grabbedPoint(int which) const {
   return sum / static_cast<double>(hand.nodes.size());
 }
 
-// Shape from the surface points (the membrane's vertices, the body's outer nodes); energy and speed
-// from every simulated point.
-SlimeMetrics Piece::metricsOf(const std::vector<double>& freeInverseMasses, std::size_t surfacePoints) const {
+void measureShape(std::span<const SurfaceView> surfaces, SlimeMetrics& metrics) {
+  glm::dvec3 low(std::numeric_limits<double>::infinity()), high(-std::numeric_limits<double>::infinity());
+  for (const SurfaceView& surface : surfaces)
+    for (const glm::dvec3& p : surface.positions) {
+      low = glm::min(low, p);
+      high = glm::max(high, p);
+    }
+  metrics.height = high.z - low.z;
+  metrics.width = std::max(high.x - low.x, high.y - low.y);
+  metrics.aspect = metrics.width > 0.0 ? metrics.height / metrics.width : 1.0;
+  metrics.minZ = low.z;
+}
+
+// Shape from the drawn surface (the membrane's vertices, the smooth map's placing of the bulk body's
+// icosphere), not from the bulk body's outer nodes, which lie 0.3-0.7 mm from what is drawn and
+// exported. Energy and speed from every simulated point.
+SlimeMetrics Piece::metricsOf(const std::vector<double>& freeInverseMasses) const {
   SlimeMetrics metrics;
   const ParticleState& state = this->state();
-  glm::dvec3 low(std::numeric_limits<double>::infinity()), high(-std::numeric_limits<double>::infinity());
   for (std::size_t i = 0; i < state.size(); ++i) {
-    if (i < surfacePoints) {
-      low = glm::min(low, state.positions[i]);
-      high = glm::max(high, state.positions[i]);
-    }
     const double speedSquared = glm::dot(state.velocities[i], state.velocities[i]);
     metrics.kineticEnergy += 0.5 * speedSquared / freeInverseMasses[i];
     metrics.maxSpeed = std::max(metrics.maxSpeed, std::sqrt(speedSquared));
   }
   metrics.volumeRatio = volume() / restVolume();
-  metrics.height = high.z - low.z;
-  metrics.width = std::max(high.x - low.x, high.y - low.y);
-  metrics.aspect = metrics.width > 0.0 ? metrics.height / metrics.width : 1.0;
-  metrics.minZ = low.z;
+  const SurfaceView drawn = surface();
+  measureShape({&drawn, 1}, metrics);
   return metrics;
 }
 

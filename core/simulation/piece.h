@@ -14,20 +14,26 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
 namespace slime {
 
-// Shape and energy figures of the current state (what `slime sim` reports).
+// Shape and energy figures of the current state (what `slime sim` reports). The shape is the drawn
+// surfaces' (every piece's, as the renderer draws and the exporters write them); the volume ratio is the
+// simulated bodies'.
 struct SlimeMetrics {
-  double volumeRatio = 1.0;    // enclosed volume / rest volume
-  double height = 0.0;         // max z - min z, m
-  double width = 0.0;          // largest horizontal extent (max of x and y extents), m
+  double volumeRatio = 1.0;    // enclosed volume / rest volume, summed over the pieces
+  double height = 0.0;         // max z - min z of the drawn vertices, m
+  double width = 0.0;          // largest horizontal extent of the drawn vertices (max of x and y extents), m
   double aspect = 1.0;         // height / width
-  double minZ = 0.0;           // lowest vertex z, m
+  double minZ = 0.0;           // lowest drawn vertex z, m
   double kineticEnergy = 0.0;  // J
   double maxSpeed = 0.0;       // fastest vertex, m/s
 };
+
+// Sets the shape figures of `metrics` (height, width, aspect, min z) from the vertices of `surfaces`.
+void measureShape(std::span<const SurfaceView> surfaces, SlimeMetrics& metrics);
 
 constexpr int kHands = 2;  // hands that can hold the slime at once (0 and 1)
 
@@ -101,8 +107,8 @@ class Piece {
   const Hand& hand(int hand) const { return hands_[hand]; }
 
  protected:
-  // Shape from the first `surfacePoints` points, energy and speed from all of them.
-  SlimeMetrics metricsOf(const std::vector<double>& freeInverseMasses, std::size_t surfacePoints) const;
+  // Shape from the drawn surface, energy and speed from all the simulated points.
+  SlimeMetrics metricsOf(const std::vector<double>& freeInverseMasses) const;
   virtual const glm::dvec3& grabOffset(const Hand& hand, std::size_t k) const = 0;
 
   Settings settings_;

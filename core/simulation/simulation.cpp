@@ -22,11 +22,18 @@ constexpr int kCleanStepsToCoarsen = 500;  // after this many steps with no roll
 Simulation::Simulation(const Settings& settings) { reload(settings); }
 
 Simulation::Simulation(const Settings& settings, SlimeBody body) {
+  std::vector<SlimeBody> bodies;
+  bodies.push_back(std::move(body));
+  *this = Simulation(settings, std::move(bodies));
+}
+
+Simulation::Simulation(const Settings& settings, std::vector<SlimeBody> bodies) {
+  if (bodies.empty()) throw std::invalid_argument("Simulation: no bodies; a slime needs at least one piece");
   settings_ = settings;
   settings_.slime.level = effectiveLevel(settings);
-  settings_.slime.model = "membrane";  // a body of springs made elsewhere
+  settings_.slime.model = "membrane";  // bodies of springs made elsewhere
   pieces_.clear();
-  pieces_.push_back(std::make_unique<MembranePiece>(std::move(body)));
+  for (SlimeBody& body : bodies) pieces_.push_back(std::make_unique<MembranePiece>(std::move(body)));
   start();
 }
 
@@ -188,7 +195,28 @@ void Simulation::setVelocities(const std::vector<glm::dvec3>& velocities) {
 std::size_t Simulation::elementCount() const { return piece().elementCount(); }
 std::size_t Simulation::invertedElements() const { return piece().invertedElements(); }
 double Simulation::elasticEnergy() const { return piece().elasticEnergy(); }
-SlimeMetrics Simulation::metrics() const { return piece().metrics(); }
+SlimeMetrics Simulation::metrics() const {
+  if (pieces_.size() == 1) return piece().metrics();
+  SlimeMetrics metrics;
+  metrics.kineticEnergy = 0.0;
+  double volume = 0.0, restVolume = 0.0;
+  for (const std::unique_ptr<Piece>& piece : pieces_) {
+    const SlimeMetrics own = piece->metrics();
+    metrics.kineticEnergy += own.kineticEnergy;
+    metrics.maxSpeed = std::max(metrics.maxSpeed, own.maxSpeed);
+    volume += piece->volume();
+    restVolume += piece->restVolume();
+  }
+  metrics.volumeRatio = volume / restVolume;
+  measureShape(surfaces(), metrics);
+  return metrics;
+}
+
+std::vector<EnclosedSolid> Simulation::pieceSolids() const {
+  std::vector<EnclosedSolid> solids;
+  for (const std::unique_ptr<Piece>& piece : pieces_) solids.push_back(enclosedSolid(piece->surface()));
+  return solids;
+}
 
 const SlimeBody& Simulation::body() const {
   static const SlimeBody none;

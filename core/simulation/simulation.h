@@ -11,11 +11,12 @@
 //   triangles, metrics, divergences, grab, dragTo, release, grabbing, grabTarget, grabbedIndices.
 // The drawn slime is surfaces(): a list of closed surfaces, one per piece (pieceCount, piece; today
 // always one), which the renderer draws and the exporters write. positions() and triangles() are the
-// first piece's, as are state(), metrics() and the hands' nodes.
+// first piece's, as are state() and the hands' nodes; metrics() and pieceSolids() cover every piece.
 // Two hands (kHands): each grab/drag/release names its hand, 0 (the default) or 1; each hand holds its
 // own nodes with its own target, radius and force limit, and the two act on the body together.
 #pragma once
 
+#include "core/geometry/enclosed_solid.h"
 #include "core/geometry/icosphere.h"
 #include "core/geometry/surface_view.h"
 #include "core/integrators/integrators.h"
@@ -49,6 +50,9 @@ class Simulation {
   // by exactly the code that runs the slime). The settings give the integrator, dt, substeps, damping,
   // gravity and friction; reload() and a structural applySettings() build the icosphere instead.
   Simulation(const Settings& settings, SlimeBody body);
+  // As above with one piece per body (tests: a slime of several pieces, which nothing else makes yet).
+  // Throws std::invalid_argument when `bodies` is empty.
+  Simulation(const Settings& settings, std::vector<SlimeBody> bodies);
   // A copy steps on from the same state on its own (its pieces cloned).
   Simulation(const Simulation& other);
   Simulation& operator=(const Simulation& other);
@@ -65,7 +69,11 @@ class Simulation {
   const std::vector<SurfaceView>& surfaces() const;
   const std::vector<glm::dvec3>& positions() const;  // the first piece's drawn vertices
   const std::vector<Triangle>& triangles() const;    // the first piece's drawn triangles
+  // Over every piece: the shape of all the drawn surfaces, the summed kinetic energy, the fastest point,
+  // the summed volume over the summed rest volume.
   SlimeMetrics metrics() const;
+  // Each piece's drawn surface's enclosed volume and centroid, in the order of surfaces().
+  std::vector<EnclosedSolid> pieceSolids() const;
   const std::vector<DivergenceEvent>& divergences() const;
 
   // Grab the mass points within `radius` of the surface point nearest to `point` with hand `hand`

@@ -120,6 +120,37 @@ TEST(Cli, SimHelpNamesEveryIntegrator) {
     EXPECT_NE(run.output.find(name), std::string::npos) << name << "\n" << run.output;
 }
 
+// `slime sim --report`'s "pieces", at the end and in every sample of the series: the count, the total
+// volume and each piece's volume and centroid (docs/usage.md). One piece today: its drawn volume is
+// the default ball's, 4/3 π (4 cm)³ to a few percent, and its centroid lies inside the reported shape.
+TEST(Cli, SimReportCarriesThePieces) {
+  const std::string path = outputPath("pieces_report.json");
+  std::filesystem::remove(path);
+  const CommandResult run = runSlime("sim --seconds 0.2 --set slime.level=2 --report " + path);
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  std::ifstream in(path);
+  const nlohmann::json report = nlohmann::json::parse(in);
+  const double ball = 4.0 / 3.0 * 3.14159265358979 * 0.04 * 0.04 * 0.04;
+  const auto checkPieces = [&](const nlohmann::json& pieces, const std::string& where) {
+    ASSERT_EQ(pieces.at("count"), 1) << where;
+    ASSERT_EQ(pieces.at("each").size(), 1u) << where;
+    const nlohmann::json& piece = pieces.at("each")[0];
+    EXPECT_EQ(pieces.at("total_volume").get<double>(), piece.at("volume").get<double>()) << where;
+    EXPECT_NEAR(piece.at("volume").get<double>(), ball, 0.08 * ball) << where;  // level 2: 4 % under the ball
+    ASSERT_EQ(piece.at("centroid").size(), 3u) << where;
+  };
+  const nlohmann::json& final = report.at("final");
+  checkPieces(final.at("pieces"), "final");
+  const nlohmann::json& centroid = final.at("pieces").at("each")[0].at("centroid");
+  EXPECT_NEAR(centroid[0].get<double>(), 0.0, 1e-3);
+  EXPECT_NEAR(centroid[1].get<double>(), 0.0, 1e-3);
+  EXPECT_GT(centroid[2].get<double>(), final.at("min_z").get<double>());
+  EXPECT_LT(centroid[2].get<double>(), final.at("min_z").get<double>() + final.at("height").get<double>());
+  ASSERT_GT(report.at("series").size(), 10u);
+  for (const nlohmann::json& sample : report.at("series"))
+    checkPieces(sample.at("pieces"), "t = " + std::to_string(sample.at("t").get<double>()));
+}
+
 // `slime settings` lists every key of the table with its meaning; the JSON form parses and says the same.
 TEST(Cli, SettingsListsEveryKey) {
   const CommandResult run = runSlime("settings");

@@ -1,6 +1,7 @@
 // The exported surface read back by independent readers — a small PLY parser here, and assimp for
 // .obj and .glb — holds exactly the simulation's vertex positions and triangles at the export times.
 #include "core/export/mesh_exporter.h"
+#include "core/membrane/slime_body.h"
 #include "core/simulation/simulation.h"
 #include "core/settings/settings_io.h"
 
@@ -44,26 +45,60 @@ fs::path freshDirectory(const std::string& name) {
   return dir;
 }
 
-// Runs the default bulk slime for 0.06 s, exporting every 0.02 s with `pattern`; returns what the
-// simulation held at each export.
-std::vector<Frame> runAndExport(const std::string& pattern, UpAxis objUp = UpAxis::Y,
-                                Settings settings = defaultSettings()) {
-  settings.slime.level = 2;  // 162 vertices: a fast test, the same code as at level 4
-  Simulation simulation(settings);
+// What the simulation holds as one mesh: every piece's vertices after the pieces before it, and its
+// triangles offset by as many (put together here, independently of surfaceMeshOf).
+Frame frameOf(const Simulation& simulation) {
+  Frame frame{simulation.time(), {}, {}};
+  for (const SurfaceView& surface : simulation.surfaces()) {
+    const auto offset = static_cast<std::uint32_t>(frame.positions.size());
+    frame.positions.insert(frame.positions.end(), surface.positions.begin(), surface.positions.end());
+    for (const Triangle& t : surface.triangles) frame.triangles.push_back(t + Triangle(offset));
+  }
+  return frame;
+}
+
+// Runs `simulation` for 0.06 s, exporting every 0.02 s with `pattern`; returns what the simulation
+// held at each export.
+std::vector<Frame> exportRun(Simulation& simulation, const std::string& pattern, UpAxis objUp = UpAxis::Y) {
+  const Settings& settings = simulation.settings();
   MeshExporter exporter(pattern, 0.02, settings.sim.dt, 0.06, objUp);
   std::vector<Frame> frames;
   const auto steps = static_cast<std::int64_t>(std::llround(0.06 / settings.sim.dt));
   while (true) {
     if (exporter.due(simulation.stepCount())) {
-      exporter.add(simulation.time(), simulation.positions(), simulation.triangles(),
-                   exportMaterialOf(settings.slime));
-      frames.push_back({simulation.time(), simulation.positions(), simulation.triangles()});
+      exporter.add(simulation.time(), simulation.surfaces(), exportMaterialOf(settings.slime));
+      frames.push_back(frameOf(simulation));
     }
     if (simulation.stepCount() >= steps) break;
     simulation.step();
   }
   exporter.finish();
   return frames;
+}
+
+// Runs the default bulk slime for 0.06 s, exporting every 0.02 s with `pattern`.
+std::vector<Frame> runAndExport(const std::string& pattern, UpAxis objUp = UpAxis::Y,
+                                Settings settings = defaultSettings()) {
+  settings.slime.level = 2;  // 162 vertices: a fast test, the same code as at level 4
+  Simulation simulation(settings);
+  return exportRun(simulation, pattern, objUp);
+}
+
+// A slime of two pieces, which nothing makes yet (tearing is to come): two membrane balls given to
+// Simulation as two bodies, of levels 2 and 1 so that their vertex counts differ.
+Simulation twoPieces() {
+  Settings settings = defaultSettings();
+  settings.slime.model = "membrane";
+  std::vector<SlimeBody> bodies;
+  settings.slime.level = 2;
+  settings.slime.position = {-0.06, 0.0, 0.05};
+  bodies.push_back(buildSlimeBody(settings.slime));
+  settings.slime.level = 1;
+  settings.slime.radius = 0.02;
+  settings.slime.position = {0.06, 0.0, 0.03};
+  bodies.push_back(buildSlimeBody(settings.slime));
+  settings.slime.level = 2;
+  return Simulation(settings, std::move(bodies));
 }
 
 // A binary little-endian PLY with double x y z, float nx ny nz and uchar/int face lists, as
@@ -123,6 +158,28 @@ TEST(MeshExport, PlyHoldsTheSimulationsDoublesAndTriangles) {
     EXPECT_EQ(read.triangles, frames[k].triangles) << name;
   }
   EXPECT_NE(frames[0].positions, frames[3].positions);  // the slime moved: the frames are not one
+}
+
+// Every piece goes into each frame's one file, piece after piece: the file holds the pieces' doubles
+// bit for bit, and each face of the second piece indexes the second piece's vertices only.
+TEST(MeshExport, PlyHoldsEveryPieceOfTheFrame) {
+  const fs::path dir = freshDirectory("mesh_export_pieces_ply");
+  Simulation simulation = twoPieces();
+  ASSERT_EQ(simulation.pieceCount(), 2u);
+  const std::size_t firstVertices = simulation.surfaces()[0].positions.size();
+  const std::size_t firstFaces = simulation.surfaces()[0].triangles.size();
+  ASSERT_NE(firstVertices, simulation.surfaces()[1].positions.size());
+  const std::vector<Frame> frames = exportRun(simulation, (dir / "pieces_%d.ply").string());
+  ASSERT_EQ(frames.size(), 4u);
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    const Frame read = readPly(dir / ("pieces_" + std::to_string(k) + ".ply"));
+    ASSERT_EQ(read.positions, frames[k].positions) << "frame " << k;
+    ASSERT_EQ(read.triangles, frames[k].triangles) << "frame " << k;
+    for (std::size_t f = 0; f < read.triangles.size(); ++f)
+      for (int c = 0; c < 3; ++c)
+        ASSERT_EQ(read.triangles[f][c] >= firstVertices, f >= firstFaces) << "face " << f << " reaches into the other piece";
+  }
+  EXPECT_NE(frames[0].positions, frames[3].positions);
 }
 
 // OBJ's y up: the simulation's (x, y, z) as the file holds it, (x, z, −y).
@@ -211,6 +268,51 @@ TEST(MeshExport, GlbReadByAssimpIsOneMeshAnimatedThroughEveryFrame) {
     for (unsigned w = 0; w < channel.mKeys[k].mNumValuesAndWeights; ++w)
       EXPECT_EQ(channel.mKeys[k].mWeights[w], channel.mKeys[k].mValues[w] == k ? 1.0 : 0.0);
   }
+}
+
+// A fixed set of pieces animates in a .glb as one mesh: every piece's vertices in the first frame, and
+// each frame's morph target moves all of them.
+TEST(MeshExport, GlbAnimatesAFixedSetOfPieces) {
+  const fs::path dir = freshDirectory("mesh_export_pieces_glb");
+  Simulation simulation = twoPieces();
+  const std::vector<Frame> frames = exportRun(simulation, (dir / "pieces.glb").string());
+  ASSERT_EQ(frames.size(), 4u);
+  Assimp::Importer importer;
+  const aiScene* scene = readWithAssimp(importer, dir / "pieces.glb");
+  ASSERT_NE(scene, nullptr);
+  ASSERT_EQ(scene->mNumMeshes, 1u);
+  const aiMesh& mesh = *scene->mMeshes[0];
+  ASSERT_EQ(mesh.mNumVertices, frames[0].positions.size());
+  ASSERT_EQ(mesh.mNumFaces, frames[0].triangles.size());
+  for (unsigned f = 0; f < mesh.mNumFaces; ++f)
+    for (int c = 0; c < 3; ++c) ASSERT_EQ(mesh.mFaces[f].mIndices[c], frames[0].triangles[f][c]);
+  ASSERT_EQ(mesh.mNumAnimMeshes, frames.size());
+  for (std::size_t k = 0; k < frames.size(); ++k)
+    for (unsigned v = 0; v < mesh.mNumVertices; ++v)
+      for (int c = 0; c < 3; ++c)
+        ASSERT_NEAR(mesh.mAnimMeshes[k]->mVertices[v][c], frames[k].positions[v][c], 2e-8) << "frame " << k << " vertex " << v;
+}
+
+// Pieces that change (torn off, merged) cannot be morph targets of the first frame's mesh: the exporter
+// says so, naming the pieces and what to export instead, rather than writing a wrong file.
+TEST(MeshExport, GlbRefusesPiecesThatChange) {
+  const fs::path dir = freshDirectory("mesh_export_pieces_change");
+  const TriangleMesh left = makeIcosphere(2, 0.04, {-0.06, 0.0, 0.04});
+  const TriangleMesh right = makeIcosphere(1, 0.02, {0.06, 0.0, 0.02});
+  const Settings settings = defaultSettings();
+  MeshExporter exporter((dir / "change.glb").string(), settings.sim.dt, settings.sim.dt, 1.0);
+  const std::vector<SurfaceView> one = {left}, two = {left, right};
+  exporter.add(0.0, one, exportMaterialOf(settings.slime));
+  try {
+    exporter.add(settings.sim.dt, two, exportMaterialOf(settings.slime));
+    FAIL() << "a frame of two pieces was taken after a frame of one";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("2 pieces"), std::string::npos) << what;
+    EXPECT_NE(what.find("had 1"), std::string::npos) << what;
+    EXPECT_NE(what.find(".ply or .obj"), std::string::npos) << what;
+  }
+  EXPECT_FALSE(fs::exists(dir / "change.glb"));
 }
 
 TEST(MeshExport, BadPatternsAreRefusedBeforeAnyFile) {
