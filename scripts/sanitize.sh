@@ -30,6 +30,11 @@ long_under_asan='BulkSlime\.(APressLeaves|HeldUpByAPinch|Lamb|EnergyIsKept|Falls
 # whose threaded part (SlimeGeometry::update) every renderer test runs too: under ThreadSanitizer they
 # were 210 of the render suite's CPU seconds (F25) and can find no race. ASan and release still run them.
 single_threaded_oracles='PencilGrid\.|ExitWalk\.|ScreenFootprint\.|PrimaryVisibility\.EqualsTheEyesGrid|SlimeGeometry\.EveryDepth'
+# Image tests whose reference is a slime settled by seconds of physics: at -O1 its shape takes other
+# rounding than release's -O3 and the picture moves at the silhouette (ClearSlimeLowerHalf: 7.7 % of the
+# pixels under ASan). Release holds them to their references; under the sanitizers the same tracing runs
+# in ClearSlimeAtTheCapTakesTheSkyNotBlack, which compares renders of one build with each other.
+settled_references='Golden\.ClearSlimeLowerHalfShowsTotalInternalReflection'
 for preset in "${@:-asan tsan}"; do
   for p in $preset; do
     cmake --preset "$p" -G Ninja >/dev/null
@@ -40,13 +45,13 @@ for preset in "${@:-asan tsan}"; do
         # the driver's own allocations are reported only after it is unloaded at exit, from an
         # "<unknown module>" no suppression can name. ASan's memory errors and UBSan stay on for them.
         gl='HeadlessViewer|ViewerCheck|UiSnapshot|FrameCompositor|^viewer_'
-        ctest --preset asan -j2 --timeout 900 -E "$gl|$long_physics|$long_under_asan"
+        ctest --preset asan -j2 --timeout 900 -E "$gl|$long_physics|$long_under_asan|$settled_references"
         ASAN_OPTIONS="${ASAN_OPTIONS/detect_leaks=1/detect_leaks=0}" ctest --preset asan -j2 --timeout 900 -R "$gl" ;;
       tsan)
         cmake --build --preset tsan --target core_tests render_tests
         # FusedSubstep at level 6 runs many thousands of TBB passes, each reported and suppressed inside
         # Debian's uninstrumented libtbb (minutes per simulated second); level 3 keeps its passes here.
-        ctest --preset tsan -j2 --timeout 900 -L '^render$' -E "$long_physics|$single_threaded_oracles"
+        ctest --preset tsan -j2 --timeout 900 -L '^render$' -E "$long_physics|$single_threaded_oracles|$settled_references"
         ctest --preset tsan -j2 --timeout 900 -L '^core$' -R 'Thread|Parallel|DampedSymplecticEuler|FusedSubstep' \
           -E 'FusedSubstep.MatchesThePassByPassOne/6' ;;
     esac
