@@ -74,6 +74,7 @@ bool Viewer::frame() {
   const FrameInput input = readInput();
   handleInput(input);
   if (options_.maxFrames > 0 && stats_.frames + 1 >= options_.maxFrames) quit_ = true;
+  if (options_.quitAtSimulatedSeconds > 0.0 && simulation_.time() >= options_.quitAtSimulatedSeconds) quit_ = true;
   if (quit_ && !options_.screenshotOnExit.empty()) requestScreenshot(options_.screenshotOnExit);
   // Physics runs on a second thread, never in series with the frame's other work: this frame traces
   // the slime as the last frame's steps left it (refit first, into the renderer's own buffers), while
@@ -185,6 +186,15 @@ void Viewer::handleInput(const FrameInput& input) {
   if (cameraController_.applyMouse(input.cursor, input.windowSize, wheel, slimeCentre(), settings_.camera)) {
     sceneChanged_ = cameraMoved_ = true;
     lastInteraction_ = wallClock_;
+  }
+  if (options_.scenario) {  // its orbits turn the camera as a right-drag would, by simulated time
+    const glm::dvec2 orbit = orbitAt(*options_.scenario, simulation_.time());
+    if (orbit != orbitApplied_) {
+      CameraController::orbit(orbit.x - orbitApplied_.x, orbit.y - orbitApplied_.y, slimeCentre(), settings_.camera);
+      orbitApplied_ = orbit;
+      sceneChanged_ = cameraMoved_ = true;
+      lastInteraction_ = wallClock_;
+    }
   }
 }
 
@@ -317,7 +327,10 @@ void Viewer::applyPhysicsOutcome(const PhysicsOutcome& outcome) {
     grabCount_ += outcome.scenarioGrabs;
     heightAtGrab_ = outcome.heightAtGrab;
   }
-  if (outcome.settingsEdited) sceneChanged_ = true;
+  if (outcome.settingsEdited) {
+    sceneChanged_ = true;
+    editedFrame_ = editDrawnFrame_ = stats_.frames;
+  }
   stats_.physicsSteps = outcome.steps;
   stats_.stages.physics = outcome.milliseconds;
   stats_.recordSimulatedTime(outcome.steps * settings_.sim.dt, outcome.wallSeconds);
@@ -538,6 +551,8 @@ FramePhase Viewer::framePhase() const {
   if (simulation_.grabbing(0) && simulation_.grabbing(1)) return FramePhase::Stretched;
   if (simulation_.anyGrabbing()) return FramePhase::Held;
   if (cameraMoved_) return FramePhase::Orbiting;
+  const std::int64_t frame = stats_.frames - 1;  // this one's index: finishFrame has counted it
+  if (frame == editedFrame_ || frame == editDrawnFrame_) return FramePhase::Editing;
   if (!landed_) return FramePhase::Falling;
   // The fastest point's speed on screen, at the slime's distance.
   const glm::ivec2 size = fullImageSize();

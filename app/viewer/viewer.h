@@ -34,6 +34,7 @@ namespace slime {
 
 struct ViewerOptions {
   int maxFrames = 0;                                // quit after this many frames; 0 = until Esc
+  double quitAtSimulatedSeconds = 0.0;              // quit once the simulation reaches this time; 0 = never
   std::string screenshotOnExit;                     // PNG of the last frame, if set
   std::string reportPath;                           // JSON summary written at exit, if set
   std::string frameLogPath;                         // CSV of every frame (frame_log.h) at exit, if set
@@ -88,6 +89,8 @@ class Viewer {
   void simulationAdvanced();
   const Settings& settings() const { return settings_; }
   const FrameStats& stats() const { return stats_; }
+  // Every frame's record so far (kept when a frame log or a report is asked for).
+  const std::vector<FrameRecord>& frameRecords() const { return frameRecords_; }
 
   // The scene as the panels show it (rebuild-type values waiting for Reload included), with the
   // window's size as the image size: what Ctrl+S saves.
@@ -215,6 +218,11 @@ class Viewer {
   SlimeMetrics metrics_;
   std::optional<ScenarioPlayer> scenario_;
   std::size_t scenarioEventsFired_ = 0;  // options_.scenario's events the player has fired so far
+  glm::dvec2 orbitApplied_{0.0};  // the scenario's orbits the camera has turned by so far (orbitAt), degrees
+  // The last frame a setting was edited in (panels or a "set" event) and the frame that draws the edit:
+  // the same for a "set" event, which fires before the frame's trace; the next for the panels'.
+  std::int64_t editedFrame_ = -1;
+  std::int64_t editDrawnFrame_ = -1;
 
   bool quit_ = false;
   bool singleStepPending_ = false;

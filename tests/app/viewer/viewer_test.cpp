@@ -312,6 +312,33 @@ TEST(HeadlessViewer, AScenarioSetEventIsAppliedAndDrawnAtOnce) {
   EXPECT_EQ(viewer.stats().samplesPerPixel, 1) << "the new colour was not traced in the frame it was set";
 }
 
+TEST(HeadlessViewer, AScenarioOrbitTurnsTheCameraAboutTheSlimeAndItsFramesAreOrbiting) {
+  ViewerOptions options;
+  options.scenario = parseScenario(nlohmann::json::parse(R"({"events": [
+    {"t": 0.1, "orbit": {"yaw": 90, "duration": 0.2}},
+    {"t": 0.5, "set": {"slime.color": [0.9, 0.2, 0.2]}}]})"), "inline");
+  options.frameLogPath = (std::filesystem::path(SLIME_TEST_OUTPUT_DIR) / "viewer_orbit_frames.csv").string();
+  Settings settings = fixture::smallViewerScene();
+  settings.sim.gravity = 0.0;
+  SteppingHeadlessGl backend(160, 120, 1.0 / 60.0);
+  Viewer viewer(backend, settings, options);
+  const glm::dvec3 centre = settings.slime.position;
+  const double distance = glm::length(settings.camera.position - centre);
+  for (int frame = 0; frame < 50; ++frame) ASSERT_TRUE(viewer.frame());
+  // A quarter turn about +z at the same distance (the slime, weightless, stays where it started).
+  const glm::dvec3 before = settings.camera.position - centre, after = viewer.settings().camera.position - centre;
+  EXPECT_NEAR(glm::length(after), distance, 1e-3 * distance);
+  EXPECT_NEAR(std::atan2(after.y, after.x) - std::atan2(before.y, before.x), M_PI / 2.0, 0.02);
+  int orbiting = 0, editing = 0;
+  for (const FrameRecord& record : viewer.frameRecords()) {
+    orbiting += record.phase == FramePhase::Orbiting;
+    editing += record.phase == FramePhase::Editing;
+  }
+  EXPECT_GE(orbiting, 10) << "0.2 s of orbit at 60 frames a second";
+  EXPECT_LE(orbiting, 14);
+  EXPECT_EQ(editing, 1) << "a set event fires before its frame's trace, which draws it";
+}
+
 TEST(UiSnapshot, WritesTheWindowWithItsPanelsAtTheCameraSize) {
   const std::filesystem::path path = std::filesystem::path(SLIME_TEST_OUTPUT_DIR) / "ui_snapshot_test.png";
   std::filesystem::remove(path);
