@@ -371,8 +371,12 @@ glm::ivec2 Viewer::tracedImageSize() const {
   const glm::ivec2 full = fullImageSize();
   if (full.x <= 0) return {0, 0};
   // Full resolution while the user moves things too (issue 15). render.scale is the user's own choice;
-  // the adaptive factor is the fallback for frames over their budget, 1 unless a target is set.
-  const double scale = settings_.render.scale * resolution_.scale();
+  // the adaptive factor is the fallback for frames over their budget, 1 unless a target is set. While
+  // the camera moves, every pixel changes and the every-pixel frame (60–70 ms at 1280×720 on AMD
+  // family 23) misses 30 fps: render.orbitFps's own factor then (traced at half the size, the shown
+  // frames stay at 37 dB or more against the full trace; docs/performance.md, viewer section), and
+  // full resolution the frame the camera stops.
+  const double scale = settings_.render.scale * frameResolution().scale();
   if (scale >= 1.0) return full;
   return {std::max(1, static_cast<int>(std::lround(full.x * scale))),
           std::max(1, static_cast<int>(std::lround(full.y * scale)))};
@@ -430,7 +434,7 @@ bool Viewer::refineImage(glm::ivec2 size) {
   framesSinceNewImage_ = std::min(framesSinceNewImage_ + 1, kStillFramesBeforeRefining);
   if (framesSinceNewImage_ < kStillFramesBeforeRefining) return false;
   if (interacting() || refinement_.converged() || settings_.render.spp > 1) return false;
-  if (resolution_.scale() < 1.0) return false;  // the adaptive resolution returns to full first
+  if (frameResolution().scale() < 1.0) return false;  // the adaptive resolution returns to full first
   if (sampleRow_ == 0) sampleImage_.resize(size.x, size.y);
   const int rows = std::min(refineBandRows(size.y), size.y - sampleRow_);
   const RenderStats render =
@@ -517,6 +521,7 @@ void Viewer::uploadImage() {
 }
 
 void Viewer::followTargetFps() {
+  if (settings_.render.orbitFps != orbitResolution_.targetFps()) orbitResolution_.setTargetFps(settings_.render.orbitFps);
   if (settings_.render.targetFps == resolution_.targetFps()) return;
   resolution_.setTargetFps(settings_.render.targetFps);
   stats_.targetFps = resolution_.targetFps();
@@ -526,7 +531,7 @@ void Viewer::finishFrame(double frameMs) {
   stats_.tracedRows = tracedRows_;
   stats_.recordStages(imageTraced_, tracedAtFullSize_);
   stats_.recordFrame(frameMs);
-  resolution_.update(frameMs, newImageTraced_ ? stats_.stages.trace : 0.0, newImageTraced_);
+  frameResolution().update(frameMs, newImageTraced_ ? stats_.stages.trace : 0.0, newImageTraced_);
   if (!keepsFrameRecords()) return;
   FrameRecord record;
   record.endSeconds = stats_.totalFrameMs / 1000.0;

@@ -152,7 +152,7 @@ class Viewer {
   std::vector<HandView> handViews() const;  // what the Hands section shows
   PanelRequests drawPanelsAndOverlay(const GrabMarks& marks);  // reads, never edits, the slime
   void applyPanelRequests(const PanelRequests& requests);
-  void followTargetFps();  // the adaptive resolution's target from render.targetFps
+  void followTargetFps();  // the adaptive resolutions' targets from render.targetFps and render.orbitFps
   void present();
   void finishFrame(double frameMs);     // stats, the adaptive resolution, the frame log
 
@@ -206,7 +206,11 @@ class Viewer {
   int cursorHand_ = 0;             // ... which one: 0 (left-drag) or 1 (Ctrl+left-drag, kept on release)
   PhysicsClock clock_;
   FrameStats stats_;
-  AdaptiveResolution resolution_;
+  AdaptiveResolution resolution_;       // frames whose camera stands (render.targetFps)
+  AdaptiveResolution orbitResolution_;  // frames whose camera moves (render.orbitFps): its own scale, kept between moves
+  // The adaptive resolution of this frame's kind: the camera moving or not.
+  AdaptiveResolution& frameResolution() { return cameraMoved_ ? orbitResolution_ : resolution_; }
+  const AdaptiveResolution& frameResolution() const { return cameraMoved_ ? orbitResolution_ : resolution_; }
   ImageCheck check_;
   double checkSecondsToSkip_ = 0.0;  // the last check's time, taken off the next frame's elapsed time
   double framePsnrDb_ = -1.0;        // this frame's checked PSNR; < 0: not checked

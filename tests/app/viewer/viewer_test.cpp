@@ -339,6 +339,35 @@ TEST(HeadlessViewer, AScenarioOrbitTurnsTheCameraAboutTheSlimeAndItsFramesAreOrb
   EXPECT_EQ(editing, 1) << "a set event fires before its frame's trace, which draws it";
 }
 
+TEST(HeadlessViewer, AnOrbitOverItsBudgetIsTracedSmallerAndTheFrameAfterItInFull) {
+  ViewerOptions options;
+  options.scenario = parseScenario(nlohmann::json::parse(R"({"events": [
+    {"t": 0.1, "orbit": {"yaw": 90, "duration": 0.3}}]})"), "inline");
+  options.frameLogPath = (std::filesystem::path(SLIME_TEST_OUTPUT_DIR) / "viewer_orbit_budget_frames.csv").string();
+  Settings settings = fixture::smallViewerScene();
+  settings.sim.gravity = 0.0;
+  settings.render.orbitFps = 240.0;  // 4.2 ms a frame: more than a headless frame with panels can meet
+  SteppingHeadlessGl backend(320, 240, 1.0 / 60.0);
+  Viewer viewer(backend, settings, options);
+  for (int frame = 0; frame < 40; ++frame) ASSERT_TRUE(viewer.frame());
+  const std::vector<FrameRecord>& records = viewer.frameRecords();
+  int smaller = 0;
+  std::size_t last = 0;
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    if (records[i].phase != FramePhase::Orbiting) continue;
+    smaller += records[i].scale < 1.0;
+    last = i;
+  }
+  EXPECT_GE(smaller, 5) << "orbiting frames over render.orbitFps's budget stayed at full size";
+  ASSERT_LT(last + 1, records.size());
+  EXPECT_EQ(records[last + 1].scale, 1.0) << "the frame after the camera stopped was not traced in full";
+  EXPECT_TRUE(records[last + 1].fullResolution);
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    if (records[i].phase == FramePhase::Orbiting) continue;
+    EXPECT_EQ(records[i].scale, 1.0) << "frame " << i;
+  }
+}
+
 TEST(UiSnapshot, WritesTheWindowWithItsPanelsAtTheCameraSize) {
   const std::filesystem::path path = std::filesystem::path(SLIME_TEST_OUTPUT_DIR) / "ui_snapshot_test.png";
   std::filesystem::remove(path);
