@@ -45,12 +45,13 @@ Viewer::Viewer(ViewerBackend& backend, const Settings& settings, ViewerOptions o
       scenePath_(options_.scenePath),
       simulation_(settings),
       renderer_(settings),
-      refinement_(options_.refineSamples),
+      refinement_(options_.refineSamples > 1 ? std::max(options_.refineSamples, settings.render.spp) : 1),
       check_(options_.checkEvery) {
   if (options_.scenario) scenario_.emplace(*options_.scenario);
   // Caustics gathered over the frames as the image refines (a bounded budget while anything moves);
   // without refinement (snapshot --ui) the finished map at once, as `snapshot` draws it.
   renderer_.setProgressiveCaustics(options_.refineSamples > 1);
+  if (options_.refineSamples > 1) renderer_.setCausticsFrameBudget(kCausticsBudgetMs);
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;  // the same layout every run: tests click known places
@@ -433,7 +434,8 @@ bool Viewer::refineImage(glm::ivec2 size) {
   // footprint frame with refinement bands that its next move throws away.
   framesSinceNewImage_ = std::min(framesSinceNewImage_ + 1, kStillFramesBeforeRefining);
   if (framesSinceNewImage_ < kStillFramesBeforeRefining) return false;
-  if (interacting() || refinement_.converged() || settings_.render.spp > 1) return false;
+  if (refinement_.target() != refineTarget()) refinement_.setTarget(refineTarget());  // render.spp edited
+  if (interacting() || refinement_.converged()) return false;
   if (frameResolution().scale() < 1.0) return false;  // the adaptive resolution returns to full first
   if (sampleRow_ == 0) sampleImage_.resize(size.x, size.y);
   const int rows = std::min(refineBandRows(size.y), size.y - sampleRow_);
@@ -610,7 +612,14 @@ Settings Viewer::frameSettings(glm::ivec2 imageSize) const {
   Settings frame = settings_;
   frame.camera.width = imageSize.x;
   frame.camera.height = imageSize.y;
+  // A refining viewer traces one sample a frame and reaches render.spp's samples by refining (the
+  // still image's refineTarget); tracing them all in one frame took seconds at 64.
+  if (options_.refineSamples > 1) frame.render.spp = 1;
   return frame;
+}
+
+int Viewer::refineTarget() const {
+  return options_.refineSamples > 1 ? std::max(options_.refineSamples, settings_.render.spp) : 1;
 }
 
 glm::dvec3 Viewer::grabbedCentre() const { return simulation_.grabbedPoint(cursorHand_); }

@@ -69,6 +69,10 @@ class Viewer {
   // cost predicts to fit ViewerOptions::refineBandMs, at most half the image, so a whole-image sample
   // (about 60 ms at 1280×720 on two cores) is spread over several frames.
   static constexpr int kRefineBandRowStep = 8;  // bands are multiples of the renderer's tile rows
+  // Wall time a frame may spend tracing caustic photons (Caustics::setFrameBudget): the default 10,000
+  // photons fit (about 10 ms on AMD family 25); render.photons up to 10⁷ would take seconds a frame,
+  // and are gathered over more frames instead.
+  static constexpr double kCausticsBudgetMs = 12.0;
 
   Viewer(ViewerBackend& backend, const Settings& settings, ViewerOptions options = {});
   ~Viewer();
@@ -166,6 +170,8 @@ class Viewer {
   glm::ivec2 viewSize() const;
   void toViewCoordinates(FrameInput& input) const;
   Settings frameSettings(glm::ivec2 imageSize) const;
+  // Samples per pixel a still image refines to: ViewerOptions::refineSamples or render.spp, the more.
+  int refineTarget() const;
   glm::dvec3 slimeCentre() const;
   glm::dvec3 grabbedCentre() const;  // where the grabbed points are now
   bool interacting() const { return wallClock_ - lastInteraction_ < kRefineAfterSeconds; }

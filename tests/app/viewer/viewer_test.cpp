@@ -68,6 +68,22 @@ TEST(HeadlessViewer, AStillImageRefinesToSixteenSamplesAndAChangeResetsIt) {
   EXPECT_EQ(viewer.stats().samplesPerPixel, 1);
 }
 
+// render.spp above the refinement's 16 samples: each frame still traces one sample a pixel, and the
+// still image refines to render.spp's (tracing all 64 in a frame took seconds).
+TEST(HeadlessViewer, SupersamplingIsReachedByRefiningNotInOneFrame) {
+  HeadlessGl backend(320, 240);  // room for the image beside the panel column
+  Settings settings = fixture::smallViewerScene();
+  settings.render.spp = 25;
+  Viewer viewer(backend, settings, ViewerOptions{});
+  ASSERT_TRUE(viewer.frame());
+  EXPECT_EQ(viewer.stats().samplesPerPixel, 1);
+  // One sample a pixel: a few rays each (primary, shadow, the slime's refraction), not 25 of them.
+  const double pixels = static_cast<double>(viewer.stats().imageWidth) * viewer.stats().imageHeight;
+  EXPECT_LT(static_cast<double>(viewer.stats().rays), 10.0 * pixels);
+  for (int frame = 0; frame < 900 && viewer.stats().samplesPerPixel < 25; ++frame) ASSERT_TRUE(viewer.frame());
+  EXPECT_EQ(viewer.stats().samplesPerPixel, 25);
+}
+
 // A slime that moves every third frame (creeping past the redraw threshold) is redrawn when it moves
 // and not refined between its moves: the bands of a refinement sample would be thrown away by the next
 // move. Once still, it refines within a few frames.
