@@ -7,6 +7,7 @@
 #include "app/bench/render/bench_render.h"
 #include "app/bench/report/bench_report.h"
 #include "app/cli/commands.h"
+#include "app/viewer/viewer_bench.h"
 #include "core/integrators/integrators.h"
 #include "core/settings/settings_io.h"
 #include "core/bulk/tet_mesh.h"
@@ -224,6 +225,34 @@ void registerCaustics(CLI::App& bench, int& exitCode) {
   });
 }
 
+void registerViewer(CLI::App& bench, int& exitCode) {
+  struct ViewerCommand {
+    SceneOptions scene;
+    ViewerBenchOptions bench;
+    std::string size = "1280x720";
+    std::string gl = "auto";
+  };
+  auto options = std::make_shared<ViewerCommand>();
+  auto* command = bench.add_subcommand(
+      "viewer", "The viewer's frame times in every phase (falling ... resting, held, stretched, orbiting, editing), "
+                "headless in real time: median, 95th and 99th percentile, longest frame, the slowest 3 s window "
+                "(--scenario: the phases' script, default tests/scenarios/viewer_phases.json)");
+  command->add_option("--size", options->size, "Image size WIDTHxHEIGHT")->capture_default_str();
+  command->add_option("--seconds", options->bench.seconds,
+                      "Simulated seconds to run (0: the scenario's last event + 6 s)")->check(CLI::Range(0.0, 3600.0))->capture_default_str();
+  command->add_option("--gl", options->gl, "Headless GL: egl, osmesa or auto")->capture_default_str();
+  command->add_option("--csv", options->bench.csvPath, "Write every frame (the frame log) as CSV");
+  command->add_option("--json", options->bench.jsonPath, "Write the table as JSON");
+  addSceneOptions(*command, options->scene);
+  command->callback([options, &exitCode] {
+    ViewerBenchOptions bench = options->bench;
+    parseSize(options->size, bench.width, bench.height);
+    bench.api = headlessApiNamed(options->gl);
+    if (!options->scene.scenarioFile.empty()) bench.scenarioPath = options->scene.scenarioFile;
+    exitCode = runViewerBench(loadSettings(options->scene), bench);
+  });
+}
+
 }  // namespace
 
 void registerBenchCommand(CLI::App& root, int& exitCode) {
@@ -234,6 +263,7 @@ void registerBenchCommand(CLI::App& root, int& exitCode) {
   registerAccuracy(*bench, exitCode);
   registerMaterial(*bench, exitCode);
   registerCaustics(*bench, exitCode);
+  registerViewer(*bench, exitCode);
 }
 
 }  // namespace slime

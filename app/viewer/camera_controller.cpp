@@ -37,6 +37,19 @@ void CameraController::handleButton(const MouseButtonEvent& event) {
   if (!event.pressed && drag_ && drag_->button == event.button) drag_.reset();
 }
 
+void CameraController::orbit(double azimuthDegrees, double elevationDegrees, const glm::dvec3& centre,
+                             CameraSettings& camera) {
+  // Turn the eye about the centre on a sphere, then look at the centre.
+  const glm::dvec3 offset = camera.position - centre;
+  const double distance = std::max(glm::length(offset), kMinDistance);
+  const double azimuth = std::atan2(offset.y, offset.x) + glm::radians(azimuthDegrees);
+  const double elevation = std::clamp(std::asin(std::clamp(offset.z / distance, -1.0, 1.0)) + glm::radians(elevationDegrees),
+                                      glm::radians(-kMaxPitch), glm::radians(kMaxPitch));
+  const glm::dvec3 eye = centre + distance * glm::dvec3(std::cos(elevation) * std::cos(azimuth),
+                                                        std::cos(elevation) * std::sin(azimuth), std::sin(elevation));
+  lookAt(camera, eye, centre);
+}
+
 bool CameraController::applyMouse(glm::dvec2 cursor, glm::ivec2 windowSize, double wheel,
                                   const glm::dvec3& centre, CameraSettings& camera) {
   bool changed = false;
@@ -44,17 +57,7 @@ bool CameraController::applyMouse(glm::dvec2 cursor, glm::ivec2 windowSize, doub
     const glm::dvec2 delta = cursor - drag_->lastCursor;
     drag_->lastCursor = cursor;
     if (drag_->button == MouseButton::Right) {
-      // Orbit: turn the eye about the centre on a sphere, then look at the centre.
-      const glm::dvec3 offset = camera.position - centre;
-      const double distance = std::max(glm::length(offset), kMinDistance);
-      const double azimuth = std::atan2(offset.y, offset.x) - glm::radians(delta.x * kOrbitPerPixel);
-      const double elevation = std::clamp(std::asin(std::clamp(offset.z / distance, -1.0, 1.0)) +
-                                              glm::radians(delta.y * kOrbitPerPixel),
-                                          glm::radians(-kMaxPitch), glm::radians(kMaxPitch));
-      const glm::dvec3 eye = centre + distance * glm::dvec3(std::cos(elevation) * std::cos(azimuth),
-                                                            std::cos(elevation) * std::sin(azimuth),
-                                                            std::sin(elevation));
-      lookAt(camera, eye, centre);
+      orbit(-delta.x * kOrbitPerPixel, delta.y * kOrbitPerPixel, centre, camera);
     } else {
       // Pan: the point under the cursor at the centre's depth stays under the cursor.
       const Camera frame = makeCamera(camera, windowSize.x, windowSize.y);

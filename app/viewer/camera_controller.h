@@ -34,6 +34,10 @@ class CameraController {
   bool applyMouse(glm::dvec2 cursor, glm::ivec2 windowSize, double wheel, const glm::dvec3& centre,
                   CameraSettings& camera);
 
+  // Turns the eye about `centre` by the angles (counter-clockwise about +z seen from above, and up)
+  // at its distance, looking at the centre: what a right-drag does, and a scenario's "orbit" event.
+  static void orbit(double azimuthDegrees, double elevationDegrees, const glm::dvec3& centre, CameraSettings& camera);
+
   bool dragging() const { return drag_.has_value(); }
 
  private:

@@ -16,6 +16,7 @@ const char* nameOf(FramePhase phase) {
     case FramePhase::Held: return "held";
     case FramePhase::Stretched: return "stretched";
     case FramePhase::Orbiting: return "orbiting";
+    case FramePhase::Editing: return "editing";
   }
   return "unknown";
 }
@@ -108,6 +109,27 @@ std::vector<PhaseSummary> summarizePhases(const std::vector<FrameRecord>& record
     summaries.push_back(summary);
   }
   return summaries;
+}
+
+FrameWindow slowestWindow(const std::vector<FrameRecord>& records, double windowSeconds, double afterSeconds) {
+  FrameWindow slowest;
+  if (records.empty() || !(windowSeconds > 0.0)) return slowest;
+  // Windows [t, t + w) starting at afterSeconds and at every frame's end after it, while they fit in
+  // the run: the count of frames ending inside only changes at those starts.
+  const double last = records.back().endSeconds;
+  std::size_t first = 0, end = 0;
+  const auto consider = [&](double start) {
+    if (start + windowSeconds > last + 1e-12) return;
+    while (first < records.size() && records[first].endSeconds <= start) ++first;
+    if (end < first) end = first;
+    while (end < records.size() && records[end].endSeconds <= start + windowSeconds) ++end;
+    const double fps = static_cast<double>(end - first) / windowSeconds;
+    if (slowest.fps < 0.0 || fps < slowest.fps) slowest = {fps, start};
+  };
+  consider(afterSeconds);
+  for (const FrameRecord& record : records)
+    if (record.endSeconds > afterSeconds) consider(record.endSeconds);
+  return slowest;
 }
 
 }  // namespace slime

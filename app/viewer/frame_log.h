@@ -14,11 +14,12 @@ namespace slime {
 
 // What the slime and the camera did in a frame, for the figures per phase (issue 43): the slow frames
 // a person notices come in some phases and not others. The first that applies, in this order:
-// stretched (both hands hold it), held (one hand), orbiting (the camera moved), falling (not yet on
+// stretched (both hands hold it), held (one hand), orbiting (the camera moved), editing (a setting was
+// edited in this frame, or the frame draws the edit: the panels' are drawn in the next), falling (not yet on
 // the floor), settling (its fastest point moves kSettlingPixelsPerSecond on screen or more), creeping
 // (slower, but more than kStillMotionPixels a second), resting.
-enum class FramePhase { Falling, Settling, Creeping, Resting, Held, Stretched, Orbiting };
-constexpr int kFramePhases = 7;
+enum class FramePhase { Falling, Settling, Creeping, Resting, Held, Stretched, Orbiting, Editing };
+constexpr int kFramePhases = 8;
 const char* nameOf(FramePhase phase);  // "falling", "settling", ...
 constexpr double kSettlingPixelsPerSecond = 30.0;  // a pixel a frame at 30 frames a second
 
@@ -66,5 +67,13 @@ struct PhaseSummary {
 // One summary per phase that has frames, in FramePhase's order. `afterSeconds`: frames ending before
 // this wall time (the window's first frames, shaders and caches warming) are left out.
 std::vector<PhaseSummary> summarizePhases(const std::vector<FrameRecord>& records, double afterSeconds = 0.0);
+
+// The fewest frames a second in any `windowSeconds` of wall time (frames counted by their end) from
+// `afterSeconds` on, and where that window starts; {-1, 0} when the run is shorter than one window.
+struct FrameWindow {
+  double fps = -1.0;
+  double startSeconds = 0.0;
+};
+FrameWindow slowestWindow(const std::vector<FrameRecord>& records, double windowSeconds, double afterSeconds = 0.0);
 
 }  // namespace slime

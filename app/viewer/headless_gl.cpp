@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 namespace slime {
 
@@ -72,7 +73,17 @@ FrameInput HeadlessGl::pollInput() {
   FrameInput input;
   input.windowSize = size_;
   input.cursor = {-1.0, -1.0};  // no cursor: nothing is hovered
+  if (realTime_) {
+    const auto now = std::chrono::steady_clock::now();
+    if (polled_) input.elapsedSeconds = std::chrono::duration<double>(now - lastPoll_).count();
+    lastPoll_ = now;
+    polled_ = true;
+  }
   return input;
+}
+
+void HeadlessGl::waitForInput(double seconds) {
+  if (realTime_ && seconds > 0.0) std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
 }
 
 void HeadlessGl::initImGuiPlatform() {

@@ -1,10 +1,13 @@
 // The headless back-end of the viewer: a GL 3.3 core context without a display — EGL surfaceless or
 // OSMesa, both Mesa's llvmpipe — drawing into an FBO of a fixed size. No input arrives and time
-// stands still, so the same frame code that runs the window draws a reproducible picture of it.
+// stands still, so the same frame code that runs the window draws a reproducible picture of it;
+// unless setRealTime: then the wall clock runs as in a window (`slime bench viewer`, which times the
+// viewer's frames through a scenario).
 #pragma once
 
 #include "app/viewer/viewer_backend.h"
 
+#include <chrono>
 #include <memory>
 #include <string>
 
@@ -28,6 +31,9 @@ class HeadlessGl final : public ViewerBackend {
   HeadlessGl& operator=(const HeadlessGl&) = delete;
 
   HeadlessApi api() const { return api_; }  // the one in use: Egl or OsMesa
+  // Real time: each frame's input carries the wall time since the last, and waitForInput sleeps (no
+  // input can come), as a window's would.
+  void setRealTime(bool realTime) { realTime_ = realTime; }
   FrameInput pollInput() override;
   glm::ivec2 framebufferSize() const override { return size_; }
   glm::ivec2 windowSize() const override { return size_; }
@@ -36,6 +42,7 @@ class HeadlessGl final : public ViewerBackend {
   void shutdownImGuiPlatform() override;
   bool keepsFramebuffer() const override { return true; }  // an FBO: its pixels stay
   void present(const std::vector<PixelRect>& changed) override;
+  void waitForInput(double seconds) override;
 
  private:
   glm::ivec2 size_;
@@ -44,6 +51,9 @@ class HeadlessGl final : public ViewerBackend {
   std::unique_ptr<OsMesaContext> osMesa_;
   unsigned framebuffer_ = 0;
   unsigned colorBuffer_ = 0;
+  bool realTime_ = false;
+  std::chrono::steady_clock::time_point lastPoll_{};
+  bool polled_ = false;
 };
 
 }  // namespace slime

@@ -45,12 +45,13 @@ Viewer::Viewer(ViewerBackend& backend, const Settings& settings, ViewerOptions o
       scenePath_(options_.scenePath),
       simulation_(settings),
       renderer_(settings),
-      refinement_(options_.refineSamples),
+      refinement_(options_.refineSamples > 1 ? std::max(options_.refineSamples, settings.render.spp) : 1),
       check_(options_.checkEvery) {
   if (options_.scenario) scenario_.emplace(*options_.scenario);
   // Caustics gathered over the frames as the image refines (a bounded budget while anything moves);
   // without refinement (snapshot --ui) the finished map at once, as `snapshot` draws it.
   renderer_.setProgressiveCaustics(options_.refineSamples > 1);
+  if (options_.refineSamples > 1) renderer_.setCausticsFrameBudget(kCausticsBudgetMs);
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;  // the same layout every run: tests click known places
@@ -74,6 +75,7 @@ bool Viewer::frame() {
   const FrameInput input = readInput();
   handleInput(input);
   if (options_.maxFrames > 0 && stats_.frames + 1 >= options_.maxFrames) quit_ = true;
+  if (options_.quitAtSimulatedSeconds > 0.0 && simulation_.time() >= options_.quitAtSimulatedSeconds) quit_ = true;
   if (quit_ && !options_.screenshotOnExit.empty()) requestScreenshot(options_.screenshotOnExit);
   // Physics runs on a second thread, never in series with the frame's other work: this frame traces
   // the slime as the last frame's steps left it (refit first, into the renderer's own buffers), while
@@ -185,6 +187,15 @@ void Viewer::handleInput(const FrameInput& input) {
   if (cameraController_.applyMouse(input.cursor, input.windowSize, wheel, slimeCentre(), settings_.camera)) {
     sceneChanged_ = cameraMoved_ = true;
     lastInteraction_ = wallClock_;
+  }
+  if (options_.scenario) {  // its orbits turn the camera as a right-drag would, by simulated time
+    const glm::dvec2 orbit = orbitAt(*options_.scenario, simulation_.time());
+    if (orbit != orbitApplied_) {
+      CameraController::orbit(orbit.x - orbitApplied_.x, orbit.y - orbitApplied_.y, slimeCentre(), settings_.camera);
+      orbitApplied_ = orbit;
+      sceneChanged_ = cameraMoved_ = true;
+      lastInteraction_ = wallClock_;
+    }
   }
 }
 
@@ -317,7 +328,10 @@ void Viewer::applyPhysicsOutcome(const PhysicsOutcome& outcome) {
     grabCount_ += outcome.scenarioGrabs;
     heightAtGrab_ = outcome.heightAtGrab;
   }
-  if (outcome.settingsEdited) sceneChanged_ = true;
+  if (outcome.settingsEdited) {
+    sceneChanged_ = true;
+    editedFrame_ = editDrawnFrame_ = stats_.frames;
+  }
   stats_.physicsSteps = outcome.steps;
   stats_.stages.physics = outcome.milliseconds;
   stats_.recordSimulatedTime(outcome.steps * settings_.sim.dt, outcome.wallSeconds);
@@ -358,8 +372,12 @@ glm::ivec2 Viewer::tracedImageSize() const {
   const glm::ivec2 full = fullImageSize();
   if (full.x <= 0) return {0, 0};
   // Full resolution while the user moves things too (issue 15). render.scale is the user's own choice;
-  // the adaptive factor is the fallback for frames over their budget, 1 unless a target is set.
-  const double scale = settings_.render.scale * resolution_.scale();
+  // the adaptive factor is the fallback for frames over their budget, 1 unless a target is set. While
+  // the camera moves, every pixel changes and the every-pixel frame (60–70 ms at 1280×720 on AMD
+  // family 23) misses 30 fps: render.orbitFps's own factor then (traced at half the size, the shown
+  // frames stay at 37 dB or more against the full trace; docs/performance.md, viewer section), and
+  // full resolution the frame the camera stops.
+  const double scale = settings_.render.scale * frameResolution().scale();
   if (scale >= 1.0) return full;
   return {std::max(1, static_cast<int>(std::lround(full.x * scale))),
           std::max(1, static_cast<int>(std::lround(full.y * scale)))};
@@ -416,8 +434,9 @@ bool Viewer::refineImage(glm::ivec2 size) {
   // footprint frame with refinement bands that its next move throws away.
   framesSinceNewImage_ = std::min(framesSinceNewImage_ + 1, kStillFramesBeforeRefining);
   if (framesSinceNewImage_ < kStillFramesBeforeRefining) return false;
-  if (interacting() || refinement_.converged() || settings_.render.spp > 1) return false;
-  if (resolution_.scale() < 1.0) return false;  // the adaptive resolution returns to full first
+  if (refinement_.target() != refineTarget()) refinement_.setTarget(refineTarget());  // render.spp edited
+  if (interacting() || refinement_.converged()) return false;
+  if (frameResolution().scale() < 1.0) return false;  // the adaptive resolution returns to full first
   if (sampleRow_ == 0) sampleImage_.resize(size.x, size.y);
   const int rows = std::min(refineBandRows(size.y), size.y - sampleRow_);
   const RenderStats render =
@@ -504,6 +523,7 @@ void Viewer::uploadImage() {
 }
 
 void Viewer::followTargetFps() {
+  if (settings_.render.orbitFps != orbitResolution_.targetFps()) orbitResolution_.setTargetFps(settings_.render.orbitFps);
   if (settings_.render.targetFps == resolution_.targetFps()) return;
   resolution_.setTargetFps(settings_.render.targetFps);
   stats_.targetFps = resolution_.targetFps();
@@ -513,7 +533,7 @@ void Viewer::finishFrame(double frameMs) {
   stats_.tracedRows = tracedRows_;
   stats_.recordStages(imageTraced_, tracedAtFullSize_);
   stats_.recordFrame(frameMs);
-  resolution_.update(frameMs, newImageTraced_ ? stats_.stages.trace : 0.0, newImageTraced_);
+  frameResolution().update(frameMs, newImageTraced_ ? stats_.stages.trace : 0.0, newImageTraced_);
   if (!keepsFrameRecords()) return;
   FrameRecord record;
   record.endSeconds = stats_.totalFrameMs / 1000.0;
@@ -538,6 +558,8 @@ FramePhase Viewer::framePhase() const {
   if (simulation_.grabbing(0) && simulation_.grabbing(1)) return FramePhase::Stretched;
   if (simulation_.anyGrabbing()) return FramePhase::Held;
   if (cameraMoved_) return FramePhase::Orbiting;
+  const std::int64_t frame = stats_.frames - 1;  // this one's index: finishFrame has counted it
+  if (frame == editedFrame_ || frame == editDrawnFrame_) return FramePhase::Editing;
   if (!landed_) return FramePhase::Falling;
   // The fastest point's speed on screen, at the slime's distance.
   const glm::ivec2 size = fullImageSize();
@@ -590,7 +612,14 @@ Settings Viewer::frameSettings(glm::ivec2 imageSize) const {
   Settings frame = settings_;
   frame.camera.width = imageSize.x;
   frame.camera.height = imageSize.y;
+  // A refining viewer traces one sample a frame and reaches render.spp's samples by refining (the
+  // still image's refineTarget); tracing them all in one frame took seconds at 64.
+  if (options_.refineSamples > 1) frame.render.spp = 1;
   return frame;
+}
+
+int Viewer::refineTarget() const {
+  return options_.refineSamples > 1 ? std::max(options_.refineSamples, settings_.render.spp) : 1;
 }
 
 glm::dvec3 Viewer::grabbedCentre() const { return simulation_.grabbedPoint(cursorHand_); }

@@ -34,6 +34,7 @@ namespace slime {
 
 struct ViewerOptions {
   int maxFrames = 0;                                // quit after this many frames; 0 = until Esc
+  double quitAtSimulatedSeconds = 0.0;              // quit once the simulation reaches this time; 0 = never
   std::string screenshotOnExit;                     // PNG of the last frame, if set
   std::string reportPath;                           // JSON summary written at exit, if set
   std::string frameLogPath;                         // CSV of every frame (frame_log.h) at exit, if set
@@ -68,6 +69,10 @@ class Viewer {
   // cost predicts to fit ViewerOptions::refineBandMs, at most half the image, so a whole-image sample
   // (about 60 ms at 1280×720 on two cores) is spread over several frames.
   static constexpr int kRefineBandRowStep = 8;  // bands are multiples of the renderer's tile rows
+  // Wall time a frame may spend tracing caustic photons (Caustics::setFrameBudget): the default 10,000
+  // photons fit (about 10 ms on AMD family 25); render.photons up to 10⁷ would take seconds a frame,
+  // and are gathered over more frames instead.
+  static constexpr double kCausticsBudgetMs = 12.0;
 
   Viewer(ViewerBackend& backend, const Settings& settings, ViewerOptions options = {});
   ~Viewer();
@@ -88,6 +93,8 @@ class Viewer {
   void simulationAdvanced();
   const Settings& settings() const { return settings_; }
   const FrameStats& stats() const { return stats_; }
+  // Every frame's record so far (kept when a frame log or a report is asked for).
+  const std::vector<FrameRecord>& frameRecords() const { return frameRecords_; }
 
   // The scene as the panels show it (rebuild-type values waiting for Reload included), with the
   // window's size as the image size: what Ctrl+S saves.
@@ -149,7 +156,7 @@ class Viewer {
   std::vector<HandView> handViews() const;  // what the Hands section shows
   PanelRequests drawPanelsAndOverlay(const GrabMarks& marks);  // reads, never edits, the slime
   void applyPanelRequests(const PanelRequests& requests);
-  void followTargetFps();  // the adaptive resolution's target from render.targetFps
+  void followTargetFps();  // the adaptive resolutions' targets from render.targetFps and render.orbitFps
   void present();
   void finishFrame(double frameMs);     // stats, the adaptive resolution, the frame log
 
@@ -163,6 +170,8 @@ class Viewer {
   glm::ivec2 viewSize() const;
   void toViewCoordinates(FrameInput& input) const;
   Settings frameSettings(glm::ivec2 imageSize) const;
+  // Samples per pixel a still image refines to: ViewerOptions::refineSamples or render.spp, the more.
+  int refineTarget() const;
   glm::dvec3 slimeCentre() const;
   glm::dvec3 grabbedCentre() const;  // where the grabbed points are now
   bool interacting() const { return wallClock_ - lastInteraction_ < kRefineAfterSeconds; }
@@ -203,7 +212,11 @@ class Viewer {
   int cursorHand_ = 0;             // ... which one: 0 (left-drag) or 1 (Ctrl+left-drag, kept on release)
   PhysicsClock clock_;
   FrameStats stats_;
-  AdaptiveResolution resolution_;
+  AdaptiveResolution resolution_;       // frames whose camera stands (render.targetFps)
+  AdaptiveResolution orbitResolution_;  // frames whose camera moves (render.orbitFps): its own scale, kept between moves
+  // The adaptive resolution of this frame's kind: the camera moving or not.
+  AdaptiveResolution& frameResolution() { return cameraMoved_ ? orbitResolution_ : resolution_; }
+  const AdaptiveResolution& frameResolution() const { return cameraMoved_ ? orbitResolution_ : resolution_; }
   ImageCheck check_;
   double checkSecondsToSkip_ = 0.0;  // the last check's time, taken off the next frame's elapsed time
   double framePsnrDb_ = -1.0;        // this frame's checked PSNR; < 0: not checked
@@ -215,6 +228,11 @@ class Viewer {
   SlimeMetrics metrics_;
   std::optional<ScenarioPlayer> scenario_;
   std::size_t scenarioEventsFired_ = 0;  // options_.scenario's events the player has fired so far
+  glm::dvec2 orbitApplied_{0.0};  // the scenario's orbits the camera has turned by so far (orbitAt), degrees
+  // The last frame a setting was edited in (panels or a "set" event) and the frame that draws the edit:
+  // the same for a "set" event, which fires before the frame's trace; the next for the panels'.
+  std::int64_t editedFrame_ = -1;
+  std::int64_t editDrawnFrame_ = -1;
 
   bool quit_ = false;
   bool singleStepPending_ = false;

@@ -139,6 +139,7 @@ void Viewer::writeReport() const {
       {"traced_full_resolution_frames", stats_.fullResolutionFrames},
       {"traced_reduced_resolution_frames", stats_.reducedResolutionFrames},
       {"adaptive_resolution", {{"target_fps", resolution_.targetFps()}, {"scale", resolution_.scale()}}},
+      {"orbit_resolution", {{"target_fps", orbitResolution_.targetFps()}, {"scale", orbitResolution_.scale()}}},
       {"while_grabbed", summaryJson(summarizeFrames(frameRecords_, [](const FrameRecord& frame) {
          return frame.grabbed;
        }))},

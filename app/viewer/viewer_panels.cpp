@@ -116,6 +116,8 @@ void Viewer::applyEdit(const std::string& group) {
   copyReloadFields(built_, settings_);
   simulation_.applySettings(settings_);
   sceneChanged_ = true;
+  editedFrame_ = stats_.frames;
+  editDrawnFrame_ = stats_.frames + 1;
 }
 
 void Viewer::reloadSlime() {

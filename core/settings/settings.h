@@ -77,6 +77,7 @@ struct RenderSettings {
   std::string backend = "embree";    // embree | brute (the seed's algorithm, the oracle)
   double scale = 1.0;                // resolution scale of the viewer's traced image (0.1..1)
   double targetFps = 0.0;            // viewer: the frame rate its adaptive resolution aims for, 0 = off
+  double orbitFps = 30.0;            // viewer: the same while the camera moves (every pixel changes), 0 = off
   bool shadows = true;               // trace shadow rays to the point light
   bool caustics = true;              // light focused through the slime onto the floor (photons, render/caustics/)
   int photons = 10000;               // photons shot per frame while the slime or the light moves

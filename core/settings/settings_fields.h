@@ -153,6 +153,9 @@ void forEachField(S& s, Visitor&& visitor) {
         "lattice from neighbours two pixels away (diagonal, then beside), then the rest as the quarter does");
   visit("render.targetFps", s.render.targetFps, Limits{0.0, 240.0, "frames per second"},
         "viewer: trace the image smaller while moving frames miss this rate (0: always full resolution)");
+  visit("render.orbitFps", s.render.orbitFps, Limits{0.0, 240.0, "frames per second"},
+        "viewer: while the camera moves (every pixel changes), trace the image smaller when frames miss this rate; "
+        "full resolution again the frame the camera stops (0: always full resolution)");
   // Simulation
   visit("sim.dt", s.sim.dt, Limits{1e-6, 0.01, "s"}, "fixed time step");
   visit("sim.integrator", s.sim.integrator,

@@ -63,18 +63,19 @@ ScenarioEvent readEvent(const json& item, const EventReader& reader) {
   if (!item.is_object()) reader.fail("must be an object, got " + item.dump());
   ScenarioEvent event;
   event.time = reader.number(item, "event", "t", 0.0, true, 0.0);
-  const char* actions[] = {"grab", "drag", "release", "press", "set"};
+  const char* actions[] = {"grab", "drag", "release", "press", "set", "orbit"};
   int found = 0;
   for (const auto& entry : item.items()) {
     const std::string& key = entry.key();  // not a structured binding: clang 14 cannot capture those
     if (key == "t" || key == "hand") continue;
     if (std::none_of(std::begin(actions), std::end(actions), [&](const char* a) { return key == a; }))
-      reader.fail("unknown action \"" + key + "\" (grab, drag, release, press, set)");
+      reader.fail("unknown action \"" + key + "\" (grab, drag, release, press, set, orbit)");
     ++found;
   }
-  if (found != 1) reader.fail("needs exactly one action of grab, drag, release, press, set");
+  if (found != 1) reader.fail("needs exactly one action of grab, drag, release, press, set, orbit");
   if (item.contains("hand")) {
-    if (item.contains("set")) reader.fail("\"hand\" is not allowed with set (grab, drag, release, press take it)");
+    if (item.contains("set") || item.contains("orbit"))
+      reader.fail("\"hand\" is not allowed with set or orbit (grab, drag, release, press take it)");
     const json& hand = item["hand"];
     if (!hand.is_number_integer() || hand.get<std::int64_t>() < 0 || hand.get<std::int64_t>() >= kHands)
       reader.fail("hand must be 0 or 1, got " + hand.dump());
@@ -108,6 +109,14 @@ ScenarioEvent readEvent(const json& item, const EventReader& reader) {
     event.duration = reader.number(press, "press", "duration", 0.0, false, 0.0);
     event.hold = reader.number(press, "press", "hold", 0.0, false, 0.0);
     event.radius = reader.number(press, "press", "radius", kDefaultGrabRadius, false, 1e-6);
+  } else if (item.contains("orbit")) {
+    const json& orbit = item["orbit"];
+    reader.allowOnly(orbit, "orbit", {"yaw", "pitch", "duration"});
+    event.kind = ScenarioEvent::Kind::Orbit;
+    event.yaw = reader.number(orbit, "orbit", "yaw", 0.0, false, -1e6);
+    event.pitch = reader.number(orbit, "orbit", "pitch", 0.0, false, -1e6);
+    event.duration = reader.number(orbit, "orbit", "duration", 0.0, false, 0.0);
+    if (event.yaw == 0.0 && event.pitch == 0.0) reader.fail("orbit needs a yaw or a pitch (degrees) that is not zero");
   } else {
     const json& values = item["set"];
     if (!values.is_object() || values.empty()) reader.fail("set must be an object of \"key\": value");
@@ -153,6 +162,16 @@ Scenario loadScenario(const std::string& path) {
   return parseScenario(document, path);
 }
 
+glm::dvec2 orbitAt(const Scenario& scenario, double t) {
+  glm::dvec2 turned{0.0};
+  for (const ScenarioEvent& event : scenario.events) {
+    if (event.kind != ScenarioEvent::Kind::Orbit || event.time > t + kTimeTolerance) continue;
+    const double done = event.duration > 0.0 ? std::clamp((t - event.time) / event.duration, 0.0, 1.0) : 1.0;
+    turned += done * glm::dvec2(event.yaw, event.pitch);
+  }
+  return turned;
+}
+
 ScenarioPlayer::ScenarioPlayer(Scenario scenario) : scenario_(std::move(scenario)) {}
 
 bool ScenarioPlayer::finished() const {
@@ -184,6 +203,8 @@ void ScenarioPlayer::fire(const ScenarioEvent& event, Simulation& simulation, Se
       for (const auto& [key, value] : event.values.items()) setSetting(settings, key, value);
       validateSettings(settings);
       simulation.applySettings(settings);
+      break;
+    case ScenarioEvent::Kind::Orbit:  // the viewer's camera (orbitAt), not the simulation's
       break;
   }
 }

@@ -4,6 +4,8 @@
 #include "core/simulation/integrator_choice.h"
 #include "core/geometry/level_of_detail.h"
 
+#include <glm/geometric.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -16,6 +18,15 @@ namespace {
 constexpr int kGoodStateInterval = 8;   // steps between saved good states
 constexpr int kMaxRefinement = 64;      // the guard doubles substeps after a rollback, up to this
 constexpr int kCleanStepsToCoarsen = 500;  // after this many steps with no rollback it halves them again
+// The guard's speed limit follows the hands (issue 45 item 5): a hand's target that moves at v may
+// fling the points it holds past v (the spring overshoots, a light slime whips), so the limit is
+// kHandSpeedFactor times the fastest hand's speed when that is over kAbsurdSpeed. The speed is
+// remembered with time constant kHandSpeedMemory, long enough for a slime flung at the hand's speed to
+// be stopped by the hand or the floor's friction (a 10 g slime pulled at 16 N stops from 100 m/s in
+// 60 ms), so a state the hands made fast is not taken for a divergence; a blow-up grows without bound
+// within a few steps and still passes any such limit.
+constexpr double kHandSpeedFactor = 2.0;
+constexpr double kHandSpeedMemory = 0.25;  // s
 
 }  // namespace
 
@@ -47,7 +58,10 @@ Simulation::Simulation(const Simulation& other)
       cleanSteps_(other.cleanSteps_),
       divergences_(other.divergences_),
       goodTime_(other.goodTime_),
-      goodStep_(other.goodStep_) {
+      goodStep_(other.goodStep_),
+      handSpeed_(other.handSpeed_) {
+  std::copy(std::begin(other.handHeld_), std::end(other.handHeld_), std::begin(handHeld_));
+  std::copy(std::begin(other.handTarget_), std::end(other.handTarget_), std::begin(handTarget_));
   for (const std::unique_ptr<Piece>& piece : other.pieces_) pieces_.push_back(piece->clone());
 }
 
@@ -71,6 +85,8 @@ void Simulation::start() {
   stepCount_ = 0;
   refinement_ = 1;
   divergences_.clear();
+  handSpeed_ = 0.0;
+  for (bool& held : handHeld_) held = false;
   rebuildModels();
   saveGoodState();
 }
@@ -129,7 +145,21 @@ int Simulation::substepsPerStep() const {
   return substeps * refinement_;
 }
 
+double Simulation::speedLimit() {
+  double fastest = 0.0;
+  for (int hand = 0; hand < kHands; ++hand) {
+    const bool holding = grabbing(hand);
+    const glm::dvec3 target = holding ? grabTarget(hand) : glm::dvec3(0.0);
+    if (holding && handHeld_[hand]) fastest = std::max(fastest, glm::length(target - handTarget_[hand]) / settings_.sim.dt);
+    handHeld_[hand] = holding;
+    handTarget_[hand] = target;
+  }
+  handSpeed_ = std::max(fastest, handSpeed_ * std::exp(-settings_.sim.dt / kHandSpeedMemory));
+  return std::max(kAbsurdSpeed, kHandSpeedFactor * handSpeed_);
+}
+
 void Simulation::step() {
+  const double speedLimit = this->speedLimit();
   for (const std::unique_ptr<Piece>& piece : pieces_) piece->beginStep({stepCount_, automaticSubsteps_});
   const int substeps = substepsPerStep();
   const double h = settings_.sim.dt / substeps;
@@ -139,7 +169,7 @@ void Simulation::step() {
   ++stepCount_;
   for (const std::unique_ptr<Piece>& piece : pieces_) piece->endStep({stepCount_, automaticSubsteps_});
   for (const std::unique_ptr<Piece>& piece : pieces_) {
-    const std::string what = findDivergence(piece->state());
+    const std::string what = findDivergence(piece->state(), speedLimit);
     if (!what.empty()) {
       rollBack(what);
       return;

@@ -126,6 +126,9 @@ class Simulation {
   const Piece& handPiece(int) const { return *pieces_.front(); }
   void saveGoodState();
   void rollBack(const std::string& what);
+  // The divergence guard's speed limit for this step: kAbsurdSpeed, or more while the hands move fast
+  // (simulation.cpp's kHandSpeedFactor); follows the hands' targets since the last step.
+  double speedLimit();
 
   Settings settings_;
   std::vector<std::unique_ptr<Piece>> pieces_;  // never empty
@@ -139,6 +142,9 @@ class Simulation {
   std::vector<DivergenceEvent> divergences_;
   double goodTime_ = 0.0;  // when the pieces' good states were saved
   std::int64_t goodStep_ = 0;
+  bool handHeld_[kHands] = {false, false};  // the hand held at the last step
+  glm::dvec3 handTarget_[kHands] = {};      // ... with this target
+  double handSpeed_ = 0.0;                  // the hands' recent fastest target speed, m/s (speedLimit)
 };
 
 }  // namespace slime

@@ -15,8 +15,16 @@ constexpr std::uint64_t kChunk = 1024;  // photons per task; landings concatenat
 
 }  // namespace
 
+std::uint64_t Caustics::withinBudget(std::uint64_t wanted) const {
+  if (!(frameBudgetMs_ > 0.0)) return wanted;
+  if (!(msPerPhoton_ > 0.0)) return std::min(wanted, kFirstPhotons);  // no rate yet: a first trace to time
+  const double affordable = std::max(static_cast<double>(kFewestPhotons), frameBudgetMs_ / msPerPhoton_);
+  return affordable < static_cast<double>(wanted) ? static_cast<std::uint64_t>(affordable) : wanted;
+}
+
 void Caustics::trace(const PhotonTracer& tracer, std::uint64_t first, std::uint64_t photons, tbb::task_arena* arena,
                      Photons& out) {
+  const auto start = std::chrono::steady_clock::now();
   const std::uint64_t chunks = (photons + kChunk - 1) / kChunk;
   std::vector<std::vector<PhotonLanding>> found(chunks), straight(chunks);
   std::vector<PhotonTally> tallies(chunks);
@@ -43,6 +51,13 @@ void Caustics::trace(const PhotonTracer& tracer, std::uint64_t first, std::uint6
     out.tally += tallies[c];
   }
   lastTraced_ += photons;
+  // The rate for the frame budget, from traces long enough to time (smoothed: a loaded machine's
+  // frames vary).
+  if (photons >= kFewestPhotons) {
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    const double rate = ms / static_cast<double>(photons);
+    msPerPhoton_ = msPerPhoton_ > 0.0 ? 0.5 * (msPerPhoton_ + rate) : rate;
+  }
 }
 
 void Caustics::append(const Photons& photons) {
@@ -95,9 +110,10 @@ const CausticMap* Caustics::update(const Settings& settings, const ShadingParame
     if (progressive) {
       // A moving frame: M photons, half of them kept from the last moving frame where only the slime moved.
       frames_ = 1;
-      const std::uint64_t moving = std::max<std::uint64_t>(1, budget_ / kMovingDivisor), half = moving / 2;
+      const std::uint64_t moving = withinBudget(std::max<std::uint64_t>(1, budget_ / kMovingDivisor)), half = moving / 2;
       const std::uint64_t firsts[2] = {0, half}, counts[2] = {half, moving - half};
-      const bool keep = halvesValid_ && onlyTheSlimeMoved && half > 0;
+      const bool keep = halvesValid_ && onlyTheSlimeMoved && half > 0 && moving == moving_;
+      moving_ = moving;
       for (int h = 0; h < 2; ++h) {
         if (keep && h != nextHalf_) continue;
         halves_[h].clear();
@@ -132,6 +148,7 @@ const CausticMap* Caustics::update(const Settings& settings, const ShadingParame
   if (progressive) {
     ++frames_;
     target = std::min(finished, budget_ * static_cast<std::uint64_t>(frames_));
+    if (target > traced_) target = traced_ + withinBudget(target - traced_);  // the rest in later frames
   }
   added_.clear();
   trace(tracer, traced_, target - traced_, arena, added_);

@@ -48,6 +48,15 @@ class Caustics {
   const CausticMap* update(const Settings& settings, const ShadingParameters& parameters, const SlimeGeometry& geometry,
                            const SlimeIntersector& intersector, tbb::task_arena* arena, bool progressive = false);
 
+  // Progressive updates only (the viewer): no update traces photons for longer than about this, at the
+  // rate the last updates traced them (at least kFewestPhotons a frame); 0, the default: no limit.
+  // render.photons is a slider up to 10⁷ a frame (seconds of tracing): the map then gathers them over
+  // more frames instead, a moving frame's map is built from fewer, and the still map still ends at the
+  // finished one (the same photons in the same order).
+  void setFrameBudget(double milliseconds) { frameBudgetMs_ = milliseconds; }
+  static constexpr std::uint64_t kFewestPhotons = 1000;
+  static constexpr std::uint64_t kFirstPhotons = 5000;  // before the rate is known: the default's moving frame
+
   std::uint64_t photons() const { return traced_; }  // photons behind the current map
   std::uint64_t lastTraced() const { return lastTraced_; }  // photons the last update traced
   const PhotonTally& tally() const { return tally_; }
@@ -81,6 +90,12 @@ class Caustics {
   PhotonCone cone_;
   std::uint64_t traced_ = 0, budget_ = 0;
   int frames_ = 0;  // progressive updates since the map started again
+  std::uint64_t moving_ = 0;  // the last moving frame's M (kept halves need the same M)
+  // setFrameBudget: the budget, and the time per photon measured on the last traces (0: none yet).
+  double frameBudgetMs_ = 0.0;
+  double msPerPhoton_ = 0.0;
+  // `wanted` photons, or fewer where the frame budget says so.
+  std::uint64_t withinBudget(std::uint64_t wanted) const;
   double lastMs_ = 0.0;
 };
 

@@ -425,6 +425,7 @@ Renderer::Renderer(const Settings& settings) : impl_(std::make_unique<Impl>(sett
 Renderer::~Renderer() = default;
 
 void Renderer::setProgressiveCaustics(bool progressive) { impl_->progressiveCaustics = progressive; }
+void Renderer::setCausticsFrameBudget(double milliseconds) { impl_->caustics.setFrameBudget(milliseconds); }
 
 void Renderer::updateSlime(const std::vector<SurfaceView>& surfaces) {
   const auto start = std::chrono::steady_clock::now();

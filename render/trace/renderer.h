@@ -102,6 +102,8 @@ class Renderer {
   // snapshot, a benchmark, a test), every render() uses the finished map, so its image depends on the
   // scene alone and not on the frames rendered before (render/caustics/caustics.h).
   void setProgressiveCaustics(bool progressive);
+  // With progressive caustics, the photons a frame traces stop at about this much time (Caustics::setFrameBudget).
+  void setCausticsFrameBudget(double milliseconds);
 
   // The point where the ray through image point (u, v) in [0,1]² first hits the slime, if it does.
   std::optional<glm::dvec3> pick(const Settings& settings, double u, double v) const;

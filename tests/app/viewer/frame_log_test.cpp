@@ -104,6 +104,37 @@ TEST(FrameLog, PhasesHaveTheirPercentilesAndLongestFrame) {
   EXPECT_EQ(phases[1].frames, 1);
   EXPECT_EQ(phases[1].p99Ms, 30.0);
   EXPECT_STREQ(nameOf(FramePhase::Orbiting), "orbiting");
+  EXPECT_STREQ(nameOf(FramePhase::Editing), "editing");
+}
+
+TEST(FrameLog, TheSlowestWindowCountsTheFramesEndingInIt) {
+  std::vector<FrameRecord> records;
+  double t = 0.0;
+  for (int i = 0; i < 300; ++i) {  // 10 s at 30 fps ...
+    t += 1.0 / 30.0;
+    FrameRecord frame = record(1000.0 / 30.0, true, true, false);
+    frame.endSeconds = t;
+    records.push_back(frame);
+  }
+  for (int i = 0; i < 10; ++i) {  // ... then 1 s at 10 fps ...
+    t += 0.1;
+    FrameRecord frame = record(100.0, true, true, false);
+    frame.endSeconds = t;
+    records.push_back(frame);
+  }
+  for (int i = 0; i < 300; ++i) {  // ... then 5 s at 60 fps
+    t += 1.0 / 60.0;
+    FrameRecord frame = record(1000.0 / 60.0, true, true, false);
+    frame.endSeconds = t;
+    records.push_back(frame);
+  }
+  const FrameWindow slowest = slowestWindow(records, 3.0, 1.0);
+  // The slowest 3 s: 2 s at 30 fps and the 1 s at 10 fps, (60 + 10) / 3 frames a second.
+  EXPECT_NEAR(slowest.fps, 70.0 / 3.0, 1.0 / 3.0 + 1e-9);
+  EXPECT_NEAR(slowest.startSeconds, 8.0, 0.05);
+  EXPECT_LT(slowestWindow(records, 30.0).fps, 0.0) << "a run shorter than the window has no window";
+  EXPECT_NEAR(slowestWindow(std::vector<FrameRecord>(records.begin(), records.begin() + 300), 3.0, 1.0).fps, 30.0,
+              1.0 / 3.0 + 1e-9);
 }
 
 TEST(FrameLog, AnUnwritablePathIsReported) {

@@ -68,6 +68,22 @@ TEST(HeadlessViewer, AStillImageRefinesToSixteenSamplesAndAChangeResetsIt) {
   EXPECT_EQ(viewer.stats().samplesPerPixel, 1);
 }
 
+// render.spp above the refinement's 16 samples: each frame still traces one sample a pixel, and the
+// still image refines to render.spp's (tracing all 64 in a frame took seconds).
+TEST(HeadlessViewer, SupersamplingIsReachedByRefiningNotInOneFrame) {
+  HeadlessGl backend(320, 240);  // room for the image beside the panel column
+  Settings settings = fixture::smallViewerScene();
+  settings.render.spp = 25;
+  Viewer viewer(backend, settings, ViewerOptions{});
+  ASSERT_TRUE(viewer.frame());
+  EXPECT_EQ(viewer.stats().samplesPerPixel, 1);
+  // One sample a pixel: a few rays each (primary, shadow, the slime's refraction), not 25 of them.
+  const double pixels = static_cast<double>(viewer.stats().imageWidth) * viewer.stats().imageHeight;
+  EXPECT_LT(static_cast<double>(viewer.stats().rays), 10.0 * pixels);
+  for (int frame = 0; frame < 900 && viewer.stats().samplesPerPixel < 25; ++frame) ASSERT_TRUE(viewer.frame());
+  EXPECT_EQ(viewer.stats().samplesPerPixel, 25);
+}
+
 // A slime that moves every third frame (creeping past the redraw threshold) is redrawn when it moves
 // and not refined between its moves: the bands of a refinement sample would be thrown away by the next
 // move. Once still, it refines within a few frames.
@@ -310,6 +326,62 @@ TEST(HeadlessViewer, AScenarioSetEventIsAppliedAndDrawnAtOnce) {
   EXPECT_GT(samples, 1) << "a still image did not refine in " << frames << " frames";
   EXPECT_EQ(viewer.settings().slime.color, glm::dvec3(0.9, 0.2, 0.2));
   EXPECT_EQ(viewer.stats().samplesPerPixel, 1) << "the new colour was not traced in the frame it was set";
+}
+
+TEST(HeadlessViewer, AScenarioOrbitTurnsTheCameraAboutTheSlimeAndItsFramesAreOrbiting) {
+  ViewerOptions options;
+  options.scenario = parseScenario(nlohmann::json::parse(R"({"events": [
+    {"t": 0.1, "orbit": {"yaw": 90, "duration": 0.2}},
+    {"t": 0.5, "set": {"slime.color": [0.9, 0.2, 0.2]}}]})"), "inline");
+  options.frameLogPath = (std::filesystem::path(SLIME_TEST_OUTPUT_DIR) / "viewer_orbit_frames.csv").string();
+  Settings settings = fixture::smallViewerScene();
+  settings.sim.gravity = 0.0;
+  SteppingHeadlessGl backend(160, 120, 1.0 / 60.0);
+  Viewer viewer(backend, settings, options);
+  const glm::dvec3 centre = settings.slime.position;
+  const double distance = glm::length(settings.camera.position - centre);
+  for (int frame = 0; frame < 50; ++frame) ASSERT_TRUE(viewer.frame());
+  // A quarter turn about +z at the same distance (the slime, weightless, stays where it started).
+  const glm::dvec3 before = settings.camera.position - centre, after = viewer.settings().camera.position - centre;
+  EXPECT_NEAR(glm::length(after), distance, 1e-3 * distance);
+  EXPECT_NEAR(std::atan2(after.y, after.x) - std::atan2(before.y, before.x), M_PI / 2.0, 0.02);
+  int orbiting = 0, editing = 0;
+  for (const FrameRecord& record : viewer.frameRecords()) {
+    orbiting += record.phase == FramePhase::Orbiting;
+    editing += record.phase == FramePhase::Editing;
+  }
+  EXPECT_GE(orbiting, 10) << "0.2 s of orbit at 60 frames a second";
+  EXPECT_LE(orbiting, 14);
+  EXPECT_EQ(editing, 1) << "a set event fires before its frame's trace, which draws it";
+}
+
+TEST(HeadlessViewer, AnOrbitOverItsBudgetIsTracedSmallerAndTheFrameAfterItInFull) {
+  ViewerOptions options;
+  options.scenario = parseScenario(nlohmann::json::parse(R"({"events": [
+    {"t": 0.1, "orbit": {"yaw": 90, "duration": 0.3}}]})"), "inline");
+  options.frameLogPath = (std::filesystem::path(SLIME_TEST_OUTPUT_DIR) / "viewer_orbit_budget_frames.csv").string();
+  Settings settings = fixture::smallViewerScene();
+  settings.sim.gravity = 0.0;
+  settings.render.orbitFps = 240.0;  // 4.2 ms a frame: more than a headless frame with panels can meet
+  SteppingHeadlessGl backend(320, 240, 1.0 / 60.0);
+  Viewer viewer(backend, settings, options);
+  for (int frame = 0; frame < 40; ++frame) ASSERT_TRUE(viewer.frame());
+  const std::vector<FrameRecord>& records = viewer.frameRecords();
+  int smaller = 0;
+  std::size_t last = 0;
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    if (records[i].phase != FramePhase::Orbiting) continue;
+    smaller += records[i].scale < 1.0;
+    last = i;
+  }
+  EXPECT_GE(smaller, 5) << "orbiting frames over render.orbitFps's budget stayed at full size";
+  ASSERT_LT(last + 1, records.size());
+  EXPECT_EQ(records[last + 1].scale, 1.0) << "the frame after the camera stopped was not traced in full";
+  EXPECT_TRUE(records[last + 1].fullResolution);
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    if (records[i].phase == FramePhase::Orbiting) continue;
+    EXPECT_EQ(records[i].scale, 1.0) << "frame " << i;
+  }
 }
 
 TEST(UiSnapshot, WritesTheWindowWithItsPanelsAtTheCameraSize) {

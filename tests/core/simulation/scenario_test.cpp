@@ -74,6 +74,23 @@ TEST(Scenario, BadFilesAreSettingsErrorsThatNameTheProblem) {
   expectError(R"({"events":[3]})", "event 0: must be an object");
 }
 
+TEST(Scenario, OrbitsTurnTheCameraLinearlyOverTheirDurationAndAddUp) {
+  const Scenario scenario = parseScenario(json::parse(R"({"events":[
+    {"t":1.0,"orbit":{"yaw":90,"duration":2}},
+    {"t":2.0,"orbit":{"yaw":-30,"pitch":10}}]})"), "test");
+  ASSERT_EQ(scenario.events.size(), 2u);
+  EXPECT_EQ(scenario.events[0].kind, ScenarioEvent::Kind::Orbit);
+  EXPECT_EQ(orbitAt(scenario, 0.5), glm::dvec2(0.0, 0.0));
+  EXPECT_NEAR(orbitAt(scenario, 1.5).x, 22.5, 1e-12);
+  EXPECT_NEAR(orbitAt(scenario, 2.0).x, 45.0 - 30.0, 1e-12);  // the second at once
+  EXPECT_NEAR(orbitAt(scenario, 2.0).y, 10.0, 1e-12);
+  EXPECT_NEAR(orbitAt(scenario, 9.0).x, 60.0, 1e-12);
+  expectError(R"({"events":[{"t":1,"orbit":{"duration":1}}]})", "orbit needs a yaw or a pitch");
+  expectError(R"({"events":[{"t":1,"orbit":{"yaw":10,"roll":1}}]})", "unknown field \"roll\" in orbit");
+  expectError(R"({"events":[{"t":1,"hand":1,"orbit":{"yaw":10}}]})", "not allowed with set or orbit");
+  expectError(R"({"events":[{"t":1,"orbit":{"yaw":10,"duration":-1}}]})", "orbit.duration must be at least 0");
+}
+
 TEST(Scenario, MissingOrBrokenFileIsASettingsError) {
   EXPECT_THROW(loadScenario("/nonexistent/scenario.json"), SettingsError);
 }

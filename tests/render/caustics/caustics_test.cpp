@@ -406,6 +406,46 @@ TEST(Caustics, MovingFramesTraceHalfThePhotonsAndKeepTheOtherHalf) {
   EXPECT_EQ(differences(*map, mapOf(a, {traced(a, 0, 2 * settings.render.photons)}, 2 * settings.render.photons)), 0);
 }
 
+// The viewer's frame budget (Caustics::setFrameBudget): render.photons goes up to 10⁷ a frame, seconds
+// of tracing. With a budget, a progressive update traces kFirstPhotons before it knows the rate and at
+// least kFewestPhotons after, never the whole budget of a large render.photons in one frame, and the
+// still map still ends at the finished map, photon for photon. (Without the budget every frame traced
+// its whole share: the first 6,000 and the next 18,000 here.)
+TEST(Caustics, AFrameBudgetSpreadsTheMapOverFramesAndItStillEndsAtTheFinishedMap) {
+  const glm::dvec3 light{0.1, 0.05, 0.5}, color{0.5, 0.7, 0.9};
+  Ball ball({0.0, 0.0, 0.04}, light, color, 20.0, false);
+  Settings settings = ball.settings;
+  settings.render.photons = 12000;  // a moving frame's 6,000 over kFirstPhotons
+  Caustics budgeted;
+  budgeted.setFrameBudget(1e-9);  // less than any trace: the fewest photons a frame
+  const auto update = [&](Caustics& caustics, bool progressive) {
+    return caustics.update(settings, ball.parameters, ball.geometry, ball.embree, nullptr, progressive);
+  };
+  ASSERT_NE(update(budgeted, true), nullptr);
+  EXPECT_EQ(budgeted.lastTraced(), Caustics::kFirstPhotons);
+  std::uint64_t frames = 1, largest = 0;
+  while (!budgeted.converged() && frames < 5000) {
+    update(budgeted, true);
+    largest = std::max(largest, budgeted.lastTraced());
+    ++frames;
+  }
+  EXPECT_EQ(largest, Caustics::kFewestPhotons);
+  ASSERT_TRUE(budgeted.converged()) << "after " << frames << " frames";
+  EXPECT_EQ(budgeted.photons(), Caustics::kStillBudgets * static_cast<std::uint64_t>(settings.render.photons));
+  Caustics plain;
+  const CausticMap* finished = update(plain, false);
+  const CausticMap* spread = update(budgeted, true);
+  ASSERT_NE(finished, nullptr);
+  ASSERT_NE(spread, nullptr);
+  int differing = 0;
+  for (int j = 0; j <= 40; ++j)
+    for (int i = 0; i <= 40; ++i) {
+      const glm::vec3 point(-0.1f + 0.25f * i / 40.0f, -0.12f + 0.24f * j / 40.0f, 0.0f);
+      differing += finished->gain(point, glm::vec3(light)) != spread->gain(point, glm::vec3(light));
+    }
+  EXPECT_EQ(differing, 0);
+}
+
 // The map's gain is a ratio of what arrived over what would have arrived unblocked, each over its own
 // photons: a slime of index 1 that absorbs and reflects nothing lets every photon through on its
 // straight line, so its "shadow" is no shadow at all, even at the outline where the kernel straddles it

@@ -1,0 +1,92 @@
+#include "app/viewer/viewer_bench.h"
+
+#include "app/bench/report/bench_report.h"
+#include "app/viewer/frame_log.h"
+#include "app/viewer/viewer.h"
+#include "core/settings/settings_io.h"
+#include "core/simulation/scenario.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <stdexcept>
+
+namespace slime {
+namespace {
+
+constexpr double kWindowSeconds = 3.0;  // the aim: at least kAimFps in every window this long
+constexpr double kAimFps = 30.0;
+constexpr double kLongestAimMs = 100.0;
+
+// The aim for a phase's slow frames: the 95th percentile within max(1.5 × median, median + 8 ms).
+double p95Allowance(const PhaseSummary& phase) { return std::max(1.5 * phase.medianMs, phase.medianMs + 8.0); }
+
+}  // namespace
+
+int runViewerBench(const Settings& settings, const ViewerBenchOptions& options) {
+  ViewerOptions viewerOptions;
+  viewerOptions.scenario = loadScenario(options.scenarioPath);
+  double seconds = options.seconds;
+  if (seconds <= 0.0) {
+    double last = 0.0;
+    for (const ScenarioEvent& event : viewerOptions.scenario->events)
+      last = std::max(last, event.time + event.duration + event.hold);
+    seconds = last + 6.0;
+  }
+  viewerOptions.quitAtSimulatedSeconds = seconds;
+  viewerOptions.frameLogPath = options.csvPath.empty() ? "/dev/null" : options.csvPath;  // keeps the records
+  Settings run = settings;
+  run.camera.width = options.width;
+  run.camera.height = options.height;
+  HeadlessGl backend(options.width, options.height, options.api);
+  backend.setRealTime(true);
+  std::vector<FrameRecord> records;
+  {
+    Viewer viewer(backend, run, viewerOptions);
+    std::printf("bench viewer: %dx%d, scenario %s, %.1f simulated s, headless %s in real time\n", options.width,
+                options.height, options.scenarioPath.c_str(), seconds, nameOf(backend.api()));
+    if (viewer.run() != 0) throw std::runtime_error("bench viewer: cannot write the frame log " + options.csvPath);
+    records = viewer.frameRecords();
+  }
+  const std::vector<PhaseSummary> phases = summarizePhases(records, options.afterSeconds);
+  const FrameWindow slowest = slowestWindow(records, kWindowSeconds, options.afterSeconds);
+  double longest = 0.0;
+  for (const FrameRecord& record : records)
+    if (record.endSeconds >= options.afterSeconds) longest = std::max(longest, record.frameMs);
+
+  std::printf("%-10s %7s %7s %9s %8s %8s %9s %12s\n", "phase", "frames", "fps", "median_ms", "p95_ms", "p99_ms",
+              "longest_ms", "p95_aim_ms");
+  nlohmann::json table = nlohmann::json::array();
+  for (const PhaseSummary& phase : phases) {
+    const double fps = phase.seconds > 0.0 ? static_cast<double>(phase.frames) / phase.seconds : 0.0;
+    const bool p95Met = phase.p95Ms <= p95Allowance(phase);
+    std::printf("%-10s %7lld %7.1f %9.1f %8.1f %8.1f %9.1f %8.1f %-3s\n", nameOf(phase.phase),
+                static_cast<long long>(phase.frames), fps, phase.medianMs, phase.p95Ms, phase.p99Ms, phase.longestMs,
+                p95Allowance(phase), p95Met ? "met" : "MISSED");
+    table.push_back({{"phase", nameOf(phase.phase)}, {"frames", phase.frames}, {"fps", fps},
+                     {"median_ms", phase.medianMs}, {"p95_ms", phase.p95Ms}, {"p99_ms", phase.p99Ms},
+                     {"longest_ms", phase.longestMs}, {"p95_aim_ms", p95Allowance(phase)}, {"p95_aim_met", p95Met}});
+  }
+  std::printf("slowest %.0f s window: %.1f fps from %.1f s (aim %.0f: %s); longest frame %.1f ms (aim %.0f: %s)\n",
+              kWindowSeconds, slowest.fps, slowest.startSeconds, kAimFps, slowest.fps >= kAimFps ? "met" : "MISSED",
+              longest, kLongestAimMs, longest <= kLongestAimMs ? "met" : "MISSED");
+  if (!options.jsonPath.empty()) {
+    const nlohmann::json report = {{"machine", machineJson()},
+                                   {"size", {options.width, options.height}},
+                                   {"scenario", options.scenarioPath},
+                                   {"simulated_seconds", seconds},
+                                   {"after_seconds", options.afterSeconds},
+                                   {"phases", table},
+                                   {"slowest_window", {{"seconds", kWindowSeconds}, {"fps", slowest.fps},
+                                                       {"start_s", slowest.startSeconds}}},
+                                   {"longest_ms", longest}};
+    std::ofstream file(options.jsonPath);
+    file << report.dump(2) << "\n";
+    if (!file) throw std::runtime_error("bench viewer: cannot write " + options.jsonPath);
+  }
+  return 0;
+}
+
+}  // namespace slime
