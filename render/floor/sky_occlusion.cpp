@@ -1,5 +1,7 @@
 #include "render/floor/sky_occlusion.h"
 
+#include "render/slime/convex_outline.h"
+
 #include <cmath>
 
 namespace slime {
@@ -39,31 +41,55 @@ std::vector<Solid> solidsOf(const SlimeGeometry& geometry) {
   return solids;
 }
 
-float equivalentRadius(float volume) { return std::cbrt(volume * (3.0f / 12.5663706f)); }
+float cross(glm::vec2 a, glm::vec2 b) { return a.x * b.y - a.y * b.x; }
 
 }  // namespace
 
-std::vector<SkyDisc> skyOcclusionDiscs(const SlimeGeometry& geometry) {
-  std::vector<SkyDisc> discs;
-  for (const Solid& s : solidsOf(geometry))
-    discs.push_back({s.centroid.x, s.centroid.y, kSkyOcclusionReach * equivalentRadius(s.volume)});
-  return discs;
-}
-
-std::vector<SkyBlocker> skyBlockers(const SlimeGeometry& geometry, const ShadingParameters& p) {
-  std::vector<SkyBlocker> blockers;
-  if (!(p.ambientLight.x > 0.0f || p.ambientLight.y > 0.0f || p.ambientLight.z > 0.0f)) return blockers;
+SkyOcclusion::SkyOcclusion(const SlimeGeometry& geometry, const ShadingParameters& p) {
+  if (!(p.ambientLight.x > 0.0f || p.ambientLight.y > 0.0f || p.ambientLight.z > 0.0f) || !p.shadows) return;
+  const std::size_t vertices = geometry.vertexCount();
+  if (vertices == 0) return;
+  // The shadow: every vertex cast from the light onto z = 0 (the light above them all), then their hull.
+  const glm::dvec3 light(p.lightPosition);
+  std::vector<glm::dvec2> cast;
+  cast.reserve(vertices);
+  for (std::size_t i = 0; i < vertices; ++i) {
+    const glm::dvec3 v(geometry.positions[i]);
+    if (!(light.z - v.z > 1e-9 * std::max(1.0, light.z))) return;
+    const double s = light.z / (light.z - v.z);
+    cast.emplace_back(light.x + (v.x - light.x) * s, light.y + (v.y - light.y) * s);
+  }
+  ConvexOutline outline;
+  outline.build(cast);
+  if (!outline.bounded()) return;
+  low_ = glm::vec2(kInfinity);
+  high_ = glm::vec2(-kInfinity);
+  for (const glm::dvec2& corner : outline.corners()) {
+    hull_.emplace_back(corner);
+    low_ = glm::min(low_, hull_.back());
+    high_ = glm::max(high_, hull_.back());
+  }
   for (const Solid& s : solidsOf(geometry)) {
-    const float r = equivalentRadius(s.volume);
-    SkyBlocker& b = blockers.emplace_back();
+    const float r = std::cbrt(s.volume * (3.0f / 12.5663706f));
+    SkyBlocker& b = blockers_.emplace_back();
     b.centroid = s.centroid;
     b.radius2 = r * r;
-    b.taperStart2 = kSkyOcclusionTaperStart * kSkyOcclusionTaperStart * r * r;
-    b.reach2 = kSkyOcclusionReach * kSkyOcclusionReach * r * r;
     const float path = p.ior * p.ior * 4.0f * s.volume / s.area;
     for (int c = 0; c < 3; ++c) b.absorbed[c] = 1.0f - p.transmission * std::exp(-p.slimeAbsorption[c] * path);
   }
-  return blockers;
+}
+
+bool SkyOcclusion::inShadow(glm::vec2 p) const {
+  const std::size_t n = hull_.size();
+  const glm::vec2 origin = hull_[0], q = p - origin;
+  if (cross(hull_[1] - origin, q) < 0.0f || cross(hull_[n - 1] - origin, q) > 0.0f) return false;
+  std::size_t lowEnd = 1, highEnd = n - 1;  // q lies between the rays to hull_[lowEnd] and hull_[highEnd]
+  while (highEnd - lowEnd > 1) {
+    const std::size_t middle = (lowEnd + highEnd) / 2;
+    if (cross(hull_[middle] - origin, q) >= 0.0f) lowEnd = middle;
+    else highEnd = middle;
+  }
+  return cross(hull_[highEnd] - hull_[lowEnd], p - hull_[lowEnd]) >= 0.0f;
 }
 
 }  // namespace slime

@@ -1,7 +1,8 @@
-// How much of the ambient (sky) light a floor point loses to the slime standing between it and the sky.
+// How much of the ambient (sky) light a floor point in the slime's shadow loses to the slime standing
+// between it and the sky.
 //
 // The ambient term albedo × I_a is what a uniform sky of radiance I_a gives a Lambertian floor that sees
-// all of it. Beside and under the slime part of that sky is seen through the jelly, which absorbs: a
+// all of it. Under and beside the slime part of that sky is seen through the jelly, which absorbs: a
 // path-traced reference (scripts/reference/, Cycles) found the green slime's shadow 29, 19 and 28 % darker
 // in red, green and blue than an unoccluded ambient makes it (docs/rendering.md, "The shadow's colour").
 // Each piece of the slime is taken as a ball of its volume V at its centroid c (radius R = ∛(3V/4π)):
@@ -10,63 +11,71 @@
 //    cos β = c_z / D), at most 1;
 //  - it passes t_c = k_t exp(−σ_c · n² · 4V/A) of what lies behind it in channel c: 4V/A is the mean
 //    chord of a convex body (Cauchy) and n² the lengthening of light's mean path inside a clear body of
-//    index n under uniform light (the invariance of the mean path length: light trapped by total internal
-//    reflection stays longer), A the piece's area; k_t is classic shading's transmission (1 in physical,
-//    where it is in σ). Fresnel's reflection is left out: what the jelly reflects is sky too.
-// So the ambient is albedo × I_a × (1 − Σ F (1 − t_c)), the sum over the pieces at most 1. F falls
-// as 1/D³ away from the piece; it is tapered smoothly to 0 between kTaperStart and kReach radii from
-// its centroid (on the floor), so that the floor beyond does not change when the slime moves and the
-// renderer's screen footprint (render/slime/screen_footprint.h) covers every point it reaches.
+//    index n under uniform light (light trapped by total internal reflection stays longer), A the
+//    piece's area; k_t is classic shading's transmission (1 in physical, where it is in σ). Fresnel's
+//    reflection is left out: what the jelly reflects is sky too.
+// So the ambient is albedo × I_a × (1 − Σ F (1 − t_c)), the sum over the pieces at most 1.
+//
+// Where: only in the slime's shadow, the floor inside the convex hull of its vertices cast from the
+// light onto z = 0. F falls off as 1/D³ and reaches well beyond the shadow, but there it would dim floor
+// outside the renderer's screen footprint (render/slime/screen_footprint.h), which is copied from the last
+// frame when the slime moves, and growing the footprint to hold it doubled the pixels traced a frame at
+// 1280×720 (98 k → 206 k). At the shadow's edge the light already steps from lit to shadowed, which
+// hides the step in the ambient there.
 #pragma once
 
 #include "render/slime/slime_geometry.h"
 #include "render/trace/shading_parameters.h"
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include <vector>
 
 namespace slime {
 
-// The occlusion's support, in the piece's equivalent radii R from its centroid, measured on the floor.
-constexpr float kSkyOcclusionTaperStart = 1.5f;
-constexpr float kSkyOcclusionReach = 2.25f;
-
 struct SkyBlocker {
   glm::vec3 centroid{0.0f};
-  float radius2 = 0.0f;                     // R², m²
-  float taperStart2 = 0.0f, reach2 = 0.0f;  // (1.5 R)² and (2.5 R)², horizontal distances², m²
-  glm::vec3 absorbed{0.0f};                 // 1 − t_c
+  float radius2 = 0.0f;      // R², m²
+  glm::vec3 absorbed{0.0f};  // 1 − t_c
 };
 
-// The discs on the floor (centre x, y and radius, m) outside which no piece occludes the sky.
-struct SkyDisc {
-  float x = 0.0f, y = 0.0f, radius = 0.0f;
-};
-std::vector<SkyDisc> skyOcclusionDiscs(const SlimeGeometry& geometry);
+class SkyOcclusion {
+ public:
+  SkyOcclusion() = default;
+  // The slime's pieces and its shadow on the floor for this frame; none (visibility 1 everywhere)
+  // without an ambient light, without shadows, or with the light not above every vertex.
+  SkyOcclusion(const SlimeGeometry& geometry, const ShadingParameters& parameters);
 
-// The pieces as the floor's ambient sees them (empty when there is no ambient light or no slime).
-std::vector<SkyBlocker> skyBlockers(const SlimeGeometry& geometry, const ShadingParameters& parameters);
+  bool empty() const { return blockers_.empty(); }
 
-// The share of the ambient light reaching floor point `point` (z = 0), per channel: 1 outside every
-// piece's reach.
-inline glm::vec3 skyVisibility(const std::vector<SkyBlocker>& blockers, const glm::vec3& point) {
-  glm::vec3 lost(0.0f);
-  for (const SkyBlocker& b : blockers) {
-    const float dx = point.x - b.centroid.x, dy = point.y - b.centroid.y;
-    const float horizontal2 = dx * dx + dy * dy;
-    if (horizontal2 >= b.reach2) continue;
-    const float distance2 = horizontal2 + b.centroid.z * b.centroid.z;
-    // (R/D)² cos β with cos β = c_z / D.
-    float covered = b.centroid.z > 0.0f ? b.radius2 * b.centroid.z / (distance2 * std::sqrt(distance2)) : 1.0f;
-    covered = std::min(covered, 1.0f);
-    if (horizontal2 > b.taperStart2) {
-      const float s = (b.reach2 - horizontal2) / (b.reach2 - b.taperStart2);  // 1 → 0 over the taper
-      covered *= s * s * (3.0f - 2.0f * s);
+  // The share of the ambient light reaching floor point `point` (z = 0), per channel: 1 outside the
+  // shadow.
+  glm::vec3 visibility(const glm::vec3& point) const {
+    if (blockers_.empty() || point.x < low_.x || point.y < low_.y || point.x > high_.x || point.y > high_.y ||
+        !inShadow({point.x, point.y}))
+      return glm::vec3(1.0f);
+    glm::vec3 lost(0.0f);
+    for (const SkyBlocker& b : blockers_) {
+      const float dx = point.x - b.centroid.x, dy = point.y - b.centroid.y;
+      const float distance2 = dx * dx + dy * dy + b.centroid.z * b.centroid.z;
+      // (R/D)² cos β with cos β = c_z / D.
+      const float covered = b.centroid.z > 0.0f ? b.radius2 * b.centroid.z / (distance2 * std::sqrt(distance2)) : 1.0f;
+      lost += std::min(covered, 1.0f) * b.absorbed;
     }
-    lost += covered * b.absorbed;
+    return glm::max(glm::vec3(1.0f) - lost, glm::vec3(0.0f));
   }
-  return glm::max(glm::vec3(1.0f) - lost, glm::vec3(0.0f));
-}
+
+  // Whether `p` lies inside the shadow's hull (its corners counter-clockwise): the wedge about the first
+  // corner that holds it, found by bisection, then that wedge's outer edge.
+  bool inShadow(glm::vec2 p) const;
+
+  const std::vector<SkyBlocker>& blockers() const { return blockers_; }
+
+ private:
+  std::vector<SkyBlocker> blockers_;
+  std::vector<glm::vec2> hull_;  // the shadow on the floor, counter-clockwise
+  glm::vec2 low_{0.0f}, high_{0.0f};
+};
 
 }  // namespace slime

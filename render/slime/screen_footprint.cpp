@@ -1,7 +1,5 @@
 #include "render/slime/screen_footprint.h"
 
-#include "render/floor/sky_occlusion.h"
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -100,28 +98,6 @@ bool shadowOutline(const Camera& camera, const glm::dvec3& light, const SlimeGeo
   return true;
 }
 
-// The outline on the image of the floor discs within which the slime hides some of the sky from the
-// floor (a 16-gon around each, which holds the disc), each row's crossing into `rows`; false when a
-// corner is not in front of the eye.
-bool skyOutline(const Camera& camera, const std::vector<SkyDisc>& discs, int width, int height,
-                ScreenFootprint::Outline& outline) {
-  outline.points.clear();
-  constexpr int kCorners = 16;
-  const double outward = 1.0 / std::cos(3.14159265358979 / kCorners);  // the 16-gon's corners hold the circle
-  for (const SkyDisc& disc : discs)
-    for (int k = 0; k < kCorners; ++k) {
-      const double angle = 2.0 * 3.14159265358979 * k / kCorners;
-      const glm::dvec3 corner(disc.x + outward * disc.radius * std::cos(angle), disc.y + outward * disc.radius * std::sin(angle), 0.0);
-      glm::dvec2 at;
-      if (!onImage(camera, corner, width, height, at)) return false;
-      outline.points.push_back(at);
-    }
-  outline.hull.build(outline.points);
-  if (!outline.hull.bounded()) return false;
-  outline.hull.crossRows(height, outline.rows);
-  return true;
-}
-
 LineInterval crossing(const ScreenFootprint::Outline& outline, int row) {
   const ConvexOutline::Crossing& c = outline.rows[static_cast<std::size_t>(row)];
   return {c.any, c.low, c.high};
@@ -178,11 +154,6 @@ void slimeFootprint(const Camera& camera, const SlimeGeometry& geometry, const S
   const bool seenOutline = mesh && imageOutline(camera, geometry, false, width, height, seen);
   const bool mirrorOutline = mesh && mirror && imageOutline(camera, geometry, true, width, height, mirrored);
   const bool shadowOutlined = mesh && shadows && boundedShadow && shadowOutline(camera, light, geometry, width, height, shade);
-  const glm::vec3& ambient = parameters.ambientLight;
-  const bool skyOccluded = ambient.x > 0.0f || ambient.y > 0.0f || ambient.z > 0.0f;
-  ScreenFootprint::Outline& skyShade = footprint.outlines[3];
-  const bool skyOutlined = skyOccluded && eye.z > 0.0 &&
-                           skyOutline(camera, skyOcclusionDiscs(geometry), width, height, skyShade);
 
   // Camera::rayDirection for the sample at (x, v): a + x s with x in pixels.
   const glm::dvec3 step = right * (2.0 / width);
@@ -197,8 +168,6 @@ void slimeFootprint(const Camera& camera, const SlimeGeometry& geometry, const S
                                                : coneInterval(base, step, toMirror,
                                                               glm::dot(toMirror, toMirror) - radius * radius),
                                  width));
-    if (skyOccluded && base.z < 0.0)  // this row sees the floor, whose ambient the slime may dim
-      span = hull(span, skyOutlined ? pixelsOf(crossing(skyShade, y), width) : whole);
     if (shadows && base.z < 0.0) {  // this row sees the floor
       if (!boundedShadow) {
         span = whole;

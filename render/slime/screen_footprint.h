@@ -19,14 +19,14 @@ struct ScreenFootprint {
     int x0 = 0, x1 = 0;  // empty when x0 >= x1
   };
   std::vector<Span> rows;
-  // The mesh's outlines on the image (of the slime, its mirror image, its shadow, and the floor whose
-  // ambient it occludes), their points and each row's crossing (storage kept from frame to frame).
+  // The mesh's outlines on the image (of the slime, its mirror image and its shadow), their points
+  // and each row's crossing (storage kept from frame to frame).
   struct Outline {
     std::vector<glm::dvec2> points;
     ConvexOutline hull;
     std::vector<ConvexOutline::Crossing> rows;
   };
-  Outline outlines[4];
+  Outline outlines[3];
 
   bool contains(int x, int y) const { return x >= rows[y].x0 && x < rows[y].x1; }
   // Whether the pixels [x0, x0 + count) of row y all lie outside.
@@ -45,9 +45,7 @@ struct ScreenFootprint {
 //    k |d|² − (d·c)² ≤ 0, c the centre seen from the eye and k = |c|² − r², in one interval);
 //  - with a varnished floor, the same for the sphere's mirror image below z = 0;
 //  - the pixels whose floor point lies in the sphere's shadow: a row's floor points lie on a line
-//    (the camera has no roll), which cuts the cone from the light through the sphere in one interval;
-//  - with an ambient light, the floor within the pieces' sky-occlusion discs (render/floor/sky_occlusion.h):
-//    the hull of 16-gons drawn around them, on the image.
+//    (the camera has no roll), which cuts the cone from the light through the sphere in one interval.
 // Whole rows when an interval cannot be bounded: the sphere not wholly in front of the eye, the eye
 // not above the floor, or the light not above the sphere.
 void slimeFootprint(const Camera& camera, const SlimeGeometry& geometry, const ShadingParameters& parameters,

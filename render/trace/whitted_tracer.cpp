@@ -300,8 +300,8 @@ void WhittedTracer::shade(const PendingRay& ray, const FloorShading& floor, Wave
   const float tFloor = floorDistance(ray.ray);
   if (ray.kind == Kind::Environment) {  // the floor (unshadowed, looked up with the generation's) or the sky
     glm::vec3 ambient = floor.ambient;
-    if (tFloor != kInfinity && !skyBlockers_.empty())
-      ambient *= skyVisibility(skyBlockers_, ray.ray.origin + tFloor * ray.ray.direction);
+    if (tFloor != kInfinity && !skyOcclusion_.empty())
+      ambient *= skyOcclusion_.visibility(ray.ray.origin + tFloor * ray.ray.direction);
     const glm::vec3 seen = tFloor == kInfinity ? sky(ray.ray.direction)
                                                : glm::mix(ambient + floor.lit, parameters_.skyHorizon, floor.haze);
     colors[ray.pixel] += ray.factor * seen;
@@ -522,7 +522,7 @@ void WhittedTracer::shadeFloorWith(const Ray& ray, float t, const FloorShading& 
   const glm::vec3 nearFactor = factor * (1.0f - shading.haze);  // what the haze leaves of the floor
   // The ambient, less the sky the slime hides from this point (not kept in the floor's cache, which
   // outlives the slime's moves).
-  const glm::vec3 ambient = skyBlockers_.empty() ? shading.ambient : shading.ambient * skyVisibility(skyBlockers_, point);
+  const glm::vec3 ambient = skyOcclusion_.empty() ? shading.ambient : shading.ambient * skyOcclusion_.visibility(point);
   colors[pixel] += nearFactor * ambient + factor * (shading.haze * p.skyHorizon);
   if (shading.lit != glm::vec3(0.0f)) {  // else the light is below the floor, or black
     if (p.shadows) {

@@ -60,7 +60,7 @@ class WhittedTracer {
   WhittedTracer(const SlimeGeometry& geometry, const SlimeIntersector& intersector, const FloorTexture& floor,
                 const ShadingParameters& parameters)
       : geometry_(geometry), intersector_(intersector), floor_(floor), parameters_(parameters),
-        skyBlockers_(skyBlockers(geometry, parameters)) {}
+        skyOcclusion_(geometry, parameters) {}
 
   // Radiance along `count` ≤ kMaxPrimaries neighbouring primary rays whose slime hits are known,
   // into colors[]. The rays' Whitted trees are traced breadth first, one generation at a time, as
@@ -211,9 +211,9 @@ class WhittedTracer {
   const SlimeIntersector& intersector_;
   const FloorTexture& floor_;
   const ShadingParameters& parameters_;
-  // The pieces that hide part of the sky from the floor around them: its ambient term is scaled by
-  // skyVisibility there (render/floor/sky_occlusion.h).
-  std::vector<SkyBlocker> skyBlockers_;
+  // The sky the slime hides from the floor in its shadow: the floor's ambient term is scaled by its
+  // visibility there (render/floor/sky_occlusion.h).
+  SkyOcclusion skyOcclusion_;
   const CausticMap* caustics_ = nullptr;
 };
 

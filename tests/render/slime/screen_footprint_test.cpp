@@ -6,7 +6,6 @@
 #include "core/geometry/icosphere.h"
 #include "core/settings/settings_io.h"
 #include "render/trace/optics.h"
-#include "render/floor/sky_occlusion.h"
 #include "render/slime/screen_footprint.h"
 
 #include <gtest/gtest.h>
@@ -69,16 +68,12 @@ bool hitsTriangles(const Ray& ray, const TriangleMesh& mesh) {
   return false;
 }
 
-bool slimeCanChange(const Ray& ray, const HitTest& mayHit, const ShadingParameters& parameters,
-                    const std::vector<SkyDisc>& skyDiscs) {
+bool slimeCanChange(const Ray& ray, const HitTest& mayHit, const ShadingParameters& parameters) {
   if (mayHit(ray)) return true;
   if (ray.direction.z >= 0.0f) return false;  // the sky
   const float t = std::max(0.0f, ray.origin.z) / -ray.direction.z;
   glm::vec3 point = ray.origin + t * ray.direction;
   point.z = 0.0f;
-  // The floor whose ambient the slime dims (render/floor/sky_occlusion.h).
-  for (const SkyDisc& disc : skyDiscs)
-    if (glm::length(glm::vec2(point.x - disc.x, point.y - disc.y)) < disc.radius) return true;
   const glm::vec3 origin = point + glm::vec3(0.0f, 0.0f, kRayOffset);
   if (parameters.shadows && parameters.lightPosition.z > 0.0f) {
     const glm::vec3 toLight = parameters.lightPosition - origin;
@@ -111,11 +106,10 @@ Coverage check(const View& view, int width, int height, ScreenFootprint& footpri
   slimeFootprint(camera, geometry, parameters, width, height, footprint);
   const HitTest mayHit = bruteForce ? HitTest([&](const Ray& ray) { return hitsTriangles(ray, mesh); })
                                     : HitTest([&](const Ray& ray) { return geometry.mayHit(ray); });
-  const std::vector<SkyDisc> skyDiscs = skyOcclusionDiscs(geometry);
   Coverage coverage;
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
-      if (!slimeCanChange(primaryRay(camera, x, y, width, height), mayHit, parameters, skyDiscs)) continue;
+      if (!slimeCanChange(primaryRay(camera, x, y, width, height), mayHit, parameters)) continue;
       ++coverage.reachable;
       coverage.missed += !footprint.contains(x, y);
     }
