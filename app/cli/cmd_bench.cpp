@@ -1,6 +1,7 @@
 // `slime bench render|physics|accuracy|material`: the benchmarks behind docs/bench (scripts/bench.sh
 // runs them all and redraws the charts). Each prints a table, and writes every figure with --json/--csv.
 #include "app/bench/render/bench_accuracy.h"
+#include "app/bench/render/bench_reference.h"
 #include "app/bench/render/bench_caustics.h"
 #include "app/bench/material/bench_material.h"
 #include "app/bench/physics/bench_physics.h"
@@ -250,6 +251,23 @@ void registerViewer(CLI::App& bench, int& exitCode) {
     bench.api = headlessApiNamed(options->gl);
     if (!options->scene.scenarioFile.empty()) bench.scenarioPath = options->scene.scenarioFile;
     exitCode = runViewerBench(loadSettings(options->scene), bench);
+void registerReference(CLI::App& bench, int& exitCode) {
+  auto options = std::make_shared<ReferenceBenchOptions>();
+  auto* command = bench.add_subcommand(
+      "reference", "Our linear frame against a path tracer's (scripts/reference/render.sh): PSNR over the slime, its shadow and the floor, the shadow's gain");
+  command->add_option("--ours", options->ours, "Our frame, linear floats (slime snapshot --linear F.pfm)")->required();
+  command->add_option("--reference", options->reference, "The path tracer's frame (PFM)")->required();
+  command->add_option("--masks", options->masks, "The regions (PFM: R slime, G shadow, B lit floor)")->required();
+  command->add_option("--ours-bare", options->oursBare, "Our frame with no slime in the light's way (PFM)");
+  command->add_option("--reference-bare", options->referenceBare, "The path tracer's frame without the slime (PFM)");
+  command->add_option("--haze", options->haze, "What the haze adds to each floor pixel (PFM; the masks' NAME_haze.pfm), taken from both before the gain");
+  command->add_option("--picture", options->picture, "Write ours | reference | difference x4 as a PNG");
+  command->add_option("--label", options->label, "A name for the printed row");
+  command->callback([options, &exitCode] {
+    if (options->oursBare.empty() != options->referenceBare.empty())
+      throw CLI::ValidationError("--ours-bare", "the shadow's gain needs both --ours-bare and --reference-bare");
+    runReferenceBench(*options);
+    exitCode = 0;
   });
 }
 
@@ -264,6 +282,7 @@ void registerBenchCommand(CLI::App& root, int& exitCode) {
   registerMaterial(*bench, exitCode);
   registerCaustics(*bench, exitCode);
   registerViewer(*bench, exitCode);
+  registerReference(*bench, exitCode);
 }
 
 }  // namespace slime

@@ -1,4 +1,5 @@
 // `slime snapshot`: settle the slime, trace one frame, write it as a PNG, report time and rays.
+#include "app/bench/render/reference_scene.h"
 #include "app/cli/commands.h"
 #include "app/cli/snapshot.h"
 #include "app/viewer/ui_snapshot.h"
@@ -25,6 +26,8 @@ struct SnapshotOptions {
   std::string gl = "auto";  // --gl: which library draws it headless
   std::string exportMesh;   // --export-mesh: the frame's surface as .ply, .obj or .glb
   std::string objUp;        // --obj-up y|z: an .obj's axes (empty: y, OBJ's convention)
+  std::string linear;       // --linear: the frame's linear floats as a PFM
+  std::string referenceScene;  // --reference-scene: the scene for a path tracer (scripts/reference/)
 };
 
 void runSnapshot(const SnapshotOptions& options) {
@@ -45,6 +48,8 @@ void runSnapshot(const SnapshotOptions& options) {
     lookAt(settings.camera, settings.camera.position, target);
   }
   validateSettings(settings);
+  if (options.ui && (!options.linear.empty() || !options.referenceScene.empty()))
+    throw SettingsError("--linear and --reference-scene write the traced frame's scene, not the viewer's (drop --ui)");
 
   if (options.ui) {
     writeUiSnapshot(settings, options.output, [&](Simulation& simulation) {
@@ -61,6 +66,14 @@ void runSnapshot(const SnapshotOptions& options) {
   }
   const SnapshotResult snapshot = takeSnapshot(settings, options.settle, options.scene.scenarioFile);
   writePng(snapshot.image, options.output);
+  if (!options.linear.empty()) {
+    writePfm(snapshot.image, options.linear);
+    std::printf("wrote %s (linear floats)\n", options.linear.c_str());
+  }
+  if (!options.referenceScene.empty()) {
+    writeReferenceScene(options.referenceScene, settings);
+    std::printf("wrote %s/scene.json and the floor's tiles\n", options.referenceScene.c_str());
+  }
   if (!options.exportMesh.empty()) {
     writeSurfaceMesh(options.exportMesh, snapshot.surface, exportMaterialOf(snapshot.slime), objUp);
     std::printf("wrote %s (the frame's surface: %zu vertices, %zu triangles)\n", options.exportMesh.c_str(),
@@ -104,6 +117,11 @@ void registerSnapshotCommand(CLI::App& root, int& exitCode) {
                       "extension; the .obj and .glb carry the slime's material");
   command->add_option("--obj-up", options->objUp,
                       "Up axis of an exported .obj: y (OBJ's convention, the default) or z (the simulation's)");
+  command->add_option("--linear", options->linear,
+                      "Also write the frame's linear RGB floats, unclamped, as a PFM (scripts/reference/ compares them)");
+  command->add_option("--reference-scene", options->referenceScene,
+                      "Also write DIR/scene.json and the floor's albedo tiles: the scene for a path tracer "
+                      "(scripts/reference/render.sh)");
   addSceneOptions(*command, options->scene);
   command->callback([options, &exitCode] {
     runSnapshot(*options);

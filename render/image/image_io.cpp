@@ -203,3 +203,51 @@ Image readPng(const std::string& path) {
 }
 
 }  // namespace slime
+
+namespace slime {
+
+void writePfm(const Image& image, const std::string& path) {
+  if (image.width <= 0 || image.height <= 0) throw std::runtime_error("cannot write an empty image to " + path);
+  static_assert(std::endian::native == std::endian::little, "the PFM header below says little endian");
+  static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "a row of pixels is copied as floats");
+  const std::string header = "PF\n" + std::to_string(image.width) + " " + std::to_string(image.height) + "\n-1.0\n";
+  std::vector<std::uint8_t> bytes(header.begin(), header.end());
+  const std::size_t row = static_cast<std::size_t>(image.width) * 3 * sizeof(float);
+  bytes.resize(header.size() + row * static_cast<std::size_t>(image.height));
+  for (int y = 0; y < image.height; ++y)  // PFM's rows run bottom to top
+    std::memcpy(bytes.data() + header.size() + row * static_cast<std::size_t>(image.height - 1 - y),
+                &image.at(0, y).x, row);
+  writeFileAtomically(path, bytes.data(), bytes.size());
+}
+
+Image readPfm(const std::string& path) {
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (!file) throw std::runtime_error("cannot read '" + path + "': " + std::strerror(errno));
+  char magic[3] = {};
+  int width = 0, height = 0;
+  double scale = 0.0;
+  const bool headerRead = std::fscanf(file, "%2s %d %d %lf", magic, &width, &height, &scale) == 4;
+  if (!headerRead || std::strcmp(magic, "PF") != 0 || width <= 0 || height <= 0 || width > 65536 || height > 65536 ||
+      scale == 0.0 || std::fgetc(file) == EOF) {
+    std::fclose(file);
+    throw std::runtime_error("'" + path + "' is not a colour PFM (\"PF\", width, height, scale, then floats)");
+  }
+  Image image;
+  image.resize(width, height);
+  const std::size_t count = static_cast<std::size_t>(width) * 3;
+  std::vector<std::uint32_t> words(count);
+  for (int y = height - 1; y >= 0; --y) {
+    if (std::fread(words.data(), sizeof(std::uint32_t), count, file) != count) {
+      std::fclose(file);
+      throw std::runtime_error("'" + path + "' ends before its " + std::to_string(width) + "x" + std::to_string(height) +
+                               " pixels");
+    }
+    if ((scale < 0.0) != (std::endian::native == std::endian::little))
+      for (std::uint32_t& word : words) word = __builtin_bswap32(word);
+    std::memcpy(&image.at(0, y).x, words.data(), count * sizeof(float));
+  }
+  std::fclose(file);
+  return image;
+}
+
+}  // namespace slime

@@ -34,6 +34,15 @@ std::vector<std::uint8_t> toSrgb8(const Image& image);  // 3 bytes per pixel
 // Writes the image as an 8-bit sRGB PNG. Throws std::runtime_error naming the path on failure.
 void writePng(const Image& image, const std::string& path);
 
+// Writes the image's linear floats as a PFM (Portable Float Map: "PF", width height, -1 for little
+// endian, then rows bottom to top, three 32-bit floats a pixel), unclamped and unencoded: what a
+// path tracer's float image is compared with (scripts/reference/). Throws naming the path on failure.
+void writePfm(const Image& image, const std::string& path);
+
+// Reads a colour PFM ("PF", either byte order) into linear RGB, top row first. Throws
+// std::runtime_error naming the path when it is unreadable, not a colour PFM or cut short.
+Image readPfm(const std::string& path);
+
 // Reads a PNG (any channel count; grey is widened, alpha dropped) into linear RGB.
 // Throws std::runtime_error naming the path when it is unreadable or not a PNG.
 Image readPng(const std::string& path);

@@ -76,6 +76,9 @@ bool SlimeGeometry::update(std::span<const SurfaceView> surfaces) {
       offset += count;
     }
   }
+  pieceTriangleStarts.clear();
+  for (std::size_t piece = 0, start = 0; piece < surfaces.size(); start += surfaces[piece++].triangles.size())
+    pieceTriangleStarts.push_back(static_cast<std::uint32_t>(start));
   positions.resize(vertexTotal + 1);
   glm::vec3 low(kInfinity), high(-kInfinity);
   glm::vec3* vertex = positions.data();

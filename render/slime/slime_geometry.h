@@ -29,6 +29,7 @@ struct SlimeGeometry {
   std::vector<glm::vec3> normals;    // area-weighted vertex normals of the current (deformed) mesh
   std::vector<glm::vec3> faceNormals;  // unit outward normal of each triangle (geometricNormal)
   std::vector<Triangle> triangles;
+  std::vector<std::uint32_t> pieceTriangleStarts;  // piece k's triangles begin here (one entry a piece)
   glm::vec3 boundCenter{0.0f};       // a sphere that contains every vertex
   float boundRadius = 0.0f;
   glm::vec3 meshBoundCenter{0.0f};   // the mesh's own bounds (the sphere's replace them in sphere mode)

@@ -299,8 +299,11 @@ void WhittedTracer::shade(const PendingRay& ray, const FloorShading& floor, Wave
                           FloorShading* floorCache, glm::vec3* colors) const {
   const float tFloor = floorDistance(ray.ray);
   if (ray.kind == Kind::Environment) {  // the floor (unshadowed, looked up with the generation's) or the sky
+    glm::vec3 ambient = floor.ambient;
+    if (tFloor != kInfinity && !skyOcclusion_.empty())
+      ambient *= skyOcclusion_.visibility(ray.ray.origin + tFloor * ray.ray.direction);
     const glm::vec3 seen = tFloor == kInfinity ? sky(ray.ray.direction)
-                                               : glm::mix(floor.ambient + floor.lit, parameters_.skyHorizon, floor.haze);
+                                               : glm::mix(ambient + floor.lit, parameters_.skyHorizon, floor.haze);
     colors[ray.pixel] += ray.factor * seen;
   } else if (tFloor == kInfinity) {
     colors[ray.pixel] += ray.factor * sky(ray.ray.direction);
@@ -517,7 +520,10 @@ void WhittedTracer::shadeFloorWith(const Ray& ray, float t, const FloorShading& 
   // contact patch) through Beer–Lambert absorption; each term goes to the pixel with its factor.
   const glm::vec3 factor = path.inside ? rayFactor * beerLambert(p.slimeAbsorption, t) : rayFactor;
   const glm::vec3 nearFactor = factor * (1.0f - shading.haze);  // what the haze leaves of the floor
-  colors[pixel] += nearFactor * shading.ambient + factor * (shading.haze * p.skyHorizon);
+  // The ambient, less the sky the slime hides from this point (not kept in the floor's cache, which
+  // outlives the slime's moves).
+  const glm::vec3 ambient = skyOcclusion_.empty() ? shading.ambient : shading.ambient * skyOcclusion_.visibility(point);
+  colors[pixel] += nearFactor * ambient + factor * (shading.haze * p.skyHorizon);
   if (shading.lit != glm::vec3(0.0f)) {  // else the light is below the floor, or black
     if (p.shadows) {
       addLight(point + glm::vec3(0.0f, 0.0f, kRayOffset), nearFactor * shading.lit, pixel, unshadowed, true, wavefront, counters,

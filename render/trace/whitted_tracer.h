@@ -20,6 +20,7 @@
 
 #include "render/caustics/caustic_map.h"
 #include "render/floor/floor_texture.h"
+#include "render/floor/sky_occlusion.h"
 #include "render/trace/ray.h"
 #include "render/trace/renderer.h"
 #include "render/trace/shading_parameters.h"
@@ -58,7 +59,8 @@ class WhittedTracer {
  public:
   WhittedTracer(const SlimeGeometry& geometry, const SlimeIntersector& intersector, const FloorTexture& floor,
                 const ShadingParameters& parameters)
-      : geometry_(geometry), intersector_(intersector), floor_(floor), parameters_(parameters) {}
+      : geometry_(geometry), intersector_(intersector), floor_(floor), parameters_(parameters),
+        skyOcclusion_(geometry, parameters) {}
 
   // Radiance along `count` ≤ kMaxPrimaries neighbouring primary rays whose slime hits are known,
   // into colors[]. The rays' Whitted trees are traced breadth first, one generation at a time, as
@@ -209,6 +211,9 @@ class WhittedTracer {
   const SlimeIntersector& intersector_;
   const FloorTexture& floor_;
   const ShadingParameters& parameters_;
+  // The sky the slime hides from the floor in its shadow: the floor's ambient term is scaled by its
+  // visibility there (render/floor/sky_occlusion.h).
+  SkyOcclusion skyOcclusion_;
   const CausticMap* caustics_ = nullptr;
 };
 

@@ -96,6 +96,25 @@ TEST(ImageIo, TableEncoderIsExactlyTheCurve) {
   }
 }
 
+TEST(ImageIo, PfmKeepsEveryFloatAndTheRowOrder) {
+  // A float image compared with a path tracer's must come back bit for bit: values above 1, tiny ones,
+  // and the top row on top (PFM stores rows bottom to top).
+  Image image;
+  image.resize(5, 3);
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 5; ++x) image.at(x, y) = glm::vec3(x + 10.0f * y, 1e-7f * (x + 1), 3.75f - y);
+  const std::string path = outputPath("float.pfm");
+  writePfm(image, path);
+  const Image back = readPfm(path);
+  ASSERT_EQ(back.width, 5);
+  ASSERT_EQ(back.height, 3);
+  for (std::size_t i = 0; i < image.pixels.size(); ++i) EXPECT_EQ(back.pixels[i], image.pixels[i]) << "pixel " << i;
+  std::ofstream(outputPath("not.pfm")) << "P6\n2 2\n255\n";
+  EXPECT_THROW(readPfm(outputPath("not.pfm")), std::runtime_error);
+  std::ofstream(outputPath("short.pfm")) << "PF\n4 4\n-1.0\n" << std::string(20, '\0');
+  EXPECT_THROW(readPfm(outputPath("short.pfm")), std::runtime_error);
+}
+
 TEST(ImageIo, FailedWriteLeavesNoFile) {
   Image image;
   image.resize(4, 4);
