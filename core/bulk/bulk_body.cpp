@@ -87,6 +87,7 @@ BulkBody buildBulkBody(const SlimeSettings& slime) {
     for (std::size_t lane = 0; lane < kTetLanes; ++lane) {
       setLaneMatrix(block.inverse, lane, glm::dmat3(1.0));
       setLaneMatrix(block.metric, lane, glm::dmat3(1.0));
+      for (int entry = 0; entry < 3; ++entry) block.plastic[entry][lane] = 1;
     }
   fillElementBlocks(body);
   body.edges = tetrahedronEdges(mesh.tetrahedra);
@@ -125,6 +126,25 @@ glm::dmat3 maxwellInverse(const BulkBody& body, std::size_t tetrahedron) {
   return laneMatrix(body.maxwell[tetrahedron / kTetLanes].inverse, tetrahedron % kTetLanes);
 }
 
+glm::dmat3 plasticMetric(const BulkBody& body, std::size_t tetrahedron) {
+  const MaxwellBlock& block = body.maxwell[tetrahedron / kTetLanes];
+  const std::size_t lane = tetrahedron % kTetLanes;
+  glm::dmat3 g;
+  for (int c = 0; c < 3; ++c)
+    for (int r = 0; r < 3; ++r) g[c][r] = block.plastic[kSymmetricEntry[r][c]][lane];
+  return g;
+}
+
+glm::dmat3 plasticInverse(const BulkBody& body, std::size_t tetrahedron) {
+  return plasticInverseOf(plasticMetric(body, tetrahedron));
+}
+
+double elasticStretch(const BulkBody& body, const std::vector<glm::dvec3>& x, std::size_t tetrahedron) {
+  const Tetrahedron& t = body.mesh.tetrahedra[tetrahedron];
+  const glm::dmat3 f = deformationGradient(body.rest[tetrahedron], x[t.x], x[t.y], x[t.z], x[t.w]);
+  return equivalentStretch(deviatoricStretchMeasure(f, plasticInverse(body, tetrahedron)));
+}
+
 void applyBulkMaterial(BulkBody& body, const SlimeSettings& slime) {
   const TetMesh& mesh = body.mesh;
   body.totalMass = slime.mass;
@@ -149,6 +169,10 @@ void applyBulkMaterial(BulkBody& body, const SlimeSettings& slime) {
   body.material.maxwellShear = (1.0 - slime.longTerm) * slime.modulus;
   body.material.lameLambda = lameLambdaFor(slime.modulus, slime.poisson);
   body.material.relaxationTime = slime.relaxation;
+  body.material.plastic = slime.plastic;
+  body.material.yieldStretch = slime.yieldStretch;
+  body.material.plasticFlowTime = slime.flowTime;
+  body.material.recoveryTime = slime.recoveryTime;
   body.edgeDamping.resize(body.edges.size());
   for (std::size_t s = 0; s < body.edges.size(); ++s) {
     const glm::dvec3 d = mesh.positions[body.edges[s].y] - mesh.positions[body.edges[s].x];
@@ -245,14 +269,20 @@ double bulkElasticEnergy(const BulkBody& body, const std::vector<glm::dvec3>& x)
   for (std::size_t e = 0; e < body.mesh.tetrahedra.size(); ++e) {
     const Tetrahedron& t = body.mesh.tetrahedra[e];
     const glm::dmat3 f = deformationGradient(body.rest[e], x[t.x], x[t.y], x[t.z], x[t.w]);
-    energy += body.rest[e].volume * energyDensity(body.material, f, maxwellInverse(body, e));
+    energy += body.rest[e].volume * energyDensity(body.material, f, maxwellInverse(body, e), plasticInverse(body, e));
   }
   return energy;
 }
 
 void relaxBulk(BulkBody& body, double dt) {
-  if (body.material.maxwellShear <= 0.0) return;
-  relaxElements(body, std::exp(-dt / body.material.relaxationTime));
+  const PlasticFlow plastic = plasticFlowOver(body.material, dt);
+  if (body.material.maxwellShear <= 0.0 && plastic.flow <= 0.0) return;
+  relaxElements(body, std::exp(-dt / body.material.relaxationTime), plastic);
+}
+
+int bulkFlowInterval(const SlimeSettings& slime, double dt, int fewest) {
+  const double shortest = slime.plastic ? std::min(slime.relaxation, slime.flowTime) : slime.relaxation;
+  return maxwellFlowInterval(shortest, dt, fewest);
 }
 
 std::size_t resolveDrawnFloorContact(BulkBody& body, double friction) {

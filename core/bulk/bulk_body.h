@@ -44,18 +44,21 @@ constexpr std::size_t kTetLanes = 64;
 struct TetBlock {
   alignas(64) ElementReal restInverse[9][kTetLanes] = {};  // Dm⁻¹
   alignas(64) ElementReal forceMap[9][kTetLanes] = {};     // −V0 Dm⁻ᵀ
-  // The element pass's own (element_pass.h): the four nodes, K0 = −V0 Dm⁻¹Dm⁻ᵀ (six entries,
-  // tet_lanes.h's kSymmetricEntry) and 1/det Dm; node 0 and zeros past the last tetrahedron.
+  // The element pass's own (element_pass.h): the four nodes, K_p = −V0 Dm⁻¹ B_p Dm⁻ᵀ (six entries,
+  // tet_lanes.h's kSymmetricEntry; K0 = −V0 Dm⁻¹Dm⁻ᵀ until the long-term branch yields, and refreshed
+  // when its G_p flows) and 1/det Dm; node 0 and zeros past the last tetrahedron.
   alignas(64) std::uint32_t nodes[4][kTetLanes] = {};
   alignas(64) ElementReal stiffnessMap[6][kTetLanes] = {};
   alignas(64) ElementReal volumeScale[kTetLanes] = {};
 };
 
-// The Maxwell branches' rest states (viscoelastic.h's MaxwellRest) of a block's tetrahedra, laid
-// out as TetBlock; identity at rest.
+// The rest states that flow, of a block's tetrahedra, laid out as TetBlock; identity at rest: the Maxwell
+// branches' (viscoelastic.h's MaxwellRest) and the long-term branches' plastic rest metric G_p. (One
+// struct, so that the guard's saved states keep both.)
 struct MaxwellBlock {
   alignas(64) ElementReal inverse[9][kTetLanes] = {};  // B_v
   alignas(64) ElementReal metric[9][kTetLanes] = {};   // G_v = B_v⁻¹, which the flow blends
+  alignas(64) ElementReal plastic[6][kTetLanes] = {};  // G_p (six entries, tet_lanes.h's kSymmetricEntry)
 };
 
 // M = −V0 Dm⁻¹ B_v Dm⁻ᵀ of a block's tetrahedra (six entries, element_pass.h), which follows B_v: kept
@@ -86,6 +89,16 @@ BulkBody buildBulkBody(const SlimeSettings& slime);
 
 // B_v of one tetrahedron.
 glm::dmat3 maxwellInverse(const BulkBody& body, std::size_t tetrahedron);
+// G_p and B_p = G_p⁻¹ of one tetrahedron's long-term branch (the identity until it yields).
+glm::dmat3 plasticMetric(const BulkBody& body, std::size_t tetrahedron);
+glm::dmat3 plasticInverse(const BulkBody& body, std::size_t tetrahedron);
+
+// The elastic stretch of one tetrahedron's long-term branch at `positions`: F = Ds·Dm⁻¹ measured against
+// its flowed rest shape U_p, as the isochoric uniaxial stretch with the same deviatoric elastic stress
+// (viscoelastic.h's equivalentStretch of deviatoricStretchMeasure(F, B_p); 1 at rest, the yield stretch
+// where it yields). What has flowed is not in it: a strand drawn out slowly has flowed and is barely
+// stretched elastically; one pulled fast is.
+double elasticStretch(const BulkBody& body, const std::vector<glm::dvec3>& positions, std::size_t tetrahedron);
 
 // Live material changes that keep the geometry: mass, modulus, longTerm, relaxation, poisson, viscosity.
 void applyBulkMaterial(BulkBody& body, const SlimeSettings& slime);
@@ -129,8 +142,12 @@ double bulkElasticEnergy(const BulkBody& body, const std::vector<glm::dvec3>& po
 // press that drives nodes through the material under them inverts some (docs/physics.md, known limits).
 std::size_t invertedBulkElements(const BulkBody& body, const std::vector<glm::dvec3>& positions);
 
-// The Maxwell branches' flow over dt (once per step).
+// The Maxwell branches' flow and the long-term branches' plastic flow (viscoelastic.h) over dt.
 void relaxBulk(BulkBody& body, double dt);
+
+// Steps between relaxBulk's flows for the explicit step: maxwellFlowInterval for the shorter of the Maxwell
+// branch's τ and (when the long-term branch yields) its flow time τ_p.
+int bulkFlowInterval(const SlimeSettings& slime, double dt, int fewest);
 
 // Lifts every drawn vertex that went below the floor back onto it by moving the nodes that carry it
 // with positive weight in proportion to w_j / m_j, and takes away those nodes' downward speed with

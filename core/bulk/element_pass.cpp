@@ -40,6 +40,17 @@ void elementForcesIn(const BulkBody& body, const std::vector<glm::dvec3>& x, std
   for (std::size_t i = 0; i < x.size(); ++i) forces[i] = glm::dvec3(quads.forces[i][0], quads.forces[i][1], quads.forces[i][2]);
 }
 
+// K_p of the kLaneWidth tetrahedra from offset `o` of block `b` from their G_p, in double as K0 is
+// (fillElementBlocks), so that G_p = I gives K0 bit for bit.
+void refreshLongTermMap(BulkBody& body, std::size_t b, std::size_t o) {
+  TetBlock& block = body.restBlocks[b];
+  alignas(64) ElementReal inverse[9][kTetLanes];
+  for (std::size_t lanes = o; lanes < o + kLaneWidth; lanes += kLanesOf<double>) {
+    plasticInverseLanes<double>(body.maxwell[b].plastic, lanes, inverse);
+    congruenceLanes<double, ElementReal, kTetLanes>(block.restInverse, block.forceMap, inverse, lanes, block.stiffnessMap);
+  }
+}
+
 }  // namespace
 
 void fillElementBlocks(BulkBody& body) {
@@ -55,12 +66,14 @@ void fillElementBlocks(BulkBody& body) {
   refreshMaxwellForceMaps(body);
 }
 
-void refreshMaxwellForceMaps(BulkBody& body) {
+void refreshMaxwellForceMaps(BulkBody& body, bool longTermToo) {
   body.maxwellMaps.resize(body.maxwell.size());
   for (std::size_t b = 0; b < body.maxwell.size() && b < body.restBlocks.size(); ++b)
-    for (std::size_t o = 0; o < kTetLanes; o += kLaneWidth)
+    for (std::size_t o = 0; o < kTetLanes; o += kLaneWidth) {
       congruenceLanes<ElementReal>(body.restBlocks[b].restInverse, body.restBlocks[b].forceMap, body.maxwell[b].inverse, o,
                       body.maxwellMaps[b].forceMap);
+      if (longTermToo) refreshLongTermMap(body, b, o);
+    }
 }
 
 void elementForces(const BulkBody& body, const std::vector<glm::dvec3>& x, std::vector<glm::dvec3>& forces) {
@@ -71,10 +84,11 @@ void elementForcesInDouble(const BulkBody& body, const std::vector<glm::dvec3>& 
   elementForcesIn<double>(body, x, forces);
 }
 
-void relaxElements(BulkBody& body, double decay) {
+void relaxElements(BulkBody& body, double decay, const PlasticFlow& plastic, bool maxwellToo) {
   NodeQuads& quads = nodeQuads();
   copyToQuads(body.state.positions, quads.positions);
   const bool prefetch = body.restBlocks.size() >= kPrefetchFromBlocks;
+  const bool maxwellFlows = maxwellToo && body.material.maxwellShear > 0.0, plasticFlows = plastic.flow > 0.0;
   for (std::size_t b = 0; b < body.restBlocks.size(); ++b) {
     const TetBlock& block = body.restBlocks[b];
     MaxwellBlock& maxwell = body.maxwell[b];
@@ -88,8 +102,13 @@ void relaxElements(BulkBody& body, double decay) {
     alignas(64) ElementReal shape[9][kTetLanes];
     gatherBlock(block, quads.positions, shape);
     for (std::size_t o = 0; o < kTetLanes; o += kLaneWidth) {
-      relaxLanes<ElementReal>(shape, block.restInverse, decay, o, maxwell.metric, maxwell.inverse);
-      congruenceLanes<ElementReal>(block.restInverse, block.forceMap, maxwell.inverse, o, body.maxwellMaps[b].forceMap);
+      if (maxwellFlows) {
+        relaxLanes<ElementReal>(shape, block.restInverse, decay, o, maxwell.metric, maxwell.inverse);
+        congruenceLanes<ElementReal>(block.restInverse, block.forceMap, maxwell.inverse, o, body.maxwellMaps[b].forceMap);
+      }
+      if (plasticFlows && flowLongTermLanes<ElementReal>(shape, block.restInverse, plastic.yieldMeasure, plastic.flow,
+                                                         plastic.recovery, o, maxwell.plastic))
+        refreshLongTermMap(body, b, o);
     }
   }
 }

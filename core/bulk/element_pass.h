@@ -18,9 +18,10 @@ namespace slime {
 // tetrahedra and restBlocks' restInverse and forceMap; then every block's M (refreshMaxwellForceMaps).
 void fillElementBlocks(BulkBody& body);
 
-// M = −V0 Dm⁻¹ B_v Dm⁻ᵀ of every block from its B_v: after anything that sets B_v other than
-// relaxElements (building the body, the projective solver's storeMaxwell, the guard's rollback).
-void refreshMaxwellForceMaps(BulkBody& body);
+// M = −V0 Dm⁻¹ B_v Dm⁻ᵀ of every block from its B_v, and (longTermToo) K_p = −V0 Dm⁻¹ B_p Dm⁻ᵀ from its
+// G_p: after anything that sets them other than relaxElements (building the body, the projective
+// solver's storeMaxwell, which sets only B_v, the guard's rollback). G_p = I gives K0 exactly.
+void refreshMaxwellForceMaps(BulkBody& body, bool longTermToo = true);
 
 // Elastic and Maxwell nodal forces at x, in ElementReal lanes (element_real.h) summed in double;
 // `forces` is resized and overwritten.
@@ -30,7 +31,9 @@ void elementForces(const BulkBody& body, const std::vector<glm::dvec3>& x, std::
 void elementForcesInDouble(const BulkBody& body, const std::vector<glm::dvec3>& x, std::vector<glm::dvec3>& forces);
 
 // The Maxwell branches' flow with decay = exp(−Δt/τ) at the body's positions (relaxMaxwellBranch per
-// tetrahedron, tet_lanes.h's relaxLanes), then M.
-void relaxElements(BulkBody& body, double decay);
+// tetrahedron, tet_lanes.h's relaxLanes), then M; and the long-term branches' plastic flow (`plastic`,
+// relaxLongTermBranch, tet_lanes.h's flowLongTermLanes), then K_p where any lane flowed.
+// `maxwellToo` false: the plastic flow alone (the projective solver flows its Maxwell branches itself).
+void relaxElements(BulkBody& body, double decay, const PlasticFlow& plastic = {}, bool maxwellToo = true);
 
 }  // namespace slime

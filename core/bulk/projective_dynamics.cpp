@@ -45,6 +45,20 @@ void ProjectiveSolver::reset(const BulkBody& body) {
   factoredStep_ = -1.0;
 }
 
+namespace {
+
+// √G of a symmetric positive metric through its eigenvectors, less I (projective_local.h's stretches), in
+// kSymmetricEntry's order (a zero lane past the last tetrahedron gives −I).
+void storeRootLessIdentity(const Eigen::Matrix3d& g, ProjectiveReal (&out)[6][kTetLanes], std::size_t lane) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(g);
+  const Eigen::Vector3d roots = eigen.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+  const Eigen::Matrix3d u = eigen.eigenvectors() * roots.asDiagonal() * eigen.eigenvectors().transpose();
+  for (int r = 0; r < 3; ++r)
+    for (int c = r; c < 3; ++c) out[kSymmetricEntry[r][c]][lane] = static_cast<ProjectiveReal>(u(r, c) - (r == c ? 1.0 : 0.0));
+}
+
+}  // namespace
+
 void ProjectiveSolver::loadMaxwell(const BulkBody& body) {
   if (blocks_.size() != body.restBlocks.size()) {
     reset(body);
@@ -55,14 +69,52 @@ void ProjectiveSolver::loadMaxwell(const BulkBody& body) {
       Eigen::Matrix3d g;
       for (int c = 0; c < 3; ++c)
         for (int r = 0; r < 3; ++r) g(r, c) = body.maxwell[block].metric[3 * c + r][lane];
-      // U_v = √G_v through G_v's eigenvectors (a zero lane past the last tetrahedron gives U_v = 0), kept
-      // as U_v − I (projective_local.h).
-      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(g);
-      const Eigen::Vector3d roots = eigen.eigenvalues().cwiseMax(0.0).cwiseSqrt();
-      const Eigen::Matrix3d u = eigen.eigenvectors() * roots.asDiagonal() * eigen.eigenvectors().transpose();
-      for (int r = 0; r < 3; ++r)
-        for (int c = r; c < 3; ++c)
-          blocks_[block].maxwellStretch[kSymmetricEntry[r][c]][lane] = static_cast<ProjectiveReal>(u(r, c) - (r == c ? 1.0 : 0.0));
+      // U_v = √G_v, kept as U_v − I (projective_local.h).
+      storeRootLessIdentity(g, blocks_[block].maxwellStretch, lane);
+    }
+  loadPlastic(body);
+}
+
+void ProjectiveSolver::loadPlastic(const BulkBody& body) {
+  plastic_ = false;
+  if (blocks_.size() != body.maxwell.size()) return;
+  for (std::size_t block = 0; block < blocks_.size(); ++block)
+    for (std::size_t lane = 0; lane < kTetLanes; ++lane) {
+      const ElementReal(&metric)[6][kTetLanes] = body.maxwell[block].plastic;
+      bool identity = true;
+      for (int e = 0; e < 6; ++e) identity = identity && metric[e][lane] == (e < 3 ? 1 : 0);
+      if (identity) {
+        for (int e = 0; e < 6; ++e) blocks_[block].plasticStretch[e][lane] = 0;
+        continue;
+      }
+      plastic_ = true;
+      Eigen::Matrix3d g;
+      for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) g(r, c) = metric[kSymmetricEntry[r][c]][lane];
+      storeRootLessIdentity(g, blocks_[block].plasticStretch, lane);
+    }
+}
+
+void ProjectiveSolver::flowLongTerm(BulkBody& body, double dt) {
+  const PlasticFlow flow = plasticFlowOver(body.material, dt);
+  if (flow.flow <= 0.0 && !plastic_) return;
+  if (blocks_.size() != body.maxwell.size()) return;
+  plasticBefore_.resize(body.maxwell.size());
+  for (std::size_t block = 0; block < blocks_.size(); ++block)
+    std::copy(&body.maxwell[block].plastic[0][0], &body.maxwell[block].plastic[0][0] + 6 * kTetLanes, &plasticBefore_[block][0][0]);
+  relaxElements(body, 1.0, flow, false);
+  // U_p = √G_p again only where the flow moved G_p (an eigensolver a tetrahedron).
+  for (std::size_t block = 0; block < blocks_.size(); ++block)
+    for (std::size_t lane = 0; lane < kTetLanes; ++lane) {
+      const ElementReal(&metric)[6][kTetLanes] = body.maxwell[block].plastic;
+      bool moved = false;
+      for (int e = 0; e < 6; ++e) moved = moved || metric[e][lane] != plasticBefore_[block][e][lane];
+      if (!moved) continue;
+      plastic_ = true;
+      Eigen::Matrix3d g;
+      for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) g(r, c) = metric[kSymmetricEntry[r][c]][lane];
+      storeRootLessIdentity(g, blocks_[block].plasticStretch, lane);
     }
 }
 
@@ -81,7 +133,7 @@ void ProjectiveSolver::storeMaxwell(BulkBody& body) const {
         body.maxwell[block].inverse[entry][lane] = b[entry / 3][entry % 3];
       }
     }
-  refreshMaxwellForceMaps(body);  // the explicit step's forces read M (element_pass.h)
+  refreshMaxwellForceMaps(body, false);  // the explicit step's forces read M (element_pass.h)
 }
 
 void ProjectiveSolver::factor(const BulkBody& body, double h) {
@@ -103,7 +155,7 @@ void ProjectiveSolver::factor(const BulkBody& body, double h) {
 void ProjectiveSolver::localStep(const BulkBody& body, double h, bool flow) {
   const ViscoelasticMaterial& m = body.material;
   const bool flows = flow && m.maxwellShear > 0.0;
-  projectiveTargets(body, flows, flows ? -std::expm1(-h / m.relaxationTime) : 0.0, blocks_, quads_, targets_);
+  projectiveTargets(body, flows, flows ? -std::expm1(-h / m.relaxationTime) : 0.0, plastic_, blocks_, quads_, targets_);
 }
 
 void ProjectiveSolver::keepColumns(const std::vector<std::uint32_t>& nodes) {

@@ -41,6 +41,7 @@
 #include "core/bulk/projective_local.h"
 #include "core/hands/grab.h"
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -68,6 +69,10 @@ class ProjectiveSolver {
   void loadMaxwell(const BulkBody& body);
   // G_v = U_v², B_v = G_v⁻¹ into the body (for its energy, a rollback, another integrator).
   void storeMaxwell(BulkBody& body) const;
+  // U_p = √G_p from the body's long-term branches (loadMaxwell does it too).
+  void loadPlastic(const BulkBody& body);
+  // The long-term branches' plastic flow over dt on the body (relaxElements, at its positions), then U_p.
+  void flowLongTerm(BulkBody& body, double dt);
   // One step; returns the hand's force, N (zero when nothing is grabbed).
   glm::dvec3 step(BulkBody& body, BulkScratch& scratch, const ProjectiveStep& step);
   // Forget the factorisation (after a material change); the next step factors again.
@@ -86,6 +91,8 @@ class ProjectiveSolver {
   void localStep(const BulkBody& body, double h, bool flow);
 
   std::vector<ProjectiveBlock> blocks_;
+  bool plastic_ = false;  // some U_p is not I
+  std::vector<std::array<std::array<ElementReal, kTetLanes>, 6>> plasticBefore_;  // G_p before a flow
   NodeQuads quads_;  // the local step's node copies
   ProjectiveFactor factor_;
   double factoredStep_ = -1.0;

@@ -38,7 +38,7 @@ struct TargetWeights {
 // One block's targets, w_e p_e Dm⁻ᵀ per tetrahedron into `out` ([3·column + row][lane], the
 // columns for nodes 1..3). One tetrahedron per lane, no branches and no calls: the loop the compiler
 // vectorises; `block` is restrict, so its stores need no runtime check against the rest data.
-template <bool Flows>
+template <bool Flows, bool Plastic>
 void blockTargets(const TargetWeights& k, const Real (&shape)[9][kTetLanes], const TetBlock& rest,
                   ProjectiveBlock* __restrict block, Real (&out)[9][kTetLanes]) {
   ProjectiveBlock& state = *block;
@@ -141,8 +141,13 @@ void blockTargets(const TargetWeights& k, const Real (&shape)[9][kTetLanes], con
     }
     const Real delta = (1 - j) / (cofSquared + Real(1e-30));
     const bool newton = j > 0 && delta * delta * cofSquared <= toRotation;
-    // −(2μ + 3λ) p with p = (μ∞ R + μ1 R U_v + (3λ/2) p_V) / (μ + 3λ/2), p_V = F + δ cof F or R:
-    // a R + μ1 R (U_v − I) + c F + step cof F with the lane's a, c and step.
+    // −(2μ + 3λ) p with p = (μ∞ R U_p + μ1 R U_v + (3λ/2) p_V) / (μ + 3λ/2), p_V = F + δ cof F or R:
+    // a R + μ1 R (U_v − I) + μ∞ R (U_p − I) + c F + step cof F with the lane's a, c and step.
+    Real plastic[6] = {};
+    if constexpr (Plastic) {
+      #pragma GCC unroll 9
+      for (int e = 0; e < 6; ++e) plastic[e] = state.plasticStretch[e][lane];
+    }
     const Real a = k.longTermShear + k.maxwellShear + (newton ? Real(0) : k.volumeWeight);
     const Real c = newton ? k.volumeWeight : Real(0), step = newton ? k.volumeWeight * delta : Real(0);
     Real p[9];
@@ -153,6 +158,9 @@ void blockTargets(const TargetWeights& k, const Real (&shape)[9][kTetLanes], con
         const Real rd = rot[r] * d[kSymmetricEntry[0][col]] + rot[3 + r] * d[kSymmetricEntry[1][col]] + rot[6 + r] * d[kSymmetricEntry[2][col]];
         const int e = 3 * col + r;
         p[e] = a * rot[e] + k.maxwellShear * rd + c * f[e] + step * cof[e];
+        if constexpr (Plastic)
+          p[e] += k.longTermShear * (rot[r] * plastic[kSymmetricEntry[0][col]] + rot[3 + r] * plastic[kSymmetricEntry[1][col]] +
+                                     rot[6 + r] * plastic[kSymmetricEntry[2][col]]);
       }
     // p·forceMap: the columns go to nodes 1..3.
     #pragma GCC unroll 9
@@ -164,21 +172,21 @@ void blockTargets(const TargetWeights& k, const Real (&shape)[9][kTetLanes], con
   }
 }
 
-template <bool Flows>
+template <bool Flows, bool Plastic>
 void allTargets(const BulkBody& body, const TargetWeights& weights, std::vector<ProjectiveBlock>& blocks, NodeQuads& quads) {
   for (std::size_t b = 0; b < blocks.size(); ++b) {
     const TetBlock& rest = body.restBlocks[b];
     alignas(64) Real shape[9][kTetLanes];
     gatherBlock(rest, quads.positions, shape);
     alignas(64) Real out[9][kTetLanes];
-    blockTargets<Flows>(weights, shape, rest, &blocks[b], out);
+    blockTargets<Flows, Plastic>(weights, shape, rest, &blocks[b], out);
     scatterBlock(rest, out, quads.forces);
   }
 }
 
 }  // namespace
 
-void projectiveTargets(const BulkBody& body, bool flows, double flow, std::vector<ProjectiveBlock>& blocks,
+void projectiveTargets(const BulkBody& body, bool flows, double flow, bool plastic, std::vector<ProjectiveBlock>& blocks,
                        NodeQuads& quads, std::vector<glm::dvec3>& targets) {
   const ViscoelasticMaterial& m = body.material;
   const double mu = m.longTermShear + m.maxwellShear, volumeWeight = 1.5 * m.lameLambda;
@@ -188,8 +196,13 @@ void projectiveTargets(const BulkBody& body, bool flows, double flow, std::vecto
   const std::vector<glm::dvec3>& x = body.state.positions;
   copyToQuads(x, quads.positions);
   quads.forces.assign(x.size(), Quad{});
-  if (flows) allTargets<true>(body, weights, blocks, quads);
-  else allTargets<false>(body, weights, blocks, quads);
+  if (plastic) {
+    if (flows) allTargets<true, true>(body, weights, blocks, quads);
+    else allTargets<false, true>(body, weights, blocks, quads);
+  } else {
+    if (flows) allTargets<true, false>(body, weights, blocks, quads);
+    else allTargets<false, false>(body, weights, blocks, quads);
+  }
   targets.resize(x.size());
   for (std::size_t i = 0; i < x.size(); ++i) targets[i] = glm::dvec3(quads.forces[i][0], quads.forces[i][1], quads.forces[i][2]);
 }

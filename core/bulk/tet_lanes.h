@@ -223,4 +223,107 @@ template <class Real, class Shape, class Stored, std::size_t N>
   }
 }
 
+// x^(−1/2) per lane for x in [2^−126, 2^126]: the float bit trick 0x5f3759df − bits/2 (3.4 %), then Newton
+// steps r ← r (3 − x r²)/2 (3.4 % → 2e-3 → 5e-6 → 3e-11 → rounding: three in float, four in double). Lanes
+// outside that range give meaningless values; the caller masks them.
+template <class Real>
+[[gnu::always_inline]] inline void inverseSquareRootLanes(const LanesOf<Real>& x, LanesOf<Real>& root) {
+  using FloatLanes = typename VectorOf<float, kLanesOf<Real> * sizeof(float)>::type;
+  using Int32Lanes = typename VectorOf<std::int32_t, kLanesOf<Real> * sizeof(float)>::type;
+  using Lanes = LanesOf<Real>;
+  const Lanes low = x < Real(0x1p-126) ? Lanes{} + Real(0x1p-126) : x;
+  const Lanes clamped = low > Real(0x1p126) ? Lanes{} + Real(0x1p126) : low;
+  const FloatLanes single = __builtin_convertvector(clamped, FloatLanes);
+  Int32Lanes bits;
+  std::memcpy(&bits, &single, sizeof bits);
+  const Int32Lanes guessBits = 0x5f3759df - (bits >> 1);
+  FloatLanes guess;
+  std::memcpy(&guess, &guessBits, sizeof guess);
+  Lanes r = __builtin_convertvector(guess, Lanes);
+  constexpr int steps = sizeof(Real) == sizeof(float) ? 3 : 4;
+  for (int step = 0; step < steps; ++step) r = r * (Real(1.5) - Real(0.5) * clamped * (r * r));
+  root = r;
+}
+
+// B_p = adj(G_p)/det(G_p) per lane (viscoelastic.h's plasticInverseOf), G_p as six entries in
+// kSymmetricEntry's order, B_p as nine ([3·column + row]); G_p = I gives I exactly, and a lane of zeros
+// (past the last tetrahedron) gives zeros.
+template <class Real>
+[[gnu::always_inline]] inline void plasticInverseOfLanes(const LanesOf<Real> (&m)[6], LanesOf<Real> (&inverse)[9]) {
+  using Lanes = LanesOf<Real>;
+  const Lanes a00 = m[1] * m[2] - m[5] * m[5], a11 = m[0] * m[2] - m[4] * m[4], a22 = m[0] * m[1] - m[3] * m[3];
+  const Lanes a01 = m[4] * m[5] - m[3] * m[2], a02 = m[3] * m[5] - m[4] * m[1], a12 = m[3] * m[4] - m[0] * m[5];
+  const Lanes det = m[0] * a00 + m[3] * a01 + m[4] * a02;
+  const Lanes scale = Real(1) / (det > Real(0) ? det : Lanes{} + Real(1));
+  const Lanes entries[9] = {a00, a01, a02, a01, a11, a12, a02, a12, a22};
+  for (int e = 0; e < 9; ++e) inverse[e] = entries[e] * scale;
+}
+
+// The same from and to a block's arrays, for kLanesOf<Real> tetrahedra from offset `o`.
+template <class Real, class Stored, std::size_t N>
+[[gnu::always_inline]] inline void plasticInverseLanes(const Stored (&metric)[6][N], std::size_t o, Stored (&inverse)[9][N]) {
+  LanesOf<Real> m[6], b[9];
+  for (int e = 0; e < 6; ++e) m[e] = loadLanes<Real>(&metric[e][o]);
+  plasticInverseOfLanes<Real>(m, b);
+  for (int e = 0; e < 9; ++e) storeLanes<Real>(&inverse[e][o], b[e]);
+}
+
+// The long-term branch's flow of kLanesOf<Real> tetrahedra from offset `o` (viscoelastic.h's
+// relaxLongTermBranch): with C̄ = det(C)^(−1/3) C, A = C̄ B_p and s² = 3/2 (tr A² − (tr A)²/3),
+// G = G_p + w (C̄ − G_p) + r (I − G_p), w = flow (1 − s_y/s) where s > s_y, r = recovery elsewhere;
+// G_p ← G det(G)^(−1/3). Only lanes that flow, or recover from a G_p that is not I, are written (so that a
+// body that never yields keeps G_p = I bit for bit); a lane whose det C or det G is not in [2^−126, 2^126]
+// keeps its G_p. Returns whether any lane was written.
+template <class Real, class Shape, class Stored, std::size_t N>
+[[gnu::always_inline]] inline bool flowLongTermLanes(const Shape (&shape)[9][N], const Stored (&restInverse)[9][N],
+                                                      double yieldMeasure, double flow, double recovery, std::size_t o,
+                                                      Stored (&metric)[6][N]) {
+  using Lanes = LanesOf<Real>;
+  Lanes f[9];
+  deformationGradientLanes<Real>(shape, restInverse, o, f);
+  const auto dot = [&](int a, int b) { return f[3 * a] * f[3 * b] + f[3 * a + 1] * f[3 * b + 1] + f[3 * a + 2] * f[3 * b + 2]; };
+  const Lanes c00 = dot(0, 0), c11 = dot(1, 1), c22 = dot(2, 2), c01 = dot(0, 1), c02 = dot(0, 2), c12 = dot(1, 2);
+  const Lanes detC = c00 * (c11 * c22 - c12 * c12) + c01 * (c02 * c12 - c01 * c22) + c02 * (c01 * c12 - c02 * c11);
+  Lanes iso;
+  inverseCubeRootLanes<Real>(detC, iso);
+  const Lanes cb[6] = {c00 * iso, c11 * iso, c22 * iso, c01 * iso, c02 * iso, c12 * iso};  // C̄, kSymmetricEntry order
+  Lanes g[6];
+  for (int e = 0; e < 6; ++e) g[e] = loadLanes<Real>(&metric[e][o]);
+  Lanes b[9];
+  plasticInverseOfLanes<Real>(g, b);
+  // A = C̄ B_p: A_rc = Σ_k C̄_rk B_kc.
+  Lanes a[9];
+  for (int c = 0; c < 3; ++c)
+    for (int r = 0; r < 3; ++r)
+      a[3 * c + r] = cb[kSymmetricEntry[r][0]] * b[3 * c] + cb[kSymmetricEntry[r][1]] * b[3 * c + 1] +
+                     cb[kSymmetricEntry[r][2]] * b[3 * c + 2];
+  const Lanes trace = a[0] + a[4] + a[8];
+  Lanes traceOfSquare = Lanes{};
+  for (int c = 0; c < 3; ++c)
+    for (int r = 0; r < 3; ++r) traceOfSquare += a[3 * c + r] * a[3 * r + c];
+  const Lanes squared = Real(1.5) * (traceOfSquare - trace * trace * Real(1.0 / 3.0));  // s²
+  const Real yieldSquared = Real(yieldMeasure * yieldMeasure);
+  const auto yields = squared > yieldSquared;
+  Lanes inverseMeasure;
+  inverseSquareRootLanes<Real>(yields ? squared : Lanes{} + Real(1), inverseMeasure);
+  const Lanes w = yields ? Real(flow) * (Real(1) - Real(yieldMeasure) * inverseMeasure) : Lanes{};
+  const Lanes r = yields ? Lanes{} : Lanes{} + Real(recovery);
+  const Lanes identity[6] = {Lanes{} + Real(1), Lanes{} + Real(1), Lanes{} + Real(1), Lanes{}, Lanes{}, Lanes{}};
+  Lanes m[6];
+  for (int e = 0; e < 6; ++e) m[e] = g[e] + w * (cb[e] - g[e]) + r * (identity[e] - g[e]);
+  const Lanes det = m[0] * (m[1] * m[2] - m[5] * m[5]) + m[3] * (m[4] * m[5] - m[3] * m[2]) +
+                    m[4] * (m[3] * m[5] - m[4] * m[1]);
+  Lanes scale;
+  inverseCubeRootLanes<Real>(det, scale);
+  const auto inRange = (det >= Real(0x1p-126)) & (det <= Real(0x1p126)) & (detC >= Real(0x1p-126)) & (detC <= Real(0x1p126));
+  const auto notIdentity = (g[0] != Real(1)) | (g[1] != Real(1)) | (g[2] != Real(1)) | (g[3] != Real(0)) |
+                           (g[4] != Real(0)) | (g[5] != Real(0));
+  const auto active = inRange & ((w > Real(0)) | ((r > Real(0)) & notIdentity));
+  bool any = false;
+  for (std::size_t lane = 0; lane < kLanesOf<Real>; ++lane) any |= active[lane] != 0;
+  if (!any) return false;
+  for (int e = 0; e < 6; ++e) storeLanes<Real>(&metric[e][o], active ? m[e] * scale : g[e]);
+  return true;
+}
+
 }  // namespace slime

@@ -15,6 +15,19 @@
 //   G_v ← C + (G_v − C)·exp(−Δt/τ), then G_v ← G_v / det(G_v)^(1/3)  (the flow keeps the volume)
 // which at small strain is ε_v' = (ε − ε_v)/τ, the standard linear solid; under a constant shear
 // stress its creep has the time constant τ_c = τ (μ∞ + μ1)/μ∞.
+//
+// The long-term branch's rest shape yields (a Bingham-like viscoplastic flow, for strands that neck):
+// its energy is μ∞/2 (tr(C·B_p) − 3) with B_p = G_p⁻¹ the inverse of a plastic rest metric G_p
+// (symmetric, det 1, the identity at the start), free of stress at F = U_p. G_p flows towards the
+// isochoric C̄ = J^(−2/3) C only while the branch's deviatoric elastic stretch passes a yield:
+//   s = √(3/2 |dev(C̄·B_p)|²)   (an isochoric uniaxial stretch u: s = u² − 1/u, the Cauchy stress / μ∞),
+//   Ġ_p = (1 − s_y/s)₊ (C̄ − G_p)/τ_p, kept at det G_p = 1,
+// which for a uniaxial elastic stretch u is d ln u/dt = −(s − s_y)/(3 τ_p): Bingham's law in extension,
+// ε̇_p = (σ − σ_y)/(3 η_p) with σ = μ∞ s, σ_y = μ∞ s_y and η_p = μ∞ τ_p. Below the yield G_p recovers
+// towards the identity with time τ_r (the ball comes back over seconds; τ_r = 0: never). Held at a
+// stretch λ above the yield, the elastic stretch decays from λ to u_y in closed form
+// (plasticHoldTime). Nothing flows below the yield, so a body that never reaches it is the standard
+// linear solid above, bit for bit.
 #pragma once
 
 #include "core/bulk/cube_root.h"
@@ -32,6 +45,10 @@ struct ViscoelasticMaterial {
   double maxwellShear = 0.0;   // μ1, Pa (0: purely elastic)
   double lameLambda = 0.0;     // λ of the linearised material, Pa
   double relaxationTime = 1.0; // τ, s
+  bool plastic = false;        // the long-term branch's rest shape flows above the yield
+  double yieldStretch = 2.0;   // u_y: the isochoric uniaxial elastic stretch at which it yields
+  double plasticFlowTime = 1.0;  // τ_p, s: η_p = μ∞ τ_p
+  double recoveryTime = 0.0;   // τ_r, s: G_p's return to the identity below the yield (0: none)
 };
 
 // Lamé λ for a shear modulus and a Poisson ratio: 2 μ ν / (1 − 2ν).
@@ -75,8 +92,49 @@ inline glm::dmat3 firstPiolaStress(const ViscoelasticMaterial& material, const g
   return p;
 }
 
-// Energy density Ψ at F with B_v, J/m³.
+// The same with the long-term branch's inverse rest metric B_p: μ∞ F B_p in place of μ∞ F.
+inline glm::dmat3 firstPiolaStress(const ViscoelasticMaterial& material, const glm::dmat3& f,
+                                   const glm::dmat3& maxwellInverse, const glm::dmat3& plasticInverse) {
+  return firstPiolaStress(material, f, maxwellInverse) + material.longTermShear * (f * plasticInverse - f);
+}
+
+// Energy density Ψ at F with B_v (and B_p), J/m³.
 double energyDensity(const ViscoelasticMaterial& material, const glm::dmat3& f, const glm::dmat3& maxwellInverse);
+double energyDensity(const ViscoelasticMaterial& material, const glm::dmat3& f, const glm::dmat3& maxwellInverse,
+                     const glm::dmat3& plasticInverse);
+
+// The yield measure s_y = u_y² − 1/u_y of a yield stretch u_y (s of an isochoric uniaxial stretch).
+inline double yieldMeasure(double yieldStretch) { return yieldStretch * yieldStretch - 1.0 / yieldStretch; }
+
+// The long-term branch's deviatoric elastic stretch s = √(3/2 (tr A² − (tr A)²/3)), A = C̄·B_p.
+double deviatoricStretchMeasure(const glm::dmat3& f, const glm::dmat3& plasticInverse);
+
+// The isochoric uniaxial stretch u ≥ 1 with u² − 1/u = s: s as a stretch (the yield stretch's scale).
+double equivalentStretch(double measure);
+
+// One flow of the long-term branch: the weights over Δt and the yield.
+struct PlasticFlow {
+  double yieldMeasure = 0.0;  // s_y
+  double flow = 0.0;          // 1 − exp(−Δt/τ_p)
+  double recovery = 0.0;      // 1 − exp(−Δt/τ_r), 0 without recovery
+};
+PlasticFlow plasticFlowOver(const ViscoelasticMaterial& material, double dt);
+
+// B_p = G_p⁻¹ = adj(G_p)/det(G_p) of a plastic rest metric (the form tet_lanes.h's lanes use).
+glm::dmat3 plasticInverseOf(const glm::dmat3& metric);
+
+// The long-term branch's flow over Δt at F: G = G_p + w (C̄ − G_p) + r (I − G_p) with
+// w = flow·(1 − s_y/s) above the yield (s > s_y) and r = recovery below it, then G_p = G det(G)^(−1/3).
+// An element whose G is not positive keeps its G_p. (tet_lanes.h's flowLongTermLanes is the same per lane.)
+glm::dmat3 relaxLongTermBranch(const glm::dmat3& f, const glm::dmat3& metric, const PlasticFlow& flow);
+
+// The closed form of a bar held at a constant isochoric uniaxial stretch λ (F = diag(λ, λ^−½, λ^−½)) above
+// the yield: the time its elastic stretch takes to decay from u0 (= λ at the hold's start, G_p = I) to u
+// (u_y < u ≤ u0) under d ln u/dt = −(u² − 1/u − s_y)/(3 τ_p):
+//   t = 3 τ_p ∫_u^u0 dv / (v³ − s_y v − 1) = 3 τ_p ∫_u^u0 dv / ((v − u_y)(v² + u_y v + 1/u_y)),
+// in partial fractions (a logarithm and, as 4/u_y − u_y² is positive or negative, an arctangent or a
+// logarithm). Its stress is μ∞ (u² − 1/u), decaying to the yield stress μ∞ s_y.
+double plasticHoldTime(double yieldStretch, double flowTime, double u0, double u);
 
 // The Maxwell branch's rest state: its metric G_v and the inverse B_v that the stress uses, kept
 // together so that the flow inverts once (B_v = (G/s)⁻¹ = s·G⁻¹ after the blend G, s = det G^(1/3)).

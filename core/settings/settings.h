@@ -52,6 +52,10 @@ struct SlimeSettings {
   double modulus = 1200.0;               // bulk: instantaneous shear modulus G = μ∞ + μ1, Pa (the seed's stiffness)
   double longTerm = 0.4;                 // bulk: μ∞ / G, the part of the modulus that never relaxes
   double relaxation = 0.6;               // bulk: relaxation time τ of the Maxwell branch, s
+  bool plastic = false;                  // bulk: the long-term branch's rest shape flows past the yield
+  double yieldStretch = 1.8;             // bulk: its yield, an isochoric uniaxial elastic stretch
+  double flowTime = 0.6;                 // bulk: τ_p of that flow, s (viscosity μ∞ τ_p)
+  double recoveryTime = 1.0;             // bulk: τ_r of the rest shape's return below the yield, s (0 = never)
   double poisson = 0.4;                  // bulk: Poisson ratio ν of each element
   double viscosity = 30.0;               // bulk: viscosity η of the edge dampers, Pa·s (the seed's damping)
   glm::dvec3 position{0.0, 0.0, 0.10};   // start position of the centre, m

@@ -98,6 +98,15 @@ void forEachField(S& s, Visitor&& visitor) {
         "bulk: the part of G that never relaxes and brings the ball back (1 = purely elastic)");
   visit("slime.relaxation", s.slime.relaxation, Limits{0.01, 1000.0, "s"},
         "bulk: relaxation time of the flowing (Maxwell) part");
+  visit("slime.plastic", s.slime.plastic, Choices{},
+        "bulk: the long-term rest shape flows while stretched past slime.yieldStretch, so strands neck and draw "
+        "out (off: it never flows)");
+  visit("slime.yieldStretch", s.slime.yieldStretch, Limits{1.1, 10.0, "stretch"},
+        "bulk: elastic stretch of the long-term part past which its rest shape flows (a 2 cm press is about 1.5)");
+  visit("slime.flowTime", s.slime.flowTime, Limits{0.01, 1000.0, "s"},
+        "bulk: time of the rest shape's flow past the yield (its viscosity is the long-term modulus times this)");
+  visit("slime.recoveryTime", s.slime.recoveryTime, Limits{0.0, 1000.0, "s (0 = never)"},
+        "bulk: time in which a flowed rest shape returns to the ball while below the yield");
   visit("slime.poisson", s.slime.poisson, Limits{0.0, 0.49, ""},
         "bulk: Poisson ratio of each element (the whole body keeps its volume anyway)");
   visit("slime.viscosity", s.slime.viscosity, Limits{0.0, 100.0, "Pa·s"},

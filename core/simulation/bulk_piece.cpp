@@ -200,10 +200,14 @@ void BulkPiece::endStep(const StepContext& context) {
   // projective flows its Maxwell branches every substep; the body's metrics follow as a copy.
   const int flowInterval = projectiveActive_
                                ? kRelaxInterval
-                               : maxwellFlowInterval(settings_.slime.relaxation, settings_.sim.dt, kRelaxInterval);
+                               : bulkFlowInterval(settings_.slime, settings_.sim.dt, kRelaxInterval);
   if (context.stepCount % flowInterval == 0) {
-    if (projectiveActive_) projective_.storeMaxwell(body_);
-    else relaxBulk(body_, flowInterval * settings_.sim.dt);
+    if (projectiveActive_) {
+      projective_.storeMaxwell(body_);
+      projective_.flowLongTerm(body_, flowInterval * settings_.sim.dt);
+    } else {
+      relaxBulk(body_, flowInterval * settings_.sim.dt);
+    }
   }
   const bool touching = resolveDrawnFloorContact(body_, settings_.slime.friction) > 0;
   // The floor's rolling resistance acts on the bulk slime too: Coulomb friction lets a ball roll,

@@ -107,6 +107,10 @@ void Simulation::applySettings(const Settings& settings) {
                         settings.slime.modulus != settings_.slime.modulus ||
                         settings.slime.longTerm != settings_.slime.longTerm ||
                         settings.slime.relaxation != settings_.slime.relaxation ||
+                        settings.slime.plastic != settings_.slime.plastic ||
+                        settings.slime.yieldStretch != settings_.slime.yieldStretch ||
+                        settings.slime.flowTime != settings_.slime.flowTime ||
+                        settings.slime.recoveryTime != settings_.slime.recoveryTime ||
                         settings.slime.poisson != settings_.slime.poisson ||
                         settings.slime.viscosity != settings_.slime.viscosity;
   const int level = settings_.slime.level;

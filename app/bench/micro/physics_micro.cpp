@@ -85,7 +85,7 @@ void projectiveLocalStep(benchmark::State& state) {
   NodeQuads quads;
   std::vector<glm::dvec3> targets;
   for (auto _ : state) {
-    projectiveTargets(body, true, 0.001, blocks, quads, targets);
+    projectiveTargets(body, true, 0.001, false, blocks, quads, targets);
     benchmark::DoNotOptimize(targets.data());
   }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(body.mesh.tetrahedra.size()));

@@ -149,7 +149,7 @@ TEST_P(ProjectiveLocal, TargetsRotationsAndFlowEqualTheScalarStepInDouble) {
   for (const double amount : {0.6, 0.7, 0.75}) {  // from R = I, then warm-started twice
     body.state.positions = twisted(rest, amount);
     ASSERT_GT(invertedElements(body), 0u);
-    projectiveTargets(body, true, 0.05, blocks, quads, lanes);
+    projectiveTargets(body, true, 0.05, false, blocks, quads, lanes);
     const std::vector<glm::dvec3> reference = referenceTargets(body, 0.05, states);
     ASSERT_EQ(lanes.size(), reference.size());
     for (std::size_t i = 0; i < lanes.size(); ++i)
@@ -183,7 +183,7 @@ TEST(ProjectiveLocal, ARelaxedStretchFlowsBackToRest) {
   }
   NodeQuads quads;
   std::vector<glm::dvec3> targets;
-  for (int step = 0; step < 2000; ++step) projectiveTargets(body, true, 0.01, blocks, quads, targets);
+  for (int step = 0; step < 2000; ++step) projectiveTargets(body, true, 0.01, false, blocks, quads, targets);
   double largest = 0.0;  // 1e-4 × 0.99^2000 = 2e-13 in exact arithmetic
   for (std::size_t e = 0; e < tetrahedra; ++e)
     for (int k = 0; k < 6; ++k) largest = std::max(largest, std::abs(double(blocks[e / kTetLanes].maxwellStretch[k][e % kTetLanes])));

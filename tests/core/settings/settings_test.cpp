@@ -83,6 +83,8 @@ TEST(Settings, BulkMaterialSettingsAreRangeChecked) {
   } cases[] = {{"slime.modulus=49", "50 to 100000"},    {"slime.longTerm=0", "0.01 to 1"},
                {"slime.relaxation=0.001", "0.01 to 1000"}, {"slime.poisson=0.5", "0 to 0.49"},
                {"slime.viscosity=-1", "0 to 100"},      {"slime.resolution=5", "1 to 4"},
+               {"slime.yieldStretch=1.05", "1.1 to 10"}, {"slime.flowTime=0", "0.01 to 1000"},
+               {"slime.recoveryTime=-1", "0 to 1000"}, {"slime.plastic=sometimes", "true"},
                {"slime.model=jelly", "bulk, membrane"}};
   for (const auto& c : cases) {
     Settings settings = defaultSettings();
