@@ -251,6 +251,9 @@ void registerViewer(CLI::App& bench, int& exitCode) {
     bench.api = headlessApiNamed(options->gl);
     if (!options->scene.scenarioFile.empty()) bench.scenarioPath = options->scene.scenarioFile;
     exitCode = runViewerBench(loadSettings(options->scene), bench);
+  });
+}
+
 void registerReference(CLI::App& bench, int& exitCode) {
   auto options = std::make_shared<ReferenceBenchOptions>();
   auto* command = bench.add_subcommand(
