@@ -3,8 +3,13 @@
 #include "core/integrators/divergence.h"
 #include "core/simulation/integrator_choice.h"
 #include "core/geometry/level_of_detail.h"
+#include "core/bulk/piece_surface.h"
+#include "core/bulk/surface_embedding.h"
+#include "core/hands/grab.h"
+#include "core/simulation/tearing.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -16,6 +21,9 @@ namespace {
 constexpr int kGoodStateInterval = 8;   // steps between saved good states
 constexpr int kMaxRefinement = 64;      // the guard doubles substeps after a rollback, up to this
 constexpr int kCleanStepsToCoarsen = 500;  // after this many steps with no rollback it halves them again
+// Steps between tearing checks (a pass over the tetrahedra's elastic stretch: 8 ms against the tens
+// of milliseconds a strand takes to snap).
+constexpr int kTearInterval = 8;
 
 }  // namespace
 
@@ -47,7 +55,13 @@ Simulation::Simulation(const Simulation& other)
       cleanSteps_(other.cleanSteps_),
       divergences_(other.divergences_),
       goodTime_(other.goodTime_),
-      goodStep_(other.goodStep_) {
+      goodStep_(other.goodStep_),
+      handPiece_(other.handPiece_),
+      slimeRestVolume_(other.slimeRestVolume_),
+      drawnSpacing_(other.drawnSpacing_),
+      tears_(other.tears_),
+      merges_(other.merges_),
+      lastTopologyMilliseconds_(other.lastTopologyMilliseconds_) {
   for (const std::unique_ptr<Piece>& piece : other.pieces_) pieces_.push_back(piece->clone());
 }
 
@@ -71,6 +85,14 @@ void Simulation::start() {
   stepCount_ = 0;
   refinement_ = 1;
   divergences_.clear();
+  handPiece_.fill(0);
+  tears_ = merges_ = 0;
+  slimeRestVolume_ = 0.0;
+  for (const std::unique_ptr<Piece>& piece : pieces_) slimeRestVolume_ += piece->restVolume();
+  // A drawn surface made afresh is extracted on a grid of twice the drawn icosphere's edge (marching
+  // tetrahedra leave about four vertices per icosphere vertex at one edge), no finer than R/8 (the
+  // grid's cost grows as its inverse cube, the smooth map's as its inverse square).
+  drawnSpacing_ = std::max(2.0 * meanEdgeLength(pieces_.front()->surface()), settings_.slime.radius / 8.0);
   rebuildModels();
   saveGoodState();
 }
@@ -149,7 +171,36 @@ void Simulation::step() {
     refinement_ /= 2;
     cleanSteps_ = 0;
   }
+  if (settings_.slime.tearing && stepCount_ % kTearInterval == 0 && tearPieces()) return;
   if (stepCount_ % kGoodStateInterval == 0) saveGoodState();
+}
+
+bool Simulation::tearPieces() {
+  for (std::size_t p = 0; p < pieces_.size(); ++p) {
+    auto* bulk = dynamic_cast<BulkPiece*>(pieces_[p].get());
+    if (bulk == nullptr) continue;
+    const auto begin = std::chrono::steady_clock::now();
+    const TearPlan plan = planTear(bulk->body(), settings_.slime.tearStretch, settings_.slime.smallestPiece * slimeRestVolume_);
+    if (plan.parts < 2) continue;
+    if (pieces_.size() - 1 + plan.parts > static_cast<std::size_t>(settings_.slime.maxPieces)) continue;
+    std::array<int, kHands> handPart{};
+    const double support = kSmoothSupportSteps * settings_.slime.radius / std::ldexp(1.0, settings_.slime.resolution);
+    std::vector<std::unique_ptr<BulkPiece>> parts = bulk->split(plan, drawnSpacing_, support, handPart);
+    // Part 0 takes the torn piece's place; the others follow the last piece.
+    const std::size_t firstNew = pieces_.size();
+    for (int hand = 0; hand < kHands; ++hand)
+      if (handPiece_[hand] == p && handPart[hand] >= 0)
+        handPiece_[hand] = handPart[hand] == 0 ? p : firstNew + static_cast<std::size_t>(handPart[hand]) - 1;
+    pieces_[p] = std::move(parts[0]);
+    for (std::size_t k = 1; k < parts.size(); ++k) pieces_.push_back(std::move(parts[k]));
+    pieces_[p]->rebuildModels(settings_, integrator_);
+    for (std::size_t k = firstNew; k < pieces_.size(); ++k) pieces_[k]->rebuildModels(settings_, integrator_);
+    ++tears_;
+    saveGoodState();  // the guard never rolls back across a tear
+    lastTopologyMilliseconds_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
+    return true;
+  }
+  return false;
 }
 
 void Simulation::saveGoodState() {
@@ -183,7 +234,16 @@ const std::vector<SurfaceView>& Simulation::surfaces() const {
   return drawnSurfaces_;
 }
 const std::vector<DivergenceEvent>& Simulation::divergences() const { return divergences_; }
-double Simulation::volume() const { return piece().volume(); }
+double Simulation::restVolume() const {
+  double sum = 0.0;
+  for (const std::unique_ptr<Piece>& piece : pieces_) sum += piece->restVolume();
+  return sum;
+}
+double Simulation::volume() const {
+  double sum = 0.0;
+  for (const std::unique_ptr<Piece>& piece : pieces_) sum += piece->volume();
+  return sum;
+}
 void Simulation::setVelocities(const std::vector<glm::dvec3>& velocities) {
   if (velocities.size() != state().size())
     throw std::invalid_argument("setVelocities: " + std::to_string(velocities.size()) + " velocities for " +
@@ -243,6 +303,20 @@ std::size_t Simulation::checkedHand(int hand) {
 bool Simulation::grab(const glm::dvec3& point, double radius, int which) {
   checkedHand(which);
   release(which);
+  // The piece whose drawn surface passes nearest to the point (the first of equals).
+  std::size_t nearest = 0;
+  if (pieces_.size() > 1) {
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t p = 0; p < pieces_.size(); ++p) {
+      const Piece& piece = *pieces_[p];
+      const double distance = glm::length(nearestSurfacePoint(piece.drawnPositions(), piece.drawnTriangles(), point) - point);
+      if (distance < best) {
+        best = distance;
+        nearest = p;
+      }
+    }
+  }
+  handPiece_[which] = nearest;
   return handPiece(which).grab(point, radius, which);
 }
 

@@ -1,0 +1,250 @@
+#include "core/geometry/surface_extraction.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <unordered_map>
+#include <utility>
+
+namespace slime {
+namespace {
+
+// The point of triangle abc nearest to p (Ericson, Real-Time Collision Detection §5.1.5).
+glm::dvec3 nearestOnTriangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+  const glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+  if (d1 <= 0.0 && d2 <= 0.0) return a;
+  const glm::dvec3 bp = p - b;
+  const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+  if (d3 >= 0.0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + (d1 / (d1 - d3)) * ab;
+  const glm::dvec3 cp = p - c;
+  const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+  if (d6 >= 0.0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + (d2 / (d2 - d6)) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+  const double denominator = 1.0 / (va + vb + vc);
+  return a + ab * (vb * denominator) + ac * (vc * denominator);
+}
+
+int clampIndex(double value, int size) { return std::clamp(static_cast<int>(std::floor(value)), 0, size - 1); }
+
+// The six tetrahedra of a cell, by corner (bit 0: +x, bit 1: +y, bit 2: +z), all about the diagonal 0–7.
+constexpr int kCellTetrahedra[6][4] = {{0, 1, 3, 7}, {0, 3, 2, 7}, {0, 2, 6, 7}, {0, 6, 4, 7}, {0, 4, 5, 7}, {0, 5, 1, 7}};
+
+}  // namespace
+
+ScalarGrid gridAround(const glm::dvec3& low, const glm::dvec3& high, double spacing, double margin) {
+  ScalarGrid grid;
+  grid.spacing = spacing;
+  // A fraction of a spacing off the box's corner, so that a grid column meets a surface's vertices and
+  // edges only by chance (the inside test counts crossings along columns).
+  grid.origin = low - glm::dvec3(margin) + spacing * glm::dvec3(0.0137, 0.0291, 0.0071);
+  const glm::dvec3 span = high - low + glm::dvec3(2.0 * margin);
+  grid.size = glm::ivec3(glm::ceil(span / spacing)) + glm::ivec3(2);
+  grid.values.assign(grid.count(), 0.0);
+  return grid;
+}
+
+void signedDistanceOnGrid(const SurfaceView& surface, ScalarGrid& grid) {
+  const double h = grid.spacing;
+  const glm::ivec3 n = grid.size;
+  // Inside: the crossings of each column (x_i, y_j) with the surface, counted below each point.
+  std::vector<std::pair<std::size_t, double>> crossings;  // column, z
+  for (const Triangle& t : surface.triangles) {
+    const glm::dvec3 a = surface.positions[t.x], b = surface.positions[t.y], c = surface.positions[t.z];
+    const glm::dvec3 low = glm::min(a, glm::min(b, c)), high = glm::max(a, glm::max(b, c));
+    const int i0 = static_cast<int>(std::ceil((low.x - grid.origin.x) / h)), i1 = static_cast<int>(std::floor((high.x - grid.origin.x) / h));
+    const int j0 = static_cast<int>(std::ceil((low.y - grid.origin.y) / h)), j1 = static_cast<int>(std::floor((high.y - grid.origin.y) / h));
+    const double area = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+    if (area == 0.0) continue;
+    for (int j = std::max(j0, 0); j <= std::min(j1, n.y - 1); ++j)
+      for (int i = std::max(i0, 0); i <= std::min(i1, n.x - 1); ++i) {
+        const double x = grid.origin.x + h * i, y = grid.origin.y + h * j;
+        const double wa = ((b.x - x) * (c.y - y) - (c.x - x) * (b.y - y)) / area;
+        const double wb = ((c.x - x) * (a.y - y) - (a.x - x) * (c.y - y)) / area;
+        const double wc = 1.0 - wa - wb;
+        if (wa < 0.0 || wb < 0.0 || wc < 0.0) continue;
+        crossings.emplace_back(static_cast<std::size_t>(i) + static_cast<std::size_t>(n.x) * j, wa * a.z + wb * b.z + wc * c.z);
+      }
+  }
+  std::sort(crossings.begin(), crossings.end());
+  std::vector<std::uint8_t> inside(grid.count(), 0);
+  for (std::size_t first = 0; first < crossings.size();) {
+    std::size_t last = first;
+    while (last < crossings.size() && crossings[last].first == crossings[first].first) ++last;
+    const int i = static_cast<int>(crossings[first].first % n.x), j = static_cast<int>(crossings[first].first / n.x);
+    std::size_t below = first;
+    for (int k = 0; k < n.z; ++k) {
+      const double z = grid.origin.z + h * k;
+      while (below < last && crossings[below].second < z) ++below;
+      inside[grid.index(i, j, k)] = static_cast<std::uint8_t>((below - first) % 2);
+    }
+    first = last;
+  }
+  // Near the surface: a point with a neighbour (of 26) on the other side lies within √3 spacings of it.
+  std::vector<std::uint8_t> near(grid.count(), 0);
+  for (int k = 0; k < n.z; ++k)
+    for (int j = 0; j < n.y; ++j)
+      for (int i = 0; i < n.x; ++i) {
+        const std::uint8_t own = inside[grid.index(i, j, k)];
+        bool differs = false;
+        for (int dk = -1; dk <= 1 && !differs; ++dk)
+          for (int dj = -1; dj <= 1 && !differs; ++dj)
+            for (int di = -1; di <= 1 && !differs; ++di) {
+              const int a = i + di, b = j + dj, c = k + dk;
+              if (a < 0 || b < 0 || c < 0 || a >= n.x || b >= n.y || c >= n.z) continue;
+              differs = inside[grid.index(a, b, c)] != own;
+            }
+        near[grid.index(i, j, k)] = differs;
+      }
+  std::vector<double>& d = grid.values;
+  d.assign(grid.count(), 2.0 * h);
+  const double reach = 1.75 * h;
+  for (const Triangle& t : surface.triangles) {
+    const glm::dvec3 a = surface.positions[t.x], b = surface.positions[t.y], c = surface.positions[t.z];
+    const glm::dvec3 low = (glm::min(a, glm::min(b, c)) - glm::dvec3(reach) - grid.origin) / h;
+    const glm::dvec3 high = (glm::max(a, glm::max(b, c)) + glm::dvec3(reach) - grid.origin) / h;
+    const int i0 = clampIndex(std::ceil(low.x), n.x), i1 = clampIndex(high.x, n.x);
+    const int j0 = clampIndex(std::ceil(low.y), n.y), j1 = clampIndex(high.y, n.y);
+    const int k0 = clampIndex(std::ceil(low.z), n.z), k1 = clampIndex(high.z, n.z);
+    for (int k = k0; k <= k1; ++k)
+      for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i) {
+          const std::size_t g = grid.index(i, j, k);
+          if (!near[g]) continue;
+          const glm::dvec3 p = grid.point(i, j, k);
+          d[g] = std::min(d[g], glm::length(p - nearestOnTriangle(p, a, b, c)));
+        }
+  }
+  for (std::size_t g = 0; g < d.size(); ++g)
+    if (!inside[g]) d[g] = -d[g];
+}
+
+void blurGrid(ScalarGrid& grid, int passes) {
+  const glm::ivec3 n = grid.size;
+  std::vector<double> line;
+  for (int pass = 0; pass < passes; ++pass)
+    for (int axis = 0; axis < 3; ++axis) {
+      const int length = n[axis];
+      const std::size_t stride = axis == 0 ? 1 : axis == 1 ? static_cast<std::size_t>(n.x) : static_cast<std::size_t>(n.x) * n.y;
+      line.resize(length);
+      const int u = n[(axis + 1) % 3], v = n[(axis + 2) % 3];
+      for (int b = 0; b < v; ++b)
+        for (int a = 0; a < u; ++a) {
+          glm::ivec3 start(0);
+          start[(axis + 1) % 3] = a;
+          start[(axis + 2) % 3] = b;
+          const std::size_t base = grid.index(start.x, start.y, start.z);
+          for (int s = 0; s < length; ++s) line[s] = grid.values[base + s * stride];
+          for (int s = 1; s + 1 < length; ++s)
+            grid.values[base + s * stride] = 0.25 * line[s - 1] + 0.5 * line[s] + 0.25 * line[s + 1];
+        }
+    }
+}
+
+double smoothMax(double a, double b, double k) {
+  if (k <= 0.0) return std::max(a, b);
+  const double mix = std::clamp(0.5 + 0.5 * (a - b) / k, 0.0, 1.0);
+  return b + (a - b) * mix + k * mix * (1.0 - mix);
+}
+
+TriangleMesh extractSurface(const ScalarGrid& grid) {
+  TriangleMesh mesh;
+  const glm::ivec3 n = grid.size;
+  std::unordered_map<std::uint64_t, std::uint32_t> edgeVertex;
+  const auto value = [&](std::size_t g) { return grid.values[g]; };
+  const auto vertexOn = [&](std::size_t inner, std::size_t outer, const glm::dvec3& p, const glm::dvec3& q) {
+    const std::uint64_t key = static_cast<std::uint64_t>(std::min(inner, outer)) * grid.count() + std::max(inner, outer);
+    const auto found = edgeVertex.find(key);
+    if (found != edgeVertex.end()) return found->second;
+    const double a = value(inner), b = value(outer);
+    const double t = std::clamp(a / (a - b), 1e-3, 1.0 - 1e-3);
+    const auto index = static_cast<std::uint32_t>(mesh.positions.size());
+    mesh.positions.push_back(p + t * (q - p));
+    edgeVertex.emplace(key, index);
+    return index;
+  };
+  // A triangle wound so that its normal points along `outward`.
+  const auto emit = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c, const glm::dvec3& outward) {
+    const glm::dvec3 normal = glm::cross(mesh.positions[b] - mesh.positions[a], mesh.positions[c] - mesh.positions[a]);
+    if (glm::dot(normal, outward) >= 0.0) mesh.triangles.emplace_back(a, b, c);
+    else mesh.triangles.emplace_back(a, c, b);
+  };
+  for (int k = 0; k + 1 < n.z; ++k)
+    for (int j = 0; j + 1 < n.y; ++j)
+      for (int i = 0; i + 1 < n.x; ++i) {
+        std::array<std::size_t, 8> corner;
+        std::array<glm::dvec3, 8> at;
+        int insideCount = 0;
+        for (int c = 0; c < 8; ++c) {
+          const int ci = i + (c & 1), cj = j + ((c >> 1) & 1), ck = k + ((c >> 2) & 1);
+          corner[c] = grid.index(ci, cj, ck);
+          at[c] = grid.point(ci, cj, ck);
+          insideCount += value(corner[c]) > 0.0;
+        }
+        if (insideCount == 0 || insideCount == 8) continue;
+        for (const auto& tet : kCellTetrahedra) {
+          int in[4], out[4], ins = 0, outs = 0;
+          for (int c : tet) (value(corner[c]) > 0.0 ? in[ins++] : out[outs++]) = c;
+          if (ins == 0 || outs == 0) continue;
+          const auto v = [&](int a, int b) { return vertexOn(corner[a], corner[b], at[a], at[b]); };
+          if (ins == 1) {
+            const glm::dvec3 outward = (at[out[0]] + at[out[1]] + at[out[2]]) / 3.0 - at[in[0]];
+            emit(v(in[0], out[0]), v(in[0], out[1]), v(in[0], out[2]), outward);
+          } else if (ins == 3) {
+            const glm::dvec3 outward = at[out[0]] - (at[in[0]] + at[in[1]] + at[in[2]]) / 3.0;
+            emit(v(in[0], out[0]), v(in[1], out[0]), v(in[2], out[0]), outward);
+          } else {
+            const glm::dvec3 outward = 0.5 * (at[out[0]] + at[out[1]]) - 0.5 * (at[in[0]] + at[in[1]]);
+            const std::uint32_t ac = v(in[0], out[0]), ad = v(in[0], out[1]), bd = v(in[1], out[1]), bc = v(in[1], out[0]);
+            emit(ac, ad, bd, outward);
+            emit(ac, bd, bc, outward);
+          }
+        }
+      }
+  return mesh;
+}
+
+void taubinSmooth(TriangleMesh& mesh, int passes, double lambda, double mu) {
+  const std::size_t count = mesh.positions.size();
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+  pairs.reserve(mesh.triangles.size() * 6);
+  for (const Triangle& t : mesh.triangles)
+    for (int e = 0; e < 3; ++e) {
+      pairs.emplace_back(t[e], t[(e + 1) % 3]);
+      pairs.emplace_back(t[(e + 1) % 3], t[e]);
+    }
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  std::vector<std::uint32_t> start(count + 1, 0);
+  for (const auto& p : pairs) ++start[p.first + 1];
+  for (std::size_t i = 0; i < count; ++i) start[i + 1] += start[i];
+  std::vector<glm::dvec3> moved(count);
+  const auto umbrella = [&](double factor) {
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::uint32_t begin = start[i], end = start[i + 1];
+      if (begin == end) {
+        moved[i] = mesh.positions[i];
+        continue;
+      }
+      glm::dvec3 mean(0.0);
+      for (std::uint32_t k = begin; k < end; ++k) mean += mesh.positions[pairs[k].second];
+      mean /= static_cast<double>(end - begin);
+      moved[i] = mesh.positions[i] + factor * (mean - mesh.positions[i]);
+    }
+    mesh.positions.swap(moved);
+  };
+  for (int pass = 0; pass < passes; ++pass) {
+    umbrella(lambda);
+    umbrella(mu);
+  }
+}
+
+}  // namespace slime
