@@ -13,7 +13,8 @@
 namespace slime {
 namespace {
 
-constexpr int kTaubinPasses = 4;
+constexpr int kTaubinPasses = 8;
+constexpr double kBlend = 2.0;  // the blend radius of the cut's rim and of the merged seam, in spacings
 
 void bounds(const SurfaceView& surface, glm::dvec3& low, glm::dvec3& high) {
   for (const glm::dvec3& p : surface.positions) {
@@ -106,12 +107,14 @@ std::vector<TriangleMesh> splitDrawnSurface(const SurfaceView& drawn, const Bulk
   ScalarGrid own = distance;
   for (std::uint32_t part = 0; part < parts; ++part) {
     // The part's indicator (unlabelled points, all outside, count as its own: they do not cut),
-    // blurred, as a distance-like field about the cut; the part's field is its min with the distance.
+    // blurred, as a distance-like field about the cut; the part's field is its smooth min with the
+    // distance, which rounds the cut's rim (a sharp rim's normals jump by 90°).
     for (std::size_t g = 0; g < own.values.size(); ++g) own.values[g] = label[g] == kNone || label[g] == part ? 1.0 : 0.0;
     blurGrid(own, 2);
     for (std::size_t g = 0; g < own.values.size(); ++g)
-      own.values[g] = std::min(distance.values[g], 4.0 * h * (own.values[g] - 0.5));
+      own.values[g] = -smoothMax(-distance.values[g], -4.0 * h * (own.values[g] - 0.5), kBlend * h);
     surfaces[part] = extractSurface(own);
+    keepLargestPart(surfaces[part]);
     taubinSmooth(surfaces[part], kTaubinPasses);
   }
   return surfaces;
@@ -126,9 +129,10 @@ TriangleMesh mergedDrawnSurface(std::span<const SurfaceView> surfaces, double sp
   for (const SurfaceView& surface : surfaces) {
     signedDistanceOnGrid(surface, one);
     for (std::size_t g = 0; g < one.values.size(); ++g)
-      merged.values[g] = std::isinf(merged.values[g]) ? one.values[g] : smoothMax(merged.values[g], one.values[g], 1.5 * spacing);
+      merged.values[g] = std::isinf(merged.values[g]) ? one.values[g] : smoothMax(merged.values[g], one.values[g], kBlend * spacing);
   }
   TriangleMesh mesh = extractSurface(merged);
+  keepLargestPart(mesh);
   taubinSmooth(mesh, kTaubinPasses);
   return mesh;
 }

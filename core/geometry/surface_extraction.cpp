@@ -212,6 +212,44 @@ TriangleMesh extractSurface(const ScalarGrid& grid) {
   return mesh;
 }
 
+std::size_t keepLargestPart(TriangleMesh& mesh) {
+  const std::size_t count = mesh.positions.size();
+  std::vector<std::uint32_t> parent(count);
+  for (std::uint32_t v = 0; v < count; ++v) parent[v] = v;
+  const auto find = [&](std::uint32_t v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (const Triangle& t : mesh.triangles)
+    for (int corner = 1; corner < 3; ++corner) {
+      const std::uint32_t a = find(t.x), b = find(t[corner]);
+      if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    }
+  std::vector<std::size_t> triangles(count, 0);
+  for (const Triangle& t : mesh.triangles) ++triangles[find(t.x)];
+  std::size_t parts = 0;
+  std::uint32_t largest = 0;
+  for (std::uint32_t v = 0; v < count; ++v) {
+    if (triangles[v] == 0) continue;
+    ++parts;
+    if (triangles[v] > triangles[largest]) largest = v;
+  }
+  if (parts <= 1) return 0;
+  std::vector<std::uint32_t> newIndex(count, 0);
+  std::vector<glm::dvec3> kept;
+  for (std::uint32_t v = 0; v < count; ++v)
+    if (find(v) == largest) {
+      newIndex[v] = static_cast<std::uint32_t>(kept.size());
+      kept.push_back(mesh.positions[v]);
+    }
+  std::vector<Triangle> keptTriangles;
+  for (const Triangle& t : mesh.triangles)
+    if (find(t.x) == largest) keptTriangles.emplace_back(newIndex[t.x], newIndex[t.y], newIndex[t.z]);
+  mesh.positions.swap(kept);
+  mesh.triangles.swap(keptTriangles);
+  return parts - 1;
+}
+
 void taubinSmooth(TriangleMesh& mesh, int passes, double lambda, double mu) {
   const std::size_t count = mesh.positions.size();
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;

@@ -50,6 +50,10 @@ double smoothMax(double a, double b, double k);
 // from outside (marching tetrahedra, shared edge vertices welded).
 TriangleMesh extractSurface(const ScalarGrid& grid);
 
+// Keeps the connected part of the surface with the most triangles (a piece is one body: the rest are
+// bubbles that a crumpled source surface's inside test leaves); returns how many parts were dropped.
+std::size_t keepLargestPart(TriangleMesh& mesh);
+
 // Taubin's smoothing, `passes` pairs of a shrinking step λ and an inflating step μ (umbrella operator).
 void taubinSmooth(TriangleMesh& mesh, int passes, double lambda = 0.5, double mu = -0.53);
 

@@ -3,6 +3,7 @@
 #include "core/bulk/element_pass.h"
 #include "core/bulk/piece_surface.h"
 #include "core/bulk/sub_body.h"
+#include "core/simulation/merging.h"
 #include "core/geometry/enclosed_solid.h"
 #include "core/contact/floor_contact.h"
 #include "core/geometry/volume.h"
@@ -98,6 +99,55 @@ std::vector<std::unique_ptr<BulkPiece>> BulkPiece::split(const TearPlan& plan, d
   for (int which = 0; which < kHands; ++which)
     if (handPart[which] >= 0) pieces[handPart[which]]->takeHand(which, hands_[which], newOfOld[handPart[which]]);
   return pieces;
+}
+
+std::unique_ptr<BulkPiece> BulkPiece::mergedWith(BulkPiece& other, double weldDistance, double spacing, double support,
+                                                  std::array<int, kHands>& handFrom) {
+  if (projectiveActive_) projective_.storeMaxwell(body_);
+  if (other.projectiveActive_) other.projective_.storeMaxwell(other.body_);
+  const SurfaceView surfaces[2] = {surface(), other.surface()};
+  const double drawnVolume = enclosedSolid(surfaces[0]).volume + enclosedSolid(surfaces[1]).volume;
+  const double bodyVolume = volume() + other.volume();
+  TriangleMesh drawn = mergedDrawnSurface(surfaces, spacing);
+  std::vector<std::uint32_t> bOf, order;
+  const double density = (body_.totalMass + other.body_.totalMass) / (body_.restVolume + other.body_.restVolume);
+  BulkBody body = assembleBody(weldedParts(body_, other.body_, weldDistance, bOf), settings_.slime, density,
+                               body_.mesh.shellLevel, order);
+  offsetToVolume(drawn, drawnVolume / bodyVolume * enclosedVolume(body.state.positions, body.mesh.surface));
+  carryDrawnSurface(body, std::move(drawn), support);
+  auto piece = std::make_unique<BulkPiece>(std::move(body), slimeRestVolume_);
+  piece->settings_ = settings_;
+  piece->drawnVolumeShare_ = drawnVolume / bodyVolume;
+  // Where each new node came from, in this piece and in the other.
+  const std::size_t ownNodes = body_.state.positions.size();
+  std::vector<std::uint32_t> ownSource(order.size(), FloorAdhesion::kNoSource), otherSource(order.size(), FloorAdhesion::kNoSource);
+  std::vector<std::uint32_t> newOfOwn(ownNodes, kNoNode), newOfOther(other.body_.state.positions.size(), kNoNode);
+  std::vector<std::uint32_t> newOfPart(order.size());
+  for (std::uint32_t i = 0; i < order.size(); ++i) {
+    newOfPart[order[i]] = i;
+    if (order[i] < ownNodes) {
+      ownSource[i] = order[i];
+      newOfOwn[order[i]] = i;
+    }
+  }
+  for (std::uint32_t j = 0; j < bOf.size(); ++j) {
+    if (bOf[j] == kNoNode) continue;
+    newOfOther[j] = newOfPart[bOf[j]];
+    if (bOf[j] >= ownNodes) otherSource[newOfPart[bOf[j]]] = j;
+  }
+  piece->adhesion_.carryOver(adhesion_, ownSource);
+  piece->adhesion_.carryOver(other.adhesion_, otherSource);
+  handFrom.fill(-1);
+  for (int which = 0; which < kHands; ++which) {
+    if (hands_[which].holding) {
+      piece->takeHand(which, hands_[which], newOfOwn);
+      handFrom[which] = 0;
+    } else if (other.hands_[which].holding) {
+      piece->takeHand(which, other.hands_[which], newOfOther);
+      handFrom[which] = 1;
+    }
+  }
+  return piece;
 }
 
 void BulkPiece::takeHand(int which, const Hand& from, const std::vector<std::uint32_t>& newOfOld) {

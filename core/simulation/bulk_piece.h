@@ -54,6 +54,11 @@ class BulkPiece final : public Piece {
   // Their models are not built yet (rebuildModels).
   std::vector<std::unique_ptr<BulkPiece>> split(const TearPlan& plan, double spacing, double support,
                                                 std::array<int, kHands>& handPart);
+  // This piece and `other` as one (merging.h), welded within `weldDistance` (m), its drawn surface the
+  // smooth union of theirs on a grid of `spacing`; a holding hand of either keeps its nodes
+  // (handFrom[hand]: 0 this piece's, 1 the other's, −1 none). Its models are not built yet.
+  std::unique_ptr<BulkPiece> mergedWith(BulkPiece& other, double weldDistance, double spacing, double support,
+                                        std::array<int, kHands>& handFrom);
   // Hand `which` holds its nodes of another piece, renumbered here by `newOfOld` (kNoNode: not here).
   static constexpr std::uint32_t kNoNode = 0xFFFFFFFFu;
   void takeHand(int which, const Hand& hand, const std::vector<std::uint32_t>& newOfOld);

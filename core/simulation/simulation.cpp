@@ -6,6 +6,7 @@
 #include "core/bulk/piece_surface.h"
 #include "core/bulk/surface_embedding.h"
 #include "core/hands/grab.h"
+#include "core/simulation/merging.h"
 #include "core/simulation/tearing.h"
 
 #include <algorithm>
@@ -61,6 +62,7 @@ Simulation::Simulation(const Simulation& other)
       drawnSpacing_(other.drawnSpacing_),
       tears_(other.tears_),
       merges_(other.merges_),
+      touchingFor_(other.touchingFor_),
       lastTopologyMilliseconds_(other.lastTopologyMilliseconds_) {
   for (const std::unique_ptr<Piece>& piece : other.pieces_) pieces_.push_back(piece->clone());
 }
@@ -87,6 +89,7 @@ void Simulation::start() {
   divergences_.clear();
   handPiece_.fill(0);
   tears_ = merges_ = 0;
+  touchingFor_.clear();
   slimeRestVolume_ = 0.0;
   for (const std::unique_ptr<Piece>& piece : pieces_) slimeRestVolume_ += piece->restVolume();
   // A drawn surface made afresh is extracted on a grid of twice the drawn icosphere's edge (marching
@@ -172,7 +175,39 @@ void Simulation::step() {
     cleanSteps_ = 0;
   }
   if (settings_.slime.tearing && stepCount_ % kTearInterval == 0 && tearPieces()) return;
+  if (settings_.slime.mergeTime > 0.0 && pieces_.size() > 1 && stepCount_ % kTearInterval == 0 && mergePieces()) return;
   if (stepCount_ % kGoodStateInterval == 0) saveGoodState();
+}
+
+bool Simulation::mergePieces() {
+  const std::size_t count = pieces_.size();
+  touchingFor_.resize(count * count, 0.0);
+  const double interval = kTearInterval * settings_.sim.dt;
+  for (std::size_t i = 0; i < count; ++i)
+    for (std::size_t j = i + 1; j < count; ++j) {
+      auto* a = dynamic_cast<BulkPiece*>(pieces_[i].get());
+      auto* b = dynamic_cast<BulkPiece*>(pieces_[j].get());
+      if (a == nullptr || b == nullptr) continue;
+      double& touching = touchingFor_[i * count + j];
+      touching = touchingNodes(a->body(), b->body(), drawnSpacing_) >= kTouchingNodes ? touching + interval : 0.0;
+      if (touching < settings_.slime.mergeTime - 1e-9) continue;
+      const auto begin = std::chrono::steady_clock::now();
+      std::array<int, kHands> handFrom{};
+      const double support = kSmoothSupportSteps * settings_.slime.radius / std::ldexp(1.0, settings_.slime.resolution);
+      pieces_[i] = a->mergedWith(*b, drawnSpacing_, drawnSpacing_, support, handFrom);
+      pieces_.erase(pieces_.begin() + static_cast<std::ptrdiff_t>(j));
+      for (std::size_t& piece : handPiece_) {
+        if (piece == j) piece = i;
+        else if (piece > j) --piece;
+      }
+      pieces_[i]->rebuildModels(settings_, integrator_);
+      ++merges_;
+      touchingFor_.clear();
+      saveGoodState();
+      lastTopologyMilliseconds_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
+      return true;
+    }
+  return false;
 }
 
 bool Simulation::tearPieces() {
@@ -196,6 +231,7 @@ bool Simulation::tearPieces() {
     pieces_[p]->rebuildModels(settings_, integrator_);
     for (std::size_t k = firstNew; k < pieces_.size(); ++k) pieces_[k]->rebuildModels(settings_, integrator_);
     ++tears_;
+    touchingFor_.clear();
     saveGoodState();  // the guard never rolls back across a tear
     lastTopologyMilliseconds_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
     return true;

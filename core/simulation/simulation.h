@@ -131,6 +131,7 @@ class Simulation {
   Piece& handPiece(int hand) { return *pieces_[handPiece_[checkedHand(hand)]]; }
   const Piece& handPiece(int hand) const { return *pieces_[handPiece_[checkedHand(hand)]]; }
   bool tearPieces();  // at most one tear per call; true if a piece tore
+  bool mergePieces();  // at most one merge per call; true if two pieces fused
   void saveGoodState();
   void rollBack(const std::string& what);
 
@@ -150,6 +151,7 @@ class Simulation {
   double slimeRestVolume_ = 0.0;  // the whole slime's, m³ (the smallest piece is a share of it)
   double drawnSpacing_ = 0.0;     // the grid of a drawn surface made afresh, m
   int tears_ = 0, merges_ = 0;
+  std::vector<double> touchingFor_;  // per pair (i < j, row after row) of pieces, s touching without a break
   double lastTopologyMilliseconds_ = 0.0;
 };
 

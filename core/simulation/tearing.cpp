@@ -110,6 +110,23 @@ TearPlan planTear(const BulkBody& body, double tearStretch, double smallestVolum
     if ((crack[pair[0]] || crack[pair[1]]) && above[pair[0]] != above[pair[1]]) cut.push_back(pair);
     else components.join(pair[0], pair[1]);
   }
+  // Tetrahedra that share a node off the cut stay together too (a merged piece's two bodies share only
+  // their welded nodes, no faces).
+  std::vector<std::uint8_t> onCut(x.size(), 0);
+  for (const auto& pair : cut)
+    for (int corner = 0; corner < 4; ++corner) {
+      const std::uint32_t node = tetrahedra[pair[0]][corner];
+      const Tetrahedron& other = tetrahedra[pair[1]];
+      if (node == other.x || node == other.y || node == other.z || node == other.w) onCut[node] = 1;
+    }
+  std::vector<std::uint32_t> firstHolder(x.size(), UINT32_MAX);
+  for (std::uint32_t e = 0; e < count; ++e)
+    for (int corner = 0; corner < 4; ++corner) {
+      const std::uint32_t node = tetrahedra[e][corner];
+      if (onCut[node]) continue;
+      if (firstHolder[node] == UINT32_MAX) firstHolder[node] = e;
+      else components.join(firstHolder[node], e);
+    }
   // A component under the smallest piece stays joined to its largest neighbour across the cut.
   for (bool joined = true; joined;) {
     joined = false;

@@ -38,13 +38,13 @@ TEST(PieceSurface, HalvesMatchTheBallAwayFromTheCut) {
     volume += enclosedSolid(halves[part]).volume;
     for (const glm::dvec3& p : halves[part].positions) {
       EXPECT_LT(part == 0 ? p.x - center.x : center.x - p.x, 0.012);  // the cut follows the elements' faces
-      if (std::abs(p.x - center.x) > 0.015) pop = std::max(pop, std::abs(glm::length(p - center) - radius));
+      if (std::abs(p.x - center.x) > 0.02) pop = std::max(pop, std::abs(glm::length(p - center) - radius));
     }
   }
   EXPECT_LT(pop, 0.5e-3) << "the drawn surface away from the cut moved";
-  // The cut's rim is rounded by the grid and the smoothing: 2.3 % short, which offsetToVolume gives back
-  // (the tear moves each part's surface along its normals to its share, by about 0.3 mm here).
-  EXPECT_NEAR(volume / enclosedSolid(ball).volume, 1.0, 0.03);
+  // The cut's rim is rounded (a smooth min of two spacings): 6 % short, which offsetToVolume gives back
+  // (the tear moves each part's surface along its normals to its share, by under a millimetre here).
+  EXPECT_NEAR(volume / enclosedSolid(ball).volume, 1.0, 0.08);
   TriangleMesh half = halves[0];
   const double target = 0.5 * enclosedSolid(ball).volume;
   offsetToVolume(half, target);
