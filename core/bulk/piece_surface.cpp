@@ -132,7 +132,7 @@ TriangleMesh mergedDrawnSurface(std::span<const SurfaceView> surfaces, double sp
       merged.values[g] = std::isinf(merged.values[g]) ? one.values[g] : smoothMax(merged.values[g], one.values[g], kBlend * spacing);
   }
   TriangleMesh mesh = extractSurface(merged);
-  keepLargestPart(mesh);
+  if (keepLargestPart(mesh) > 0) return {};  // the surfaces do not meet
   taubinSmooth(mesh, kTaubinPasses);
   return mesh;
 }

@@ -25,7 +25,8 @@ std::vector<TriangleMesh> splitDrawnSurface(const SurfaceView& drawn, const Bulk
                                             const std::vector<std::uint32_t>& partOf, std::uint32_t parts,
                                             double spacing);
 
-// One closed surface around the smooth union of `surfaces`.
+// One closed surface around the smooth union of `surfaces`; empty when the union is not one connected
+// surface (pieces whose bodies touch, e.g. a foot glued to the floor, while their drawn surfaces do not).
 TriangleMesh mergedDrawnSurface(std::span<const SurfaceView> surfaces, double spacing);
 
 // Moves every vertex of the closed surface `mesh` along its normal by one distance, so that it encloses

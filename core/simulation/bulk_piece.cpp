@@ -58,7 +58,9 @@ std::vector<std::unique_ptr<BulkPiece>> BulkPiece::split(const TearPlan& plan, d
                                                          std::array<int, kHands>& handPart) {
   if (projectiveActive_) projective_.storeMaxwell(body_);  // the live Maxwell states are the solver's
   std::vector<TriangleMesh> surfaces = splitDrawnSurface(surface(), body_, plan.partOf, plan.parts, spacing);
-
+  handPart.fill(-1);
+  for (const TriangleMesh& drawn : surfaces)
+    if (drawn.triangles.empty()) return {};  // a part outside the drawn surface: no tear
   // Each part's drawn surface encloses its body as the whole one's did (the drawn surface stands proud
   // of the body's faces by about 2 %): moved along its normals to that volume.
   const double drawnShare = enclosedSolid(surface()).volume / volume();
@@ -109,6 +111,7 @@ std::unique_ptr<BulkPiece> BulkPiece::mergedWith(BulkPiece& other, double weldDi
   const double drawnVolume = enclosedSolid(surfaces[0]).volume + enclosedSolid(surfaces[1]).volume;
   const double bodyVolume = volume() + other.volume();
   TriangleMesh drawn = mergedDrawnSurface(surfaces, spacing);
+  if (drawn.triangles.empty()) return nullptr;
   std::vector<std::uint32_t> bOf, order;
   const double density = (body_.totalMass + other.body_.totalMass) / (body_.restVolume + other.body_.restVolume);
   BulkBody body = assembleBody(weldedParts(body_, other.body_, weldDistance, bOf), settings_.slime, density,

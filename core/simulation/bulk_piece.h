@@ -51,12 +51,13 @@ class BulkPiece final : public Piece {
   // states, its nodes' state, its floor contacts and a drawn surface made afresh on a grid of `spacing`
   // (m) and carried by a smooth map of `support` (m). A holding hand goes with the part that has most
   // of its nodes (handPart[hand]; −1 for a hand that holds nothing), holding the nodes it had there.
-  // Their models are not built yet (rebuildModels).
+  // Their models are not built yet (rebuildModels). None when a part would have no drawn surface.
   std::vector<std::unique_ptr<BulkPiece>> split(const TearPlan& plan, double spacing, double support,
                                                 std::array<int, kHands>& handPart);
   // This piece and `other` as one (merging.h), welded within `weldDistance` (m), its drawn surface the
   // smooth union of theirs on a grid of `spacing`; a holding hand of either keeps its nodes
-  // (handFrom[hand]: 0 this piece's, 1 the other's, −1 none). Its models are not built yet.
+  // (handFrom[hand]: 0 this piece's, 1 the other's, −1 none). Its models are not built yet. None when
+  // the smooth union of the drawn surfaces is not one surface (they do not meet).
   std::unique_ptr<BulkPiece> mergedWith(BulkPiece& other, double weldDistance, double spacing, double support,
                                         std::array<int, kHands>& handFrom);
   // Hand `which` holds its nodes of another piece, renumbered here by `newOfOld` (kNoNode: not here).

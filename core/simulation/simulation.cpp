@@ -194,7 +194,12 @@ bool Simulation::mergePieces() {
       const auto begin = std::chrono::steady_clock::now();
       std::array<int, kHands> handFrom{};
       const double support = kSmoothSupportSteps * settings_.slime.radius / std::ldexp(1.0, settings_.slime.resolution);
-      pieces_[i] = a->mergedWith(*b, drawnSpacing_, drawnSpacing_, support, handFrom);
+      std::unique_ptr<BulkPiece> merged = a->mergedWith(*b, drawnSpacing_, drawnSpacing_, support, handFrom);
+      if (merged == nullptr) {  // their drawn surfaces do not meet: touching again for a whole mergeTime first
+        touching = -settings_.slime.mergeTime;
+        continue;
+      }
+      pieces_[i] = std::move(merged);
       pieces_.erase(pieces_.begin() + static_cast<std::ptrdiff_t>(j));
       for (std::size_t& piece : handPiece_) {
         if (piece == j) piece = i;
@@ -221,6 +226,7 @@ bool Simulation::tearPieces() {
     std::array<int, kHands> handPart{};
     const double support = kSmoothSupportSteps * settings_.slime.radius / std::ldexp(1.0, settings_.slime.resolution);
     std::vector<std::unique_ptr<BulkPiece>> parts = bulk->split(plan, drawnSpacing_, support, handPart);
+    if (parts.empty()) continue;
     // Part 0 takes the torn piece's place; the others follow the last piece.
     const std::size_t firstNew = pieces_.size();
     for (int hand = 0; hand < kHands; ++hand)
