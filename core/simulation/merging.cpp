@@ -77,7 +77,6 @@ BodyParts weldedParts(const BulkBody& a, const BulkBody& b, double weldDistance,
   for (std::uint32_t e = 0; e < allB.size(); ++e) allB[e] = e;
   BodyParts parts = partsOf(a, allA, nodesA);  // every node of a is used: part node i is a's node i
   const BodyParts second = partsOf(b, allB, nodesB);
-  const std::size_t countA = parts.positions.size();
   // Mutual nearest surface nodes within the weld distance.
   const SurfaceNodeGrid gridA(a, weldDistance), gridB(b, weldDistance);
   constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
@@ -101,8 +100,8 @@ BodyParts weldedParts(const BulkBody& a, const BulkBody& b, double weldDistance,
   }
   // Each welded pair meets half-way, with the mass-weighted velocity.
   std::vector<std::uint8_t> moved(parts.positions.size(), 0);
-  const std::vector<glm::dvec3> before = parts.positions;
-  std::vector<glm::dvec3> beforeB = second.positions;
+  const std::vector<glm::dvec3> before = parts.positions;  // a's nodes before the weld
+  const std::vector<glm::dvec3>& beforeB = second.positions;
   for (std::uint32_t j = 0; j < nodesB.size(); ++j) {
     const std::uint32_t node = nodesB[j];
     if (weldedTo[node] == kNone) continue;
@@ -132,7 +131,6 @@ BodyParts weldedParts(const BulkBody& a, const BulkBody& b, double weldDistance,
     const glm::dmat3 restShape = glm::inverse(f) * shape;
     parts.rest[e] = makeTetRest(glm::dvec3(0.0), restShape[0], restShape[1], restShape[2]);
   }
-  (void)countA;
   // The rest frames of the two bodies differ: the merged body's node frame (its dampers' rest lengths,
   // the frequency estimate's shape) is where its nodes are now; each tetrahedron keeps its own rest data.
   parts.restPositions = parts.positions;

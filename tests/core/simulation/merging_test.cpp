@@ -16,13 +16,13 @@
 namespace slime {
 namespace {
 
-double drawnVolume(const Simulation& simulation) {
+double totalDrawnVolume(const Simulation& simulation) {
   double volume = 0.0;
   for (const EnclosedSolid& solid : simulation.pieceSolids()) volume += solid.volume;
   return volume;
 }
 
-double degrees(double radians) { return radians * 180.0 / std::numbers::pi; }
+double inDegrees(double radians) { return radians * 180.0 / std::numbers::pi; }
 
 TEST(Merging, TornPiecePressedBackFusesAndRoundsUp) {
   Settings settings = defaultSettings();
@@ -34,12 +34,12 @@ TEST(Merging, TornPiecePressedBackFusesAndRoundsUp) {
   while (simulation.time() < 8.6 - 1e-9) {
     player.advanceTo(simulation.time(), simulation, settings);
     const int tears = simulation.tears(), merges = simulation.merges();
-    if (tears == 0 && simulation.stepCount() % 10 == 0) beforeTear = drawnVolume(simulation);
+    if (tears == 0 && simulation.stepCount() % 10 == 0) beforeTear = totalDrawnVolume(simulation);
     simulation.step();
     if (merges == 0 && simulation.merges() > 0) mergedAt = simulation.time();
     if (simulation.tears() > 0 && simulation.stepCount() % 50 == 0) {
-      lowest = std::min(lowest, drawnVolume(simulation));
-      highest = std::max(highest, drawnVolume(simulation));
+      lowest = std::min(lowest, totalDrawnVolume(simulation));
+      highest = std::max(highest, totalDrawnVolume(simulation));
     }
     if (mergedAt > 0.0 && std::abs(simulation.time() - (mergedAt + 2.0)) < 0.5e-3)
       seam = normalJumps(simulation.positions(), simulation.triangles());
@@ -51,7 +51,7 @@ TEST(Merging, TornPiecePressedBackFusesAndRoundsUp) {
   // 2 s after the merge the drawn surface is smooth across most edges: its median normal jump is the
   // untorn icosphere's (2.5°). Its largest and 99th percentile are not yet the 10°: the
   // marching tetrahedra leave sliver triangles whose normals jump (docs/physics.md, limits).
-  EXPECT_LT(degrees(seam.median), 4.0);
+  EXPECT_LT(inDegrees(seam.median), 4.0);
   // Five seconds after the hands let go (at 3.6 s), the aspect of a slime never torn.
   Simulation untorn(defaultSettings());
   while (untorn.time() < 8.6 - 1e-9) untorn.step();
@@ -61,7 +61,7 @@ TEST(Merging, TornPiecePressedBackFusesAndRoundsUp) {
   EXPECT_NEAR(simulation.volume() / simulation.restVolume(), 1.0, 0.01);
   EXPECT_TRUE(simulation.divergences().empty());
   std::printf("merged at %.3f s; seam 2 s later: largest %.2f deg, 99th %.2f deg, median %.2f deg; aspect %.3f (untorn %.3f); drawn volume %.4f..%.4f of before the tear\n",
-              mergedAt, degrees(seam.largest), degrees(seam.percentile99), degrees(seam.median), simulation.metrics().aspect, untorn.metrics().aspect,
+              mergedAt, inDegrees(seam.largest), inDegrees(seam.percentile99), inDegrees(seam.median), simulation.metrics().aspect, untorn.metrics().aspect,
               lowest / beforeTear, highest / beforeTear);
 }
 
