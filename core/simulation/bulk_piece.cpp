@@ -49,8 +49,8 @@ BulkPiece::BulkPiece(BulkBody body, double slimeRestVolume)
 }
 
 void BulkPiece::applyMaterial(const SlimeSettings& slime) {
-  SlimeSettings own = slime;  // slime.mass is the whole slime's: this piece takes its share
-  own.mass = slime.mass * body_.restVolume / slimeRestVolume_;
+  SlimeSettings own = slime;  // slime.mass is the whole slime's: a torn piece takes its share
+  if (body_.restVolume != slimeRestVolume_) own.mass = slime.mass * body_.restVolume / slimeRestVolume_;
   applyBulkMaterial(body_, own);
 }
 
