@@ -15,6 +15,9 @@ namespace {
 
 constexpr int kTaubinPasses = 8;
 constexpr double kBlend = 2.0;  // the blend radius of the cut's rim and of the merged seam, in spacings
+// The extraction grid's cells per spacing along each axis: surface nets put one vertex per cell the
+// surface crosses, so the grid is as fine as the drawn surface's edges (spacing is twice their length).
+constexpr double kCellsPerSpacing = 1.5;
 
 void bounds(const SurfaceView& surface, glm::dvec3& low, glm::dvec3& high) {
   for (const glm::dvec3& p : surface.positions) {
@@ -57,10 +60,10 @@ std::vector<TriangleMesh> splitDrawnSurface(const SurfaceView& drawn, const Bulk
                                             double spacing) {
   glm::dvec3 low(std::numeric_limits<double>::infinity()), high(-std::numeric_limits<double>::infinity());
   bounds(drawn, low, high);
-  ScalarGrid distance = gridAround(low, high, spacing, 3.0 * spacing);
+  ScalarGrid distance = gridAround(low, high, spacing / kCellsPerSpacing, 3.0 * spacing);
   signedDistanceOnGrid(drawn, distance);
   const glm::ivec3 n = distance.size;
-  const double h = spacing;
+  const double h = distance.spacing;
   // Each grid point's part: the tetrahedron it lies in.
   constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
   std::vector<std::uint32_t> label(distance.count(), kNone);
@@ -110,9 +113,9 @@ std::vector<TriangleMesh> splitDrawnSurface(const SurfaceView& drawn, const Bulk
     // blurred, as a distance-like field about the cut; the part's field is its smooth min with the
     // distance, which rounds the cut's rim (a sharp rim's normals jump by 90°).
     for (std::size_t g = 0; g < own.values.size(); ++g) own.values[g] = label[g] == kNone || label[g] == part ? 1.0 : 0.0;
-    blurGrid(own, 2);
+    blurGrid(own, static_cast<int>(std::lround(2.0 * kCellsPerSpacing * kCellsPerSpacing)));  // a blur two spacings wide whatever the cells
     for (std::size_t g = 0; g < own.values.size(); ++g)
-      own.values[g] = -smoothMax(-distance.values[g], -4.0 * h * (own.values[g] - 0.5), kBlend * h);
+      own.values[g] = -smoothMax(-distance.values[g], -4.0 * spacing * (own.values[g] - 0.5), kBlend * spacing);
     surfaces[part] = extractSurface(own);
     keepLargestPart(surfaces[part]);
     taubinSmooth(surfaces[part], kTaubinPasses);
@@ -123,7 +126,7 @@ std::vector<TriangleMesh> splitDrawnSurface(const SurfaceView& drawn, const Bulk
 TriangleMesh mergedDrawnSurface(std::span<const SurfaceView> surfaces, double spacing) {
   glm::dvec3 low(std::numeric_limits<double>::infinity()), high(-std::numeric_limits<double>::infinity());
   for (const SurfaceView& surface : surfaces) bounds(surface, low, high);
-  ScalarGrid merged = gridAround(low, high, spacing, 3.0 * spacing);
+  ScalarGrid merged = gridAround(low, high, spacing / kCellsPerSpacing, 3.0 * spacing);
   merged.values.assign(merged.count(), -std::numeric_limits<double>::infinity());
   ScalarGrid one = merged;
   for (const SurfaceView& surface : surfaces) {

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <unordered_map>
 #include <utility>
 
@@ -155,7 +156,7 @@ double smoothMax(double a, double b, double k) {
   return b + (a - b) * mix + k * mix * (1.0 - mix);
 }
 
-TriangleMesh extractSurface(const ScalarGrid& grid) {
+TriangleMesh extractSurfaceTetrahedra(const ScalarGrid& grid) {
   TriangleMesh mesh;
   const glm::ivec3 n = grid.size;
   std::unordered_map<std::uint64_t, std::uint32_t> edgeVertex;
@@ -210,6 +211,130 @@ TriangleMesh extractSurface(const ScalarGrid& grid) {
         }
       }
   return mesh;
+}
+
+bool isClosedManifold(const TriangleMesh& mesh) {
+  // Every directed edge once and its reverse once: each edge in exactly two triangles, wound alike.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
+  edges.reserve(3 * mesh.triangles.size());
+  for (const Triangle& t : mesh.triangles)
+    for (int e = 0; e < 3; ++e) edges.emplace_back(t[e], t[(e + 1) % 3]);
+  std::sort(edges.begin(), edges.end());
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    if (e + 1 < edges.size() && edges[e + 1] == edges[e]) return false;
+    if (!std::binary_search(edges.begin(), edges.end(), std::make_pair(edges[e].second, edges[e].first))) return false;
+  }
+  return true;
+}
+
+TriangleMesh extractSurfaceNets(const ScalarGrid& grid) {
+  TriangleMesh mesh;
+  const glm::ivec3 n = grid.size;
+  if (n.x < 2 || n.y < 2 || n.z < 2) return mesh;
+  const auto inside = [&](int i, int j, int k) { return grid.values[grid.index(i, j, k)] > 0.0; };
+  const glm::ivec3 cells = n - glm::ivec3(1);
+  const auto cellIndex = [&](int i, int j, int k) {
+    return static_cast<std::size_t>(i) + static_cast<std::size_t>(cells.x) * (static_cast<std::size_t>(j) + static_cast<std::size_t>(cells.y) * static_cast<std::size_t>(k));
+  };
+  constexpr std::uint32_t kNoVertex = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> cellVertex(static_cast<std::size_t>(cells.x) * cells.y * cells.z, kNoVertex);
+  // The twelve edges of a cell, by corner (bit 0: +x, bit 1: +y, bit 2: +z).
+  constexpr int kCellEdges[12][2] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3}, {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+  for (int k = 0; k < cells.z; ++k)
+    for (int j = 0; j < cells.y; ++j)
+      for (int i = 0; i < cells.x; ++i) {
+        double value[8];
+        int insideCount = 0;
+        for (int c = 0; c < 8; ++c) {
+          value[c] = grid.values[grid.index(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1))];
+          insideCount += value[c] > 0.0;
+        }
+        if (insideCount == 0 || insideCount == 8) continue;
+        // The mean of the crossings along the cell's edges, in the cell's own coordinates.
+        glm::dvec3 sum(0.0);
+        int crossings = 0;
+        for (const auto& edge : kCellEdges) {
+          const double a = value[edge[0]], b = value[edge[1]];
+          if ((a > 0.0) == (b > 0.0)) continue;
+          const double t = std::clamp(a / (a - b), 0.0, 1.0);
+          const glm::dvec3 p(edge[0] & 1, (edge[0] >> 1) & 1, (edge[0] >> 2) & 1), q(edge[1] & 1, (edge[1] >> 1) & 1, (edge[1] >> 2) & 1);
+          sum += p + t * (q - p);
+          ++crossings;
+        }
+        cellVertex[cellIndex(i, j, k)] = static_cast<std::uint32_t>(mesh.positions.size());
+        mesh.positions.push_back(grid.point(i, j, k) + grid.spacing * (sum / static_cast<double>(crossings)));
+      }
+  // A quad of the four cells about each grid edge the surface crosses, split along its shorter
+  // diagonal, wound so that its normal points from the inside end of the edge to the outside one.
+  const auto quad = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d, bool flip) {
+    if (flip) std::swap(b, d);
+    const glm::dvec3 &pa = mesh.positions[a], &pb = mesh.positions[b], &pc = mesh.positions[c], &pd = mesh.positions[d];
+    if (glm::length(pc - pa) <= glm::length(pd - pb)) {
+      mesh.triangles.emplace_back(a, b, c);
+      mesh.triangles.emplace_back(a, c, d);
+    } else {
+      mesh.triangles.emplace_back(a, b, d);
+      mesh.triangles.emplace_back(b, c, d);
+    }
+  };
+  for (int k = 0; k < n.z; ++k)
+    for (int j = 0; j < n.y; ++j)
+      for (int i = 0; i < n.x; ++i) {
+        const bool here = inside(i, j, k);
+        // Along +x: the cells (i, j-1|j, k-1|k), counter-clockwise about +x (y, then z).
+        if (i + 1 < n.x && j > 0 && k > 0 && j < cells.y && k < cells.z && inside(i + 1, j, k) != here)
+          quad(cellVertex[cellIndex(i, j - 1, k - 1)], cellVertex[cellIndex(i, j, k - 1)], cellVertex[cellIndex(i, j, k)],
+               cellVertex[cellIndex(i, j - 1, k)], !here);
+        // Along +y: about +y (z, then x).
+        if (j + 1 < n.y && i > 0 && k > 0 && i < cells.x && k < cells.z && inside(i, j + 1, k) != here)
+          quad(cellVertex[cellIndex(i - 1, j, k - 1)], cellVertex[cellIndex(i - 1, j, k)], cellVertex[cellIndex(i, j, k)],
+               cellVertex[cellIndex(i, j, k - 1)], !here);
+        // Along +z: about +z (x, then y).
+        if (k + 1 < n.z && i > 0 && j > 0 && i < cells.x && j < cells.y && inside(i, j, k + 1) != here)
+          quad(cellVertex[cellIndex(i - 1, j - 1, k)], cellVertex[cellIndex(i, j - 1, k)], cellVertex[cellIndex(i, j, k)],
+               cellVertex[cellIndex(i - 1, j, k)], !here);
+      }
+  return mesh;
+}
+
+std::size_t resolveSaddleFaces(ScalarGrid& grid) {
+  const glm::ivec3 n = grid.size;
+  std::vector<double>& v = grid.values;
+  std::size_t flipped = 0;
+  // The faces of the grid's cells, by their lowest corner and the two axes they span.
+  const glm::ivec3 axes[3][2] = {{{1, 0, 0}, {0, 1, 0}}, {{0, 1, 0}, {0, 0, 1}}, {{0, 0, 1}, {1, 0, 0}}};
+  for (int k = 0; k < n.z; ++k)
+    for (int j = 0; j < n.y; ++j)
+      for (int i = 0; i < n.x; ++i)
+        for (const auto& axis : axes) {
+          const glm::ivec3 p(i, j, k), u = p + axis[0], w = p + axis[1], d = p + axis[0] + axis[1];
+          if (d.x >= n.x || d.y >= n.y || d.z >= n.z) continue;
+          const std::size_t corner[4] = {grid.index(p.x, p.y, p.z), grid.index(u.x, u.y, u.z), grid.index(d.x, d.y, d.z), grid.index(w.x, w.y, w.z)};
+          const bool in0 = v[corner[0]] > 0.0, in1 = v[corner[1]] > 0.0;
+          if (in0 == in1 || (v[corner[2]] > 0.0) != in0 || (v[corner[3]] > 0.0) != in1) continue;
+          // A saddle: the bilinear field's value at the face's centre says which diagonal pair joins
+          // across it; the corner of the other pair nearest zero joins them.
+          const bool insideJoins = v[corner[0]] + v[corner[1]] + v[corner[2]] + v[corner[3]] > 0.0;
+          std::size_t nearest = corner[0];
+          double least = std::numeric_limits<double>::infinity();
+          for (std::size_t c : corner)
+            if ((v[c] > 0.0) != insideJoins && std::abs(v[c]) < least) {
+              least = std::abs(v[c]);
+              nearest = c;
+            }
+          v[nearest] = (insideJoins ? 1e-6 : -1e-6) * grid.spacing;
+          ++flipped;
+        }
+  return flipped;
+}
+
+TriangleMesh extractSurface(const ScalarGrid& grid) {
+  ScalarGrid resolved = grid;
+  for (int round = 0; round < 4; ++round)
+    if (resolveSaddleFaces(resolved) == 0) break;
+  TriangleMesh mesh = extractSurfaceNets(resolved);
+  if (isClosedManifold(mesh)) return mesh;
+  return extractSurfaceTetrahedra(grid);
 }
 
 std::size_t keepLargestPart(TriangleMesh& mesh) {

@@ -1,11 +1,16 @@
 // A closed, watertight surface made afresh from a scalar field on a grid, for a piece whose drawn
-// surface cannot be carried over (a piece torn off, two pieces merged): the field is positive inside;
-// marching tetrahedra (each grid cell cut into six tetrahedra about its main diagonal, the same in
-// every cell, so neighbouring cells cut their shared face alike and the surface has no cracks and no
-// ambiguous cases) places a vertex where the field crosses zero along an edge, and Taubin's λ|μ
-// smoothing (Taubin 1995) takes out the grid's facets without shrinking the surface. The fields come
-// from closed surfaces (signedDistanceOnGrid: inside by ray parity along the grid's columns, the
-// distance exact near the surface) and are combined by min (intersection) and a smooth max (union).
+// surface cannot be carried over (a piece torn off, two pieces merged): the field is positive inside.
+// Naive surface nets (Gibson 1998) place one vertex in each grid cell the surface crosses, at the mean
+// of the crossings along its edges, and join the four cells about each grid edge the surface crosses by
+// a quad split along its shorter diagonal: well-shaped triangles of about the grid's spacing, where
+// marching tetrahedra leave slivers whose normals jump by tens of degrees. Where a cell face is a saddle
+// (its diagonal corners inside) the nets would not be manifold: a corner near zero changes side first
+// (resolveSaddleFaces); should the nets still not be closed and manifold, the whole surface is made by
+// marching tetrahedra (each grid cell cut into six tetrahedra about its main diagonal, the same in every cell:
+// no cracks, no ambiguous cases). Taubin's λ|μ smoothing (Taubin 1995) takes out the grid's steps
+// without shrinking the surface. The fields come from closed surfaces (signedDistanceOnGrid: inside by
+// ray parity along the grid's columns, the distance exact near the surface) and are combined by min
+// (intersection) and a smooth max (union).
 #pragma once
 
 #include "core/geometry/icosphere.h"
@@ -47,8 +52,20 @@ void blurGrid(ScalarGrid& grid, int passes);
 double smoothMax(double a, double b, double k);
 
 // The zero level of `grid` (positive inside) as a closed triangle surface wound counter-clockwise seen
-// from outside (marching tetrahedra, shared edge vertices welded).
+// from outside: surface nets when they are closed and manifold, else marching tetrahedra.
 TriangleMesh extractSurface(const ScalarGrid& grid);
+
+// Takes out the saddles of the grid's cell faces (two diagonal corners inside, the other two outside),
+// where surface nets would put an edge in four triangles: the corner nearest zero of the pair the
+// bilinear field does not join across the face changes side. Returns how many corners changed.
+std::size_t resolveSaddleFaces(ScalarGrid& grid);
+
+// The two ways, on their own. Surface nets may leave an edge in four triangles (a saddle face).
+TriangleMesh extractSurfaceNets(const ScalarGrid& grid);
+TriangleMesh extractSurfaceTetrahedra(const ScalarGrid& grid);
+
+// Every directed edge once and its reverse once: closed, each edge in two triangles, wound alike.
+bool isClosedManifold(const TriangleMesh& mesh);
 
 // Keeps the connected part of the surface with the most triangles (a piece is one body: the rest are
 // bubbles that a crumpled source surface's inside test leaves); returns how many parts were dropped.

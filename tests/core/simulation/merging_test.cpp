@@ -49,8 +49,8 @@ TEST(Merging, TornPiecePressedBackFusesAndRoundsUp) {
   EXPECT_EQ(simulation.pieceCount(), 1u);
   EXPECT_LT(mergedAt, 3.6) << "pressed together for a second, the pieces fuse while held";
   // 2 s after the merge the drawn surface is smooth across most edges: its median normal jump is the
-  // untorn icosphere's (2.5°). Its largest and 99th percentile are not yet the 10°: the
-  // marching tetrahedra leave sliver triangles whose normals jump (docs/physics.md, limits).
+  // untorn icosphere's (2.5°). Its largest and 99th percentile are not yet the 10°: the torn-off
+  // piece stays a nub of small radius at the seam, drawn with edges of the grid's size (docs/physics.md).
   EXPECT_LT(inDegrees(seam.median), 4.0);
   // Five seconds after the hands let go (at 3.6 s), the aspect of a slime never torn.
   Simulation untorn(defaultSettings());
