@@ -169,9 +169,9 @@ BulkBody assembleBody(const BodyParts& parts, const SlimeSettings& slime, double
 
 void carryDrawnSurface(BulkBody& body, TriangleMesh drawn, double support) {
   const std::vector<glm::dvec3>& x = body.state.positions;
-  TetMesh reference;  // the body now: the smooth map is exact for affine motion from here
-  reference.positions = x;
-  embedSmoothly(reference, drawn.positions, support, body.embedding);
+  // The smooth map is fitted from the body now (exact for affine motion from here), a few vertices a
+  // step (BulkPiece::endStep); the element map, exact now too, places the surface meanwhile.
+  beginSmoothFit(x, drawn.positions, support, body.embedding);
 
   // The element map: each drawn vertex in the tetrahedron under its nearest surface face, found in
   // cubic cells of the faces' mean edge length.

@@ -4,6 +4,7 @@
 #include "core/bulk/bulk_body.h"
 #include "core/bulk/piece_surface.h"
 #include "core/bulk/sub_body.h"
+#include "core/bulk/surface_embedding.h"
 #include "core/geometry/enclosed_solid.h"
 #include "core/settings/settings_io.h"
 
@@ -79,6 +80,39 @@ TEST(SubBody, HalvesKeepRestVolumeMassAndMaxwellStates) {
   }
   EXPECT_NEAR(restVolume / body.restVolume, 1.0, 1e-12);
   EXPECT_NEAR(mass / body.totalMass, 1.0, 1e-12);
+}
+
+// A drawn surface made afresh has its smooth map fitted a few vertices a step (BulkPiece::endStep):
+// the element map places it meanwhile, and the map fitted over the steps is the one fitted at once.
+TEST(SubBody, SmoothMapFittedOverStepsIsTheFitAtOnce) {
+  const SlimeSettings slime = defaultSettings().slime;
+  const BulkBody body = buildBulkBody(slime);
+  const double support = kSmoothSupportSteps * slime.radius / std::ldexp(1.0, slime.resolution);
+  TetMesh reference;
+  reference.positions = body.state.positions;
+  SurfaceEmbedding atOnce = body.embedding, overSteps = body.embedding;
+  embedSmoothly(reference, body.drawn.positions, support, atOnce);
+  beginSmoothFit(body.state.positions, body.drawn.positions, support, overSteps);
+  std::vector<glm::dvec3> moved = body.state.positions, placed, expected;
+  for (glm::dvec3& x : moved) x += glm::dvec3(0.3 * x.y * x.y, 0.0, 0.2 * x.x);  // not affine: the maps differ
+  int steps = 1;
+  for (constexpr std::size_t kPerStep = 100; !continueSmoothFit(overSteps, kPerStep); ++steps) {
+    placeEmbedded(overSteps, moved, placed);
+    placeByElements(overSteps, moved, expected);
+    ASSERT_EQ(placed, expected) << "step " << steps << ": the element map places the surface until the fit is done";
+  }
+  EXPECT_EQ(steps, static_cast<int>((body.drawn.positions.size() + 99) / 100));
+  ASSERT_EQ(overSteps.smoothStart, atOnce.smoothStart);
+  ASSERT_EQ(overSteps.smoothTerms.size(), atOnce.smoothTerms.size());
+  for (std::size_t k = 0; k < atOnce.smoothTerms.size(); ++k) {
+    EXPECT_EQ(overSteps.smoothTerms[k].node, atOnce.smoothTerms[k].node);
+    EXPECT_EQ(overSteps.smoothTerms[k].weight, atOnce.smoothTerms[k].weight);
+  }
+  placeEmbedded(overSteps, moved, placed);
+  placeEmbedded(atOnce, moved, expected);
+  EXPECT_EQ(placed, expected);
+  placeByElements(overSteps, moved, expected);
+  EXPECT_NE(placed, expected);
 }
 
 }  // namespace
