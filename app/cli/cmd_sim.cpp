@@ -174,13 +174,17 @@ int runSim(const SimOptions& options) {
   series.push_back(metricsSample(0.0, metrics, simulation));
   std::int64_t stepsRun = 0;
   double stepSeconds = 0.0;  // thread CPU time inside step()
+  double tearMilliseconds = 0.0, mergeMilliseconds = 0.0;  // the dearest tear and merge (wall time inside its step)
   const auto wallStart = std::chrono::steady_clock::now();
   while (simulation.stepCount() < totalSteps && simulation.divergences().size() <= kMaxRollbacks) {
     if (player) player->advanceTo(simulation.time(), simulation, settings);
     const double start = threadSeconds();
+    const int tearsBefore = simulation.tears(), mergesBefore = simulation.merges();
     simulation.step();
     stepSeconds += threadSeconds() - start;
     ++stepsRun;
+    if (simulation.tears() != tearsBefore) tearMilliseconds = std::max(tearMilliseconds, simulation.lastTopologyMilliseconds());
+    if (simulation.merges() != mergesBefore) mergeMilliseconds = std::max(mergeMilliseconds, simulation.lastTopologyMilliseconds());
     exportIfDue();
     // Every step, what the step itself holds (the bodies' volume, the points' speed); the shape, which
     // places the drawn surface (for the bulk body the smooth map, twice a step's cost at level 4), at
@@ -242,6 +246,11 @@ int runSim(const SimOptions& options) {
         {"nan", nan},
         {"rollbacks", rollbacks},
         {"divergences", divergences},
+        // slime.tearing and slime.mergeTime: how many tears and merges, and the dearest of each, wall ms.
+        {"tears", simulation.tears()},
+        {"merges", simulation.merges()},
+        {"tear_ms_max", tearMilliseconds},
+        {"merge_ms_max", mergeMilliseconds},
         {"final", {{"volume_ratio", metrics.volumeRatio}, {"height", metrics.height}, {"width", metrics.width},
                    {"aspect", metrics.aspect}, {"min_z", metrics.minZ}, {"kinetic_energy", metrics.kineticEnergy},
                    {"max_speed", metrics.maxSpeed},

@@ -96,46 +96,80 @@ SurfaceEmbedding embedSurface(const TetMesh& body, const TriangleMesh& drawn, in
   return embedding;
 }
 
+namespace {
+
+// Appends the smooth map's terms of the drawn vertex at `x` over the nodes at `nodes` (found in `grid`).
+void appendSmoothTerms(const NodeGrid& grid, const std::vector<glm::dvec3>& nodes, const glm::dvec3& x, double support,
+                       std::vector<std::uint32_t>& near, SurfaceEmbedding& embedding) {
+  for (double h = support;; h *= 1.25) {
+    if (h > 64.0 * support) throw std::runtime_error("embedSmoothly: no affine fit around a drawn vertex");
+    grid.within(x, h, near);
+    if (near.size() < 4) continue;
+    // M = Σ W_j p_j p_jᵀ with p_j = (1, (X_j − X)/h) (the 1/h scales the basis, not φ).
+    Eigen::Matrix4d moment = Eigen::Matrix4d::Zero();
+    std::vector<Eigen::Vector4d> basis(near.size());
+    std::vector<double> kernel(near.size());
+    for (std::size_t k = 0; k < near.size(); ++k) {
+      const glm::dvec3 d = (nodes[near[k]] - x) / h;
+      const double q2 = glm::dot(d, d);
+      kernel[k] = (1.0 - q2) * (1.0 - q2) * (1.0 - q2);
+      basis[k] = Eigen::Vector4d(1.0, d.x, d.y, d.z);
+      moment += kernel[k] * basis[k] * basis[k].transpose();
+    }
+    // A fit the nodes pin down in every direction: M's condition number below 10⁶.
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> spectrum(moment, Eigen::EigenvaluesOnly);
+    if (!(spectrum.eigenvalues()(0) > 1e-6 * spectrum.eigenvalues()(3))) continue;
+    const Eigen::Vector4d a = moment.ldlt().solve(Eigen::Vector4d(1.0, 0.0, 0.0, 0.0));  // M⁻¹ p(X)
+    for (std::size_t k = 0; k < near.size(); ++k) {
+      const double phi = kernel[k] * a.dot(basis[k]);
+      if (phi != 0.0) embedding.smoothTerms.push_back({phi, near[k]});
+    }
+    break;
+  }
+  embedding.smoothStart.push_back(static_cast<std::uint32_t>(embedding.smoothTerms.size()));
+}
+
+}  // namespace
+
 void embedSmoothly(const TetMesh& body, const std::vector<glm::dvec3>& rest, double support,
                    SurfaceEmbedding& embedding) {
   if (!(support > 0.0)) throw std::invalid_argument("embedSmoothly: support must be positive");
   const NodeGrid grid(body.positions, support);
   embedding.smoothStart.assign(1, 0);
   embedding.smoothTerms.clear();
+  embedding.fitNodes.clear();
+  embedding.fitRest.clear();
   std::vector<std::uint32_t> near;
-  for (const glm::dvec3& x : rest) {
-    for (double h = support;; h *= 1.25) {
-      if (h > 64.0 * support) throw std::runtime_error("embedSmoothly: no affine fit around a drawn vertex");
-      grid.within(x, h, near);
-      if (near.size() < 4) continue;
-      // M = Σ W_j p_j p_jᵀ with p_j = (1, (X_j − X)/h) (the 1/h scales the basis, not φ).
-      Eigen::Matrix4d moment = Eigen::Matrix4d::Zero();
-      std::vector<Eigen::Vector4d> basis(near.size());
-      std::vector<double> kernel(near.size());
-      for (std::size_t k = 0; k < near.size(); ++k) {
-        const glm::dvec3 d = (body.positions[near[k]] - x) / h;
-        const double q2 = glm::dot(d, d);
-        kernel[k] = (1.0 - q2) * (1.0 - q2) * (1.0 - q2);
-        basis[k] = Eigen::Vector4d(1.0, d.x, d.y, d.z);
-        moment += kernel[k] * basis[k] * basis[k].transpose();
-      }
-      // A fit the nodes pin down in every direction: M's condition number below 10⁶.
-      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> spectrum(moment, Eigen::EigenvaluesOnly);
-      if (!(spectrum.eigenvalues()(0) > 1e-6 * spectrum.eigenvalues()(3))) continue;
-      const Eigen::Vector4d a = moment.ldlt().solve(Eigen::Vector4d(1.0, 0.0, 0.0, 0.0));  // M⁻¹ p(X)
-      for (std::size_t k = 0; k < near.size(); ++k) {
-        const double phi = kernel[k] * a.dot(basis[k]);
-        if (phi != 0.0) embedding.smoothTerms.push_back({phi, near[k]});
-      }
-      break;
-    }
-    embedding.smoothStart.push_back(static_cast<std::uint32_t>(embedding.smoothTerms.size()));
-  }
+  for (const glm::dvec3& x : rest) appendSmoothTerms(grid, body.positions, x, support, near, embedding);
+}
+
+void beginSmoothFit(const std::vector<glm::dvec3>& nodes, const std::vector<glm::dvec3>& rest, double support,
+                    SurfaceEmbedding& embedding) {
+  if (!(support > 0.0)) throw std::invalid_argument("beginSmoothFit: support must be positive");
+  embedding.smoothStart.assign(1, 0);
+  embedding.smoothTerms.clear();
+  embedding.fitNodes = nodes;
+  embedding.fitRest = rest;
+  embedding.fitSupport = support;
+}
+
+bool continueSmoothFit(SurfaceEmbedding& embedding, std::size_t vertices) {
+  if (embedding.fitRest.empty()) return true;
+  const NodeGrid grid(embedding.fitNodes, embedding.fitSupport);
+  std::vector<std::uint32_t> near;
+  const std::size_t first = embedding.smoothStart.size() - 1;
+  const std::size_t last = std::min(embedding.fitRest.size(), first + vertices);
+  for (std::size_t i = first; i < last; ++i)
+    appendSmoothTerms(grid, embedding.fitNodes, embedding.fitRest[i], embedding.fitSupport, near, embedding);
+  if (last < embedding.fitRest.size()) return false;
+  embedding.fitNodes = {};
+  embedding.fitRest = {};
+  return true;
 }
 
 void placeEmbedded(const SurfaceEmbedding& embedding, const std::vector<glm::dvec3>& body,
                    std::vector<glm::dvec3>& drawn) {
-  if (embedding.smoothStart.size() < 2) {
+  if (embedding.smoothStart.size() < 2 || !embedding.fitRest.empty()) {
     placeByElements(embedding, body, drawn);
     return;
   }

@@ -20,6 +20,7 @@
 
 #include <glm/vec4.hpp>
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -38,6 +39,12 @@ struct SurfaceEmbedding {
   std::vector<SmoothTerm> smoothTerms;
   // Per body surface triangle, the drawn vertices it carries (each drawn vertex in exactly one).
   std::vector<std::vector<std::uint32_t>> verticesOfSurfaceTriangle;
+  // A smooth map still being fitted, a few vertices a step (a drawn surface made afresh: fitted at
+  // once, it stalled the tear's frame by about 25 ms): the body's nodes it is fitted from, the drawn
+  // vertices there, and the support. Until it is complete, placeEmbedded uses the element map.
+  std::vector<glm::dvec3> fitNodes;
+  std::vector<glm::dvec3> fitRest;
+  double fitSupport = 0.0;
 };
 
 // MLS support radius in body radial steps R / 2^s (surface_embedding.h's header comment).
@@ -57,8 +64,15 @@ SurfaceEmbedding embedSurface(const TetMesh& body, const TriangleMesh& drawn, in
 void embedSmoothly(const TetMesh& body, const std::vector<glm::dvec3>& rest, double support,
                    SurfaceEmbedding& embedding);
 
+// A smooth map fitted later from the nodes at `nodes` to the drawn vertices at `rest` (its terms are
+// cleared; the element map must already hold every drawn vertex): continueSmoothFit fits `vertices`
+// more drawn vertices and says whether the map is complete.
+void beginSmoothFit(const std::vector<glm::dvec3>& nodes, const std::vector<glm::dvec3>& rest, double support,
+                    SurfaceEmbedding& embedding);
+bool continueSmoothFit(SurfaceEmbedding& embedding, std::size_t vertices);
+
 // x_drawn = Σ φ_j x_body[j] for every drawn vertex, by the smooth map (by the element map when the
-// smooth one is empty).
+// smooth one is empty or still being fitted).
 void placeEmbedded(const SurfaceEmbedding& embedding, const std::vector<glm::dvec3>& body,
                    std::vector<glm::dvec3>& drawn);
 

@@ -45,6 +45,17 @@ void FloorAdhesion::reset(const std::vector<Triangle>& surface, std::size_t surf
   }
 }
 
+void FloorAdhesion::carryOver(const FloorAdhesion& from, const std::vector<std::uint32_t>& source) {
+  for (std::size_t i = 0; i < stuck_.size() && i < source.size(); ++i) {
+    const std::uint32_t j = source[i];
+    if (j == kNoSource || j >= from.stuck_.size()) continue;
+    stuck_[i] = from.stuck_[j];
+    left_[i] = from.left_[j];
+    start_[i] = from.start_[j];
+    age_[i] = from.age_[j];
+  }
+}
+
 std::size_t FloorAdhesion::stuckCount() const {
   return static_cast<std::size_t>(std::count(stuck_.begin(), stuck_.end(), 1));
 }

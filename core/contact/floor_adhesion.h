@@ -45,6 +45,12 @@ class FloorAdhesion {
  public:
   // Forget every contact; `surfaceNodes` nodes 0..N_s−1 carry the `surface` triangles.
   void reset(const std::vector<Triangle>& surface, std::size_t surfaceNodes);
+  // A piece made from other pieces' nodes (a tear, a merge) keeps their contacts: reset to the new
+  // surface, then each surface node i whose origin source[i] is a surface node of `from` takes its
+  // state (stuck or peeled, its age). `source` gives a node of `from` per new surface node, or
+  // kNoSource for a node that had none.
+  static constexpr std::uint32_t kNoSource = 0xFFFFFFFFu;
+  void carryOver(const FloorAdhesion& from, const std::vector<std::uint32_t>& source);
   // Records where the stuck nodes start the substep (call before it).
   void beginSubstep(const ParticleState& state);
   // After a substep of length h: holds or peels the stuck nodes, sticks the ones newly at rest on

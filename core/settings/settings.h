@@ -58,6 +58,11 @@ struct SlimeSettings {
   double recoveryTime = 1.0;             // bulk: τ_r of the rest shape's return below the yield, s (0 = never)
   double poisson = 0.4;                  // bulk: Poisson ratio ν of each element
   double viscosity = 30.0;               // bulk: viscosity η of the edge dampers, Pa·s (the seed's damping)
+  bool tearing = false;                  // bulk: strands snap and pieces tear off past tearStretch (off: one piece, as before)
+  double tearStretch = 2.5;              // bulk: the elastic (not yet flowed) stretch at which the slime tears
+  double smallestPiece = 0.03;           // bulk: the least share of the slime's volume a torn-off piece holds
+  int maxPieces = 8;                     // bulk: no tear past this many pieces
+  double mergeTime = 0.3;                // bulk: s two pieces stay touching before they fuse into one (0 = never)
   glm::dvec3 position{0.0, 0.0, 0.10};   // start position of the centre, m
   glm::dvec3 color{0.25, 0.85, 0.35};    // slime colour: surface tint and per-channel transmittance
   double transmission = 0.7;             // k_t: weight of the refracted ray

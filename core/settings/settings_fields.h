@@ -111,6 +111,16 @@ void forEachField(S& s, Visitor&& visitor) {
         "bulk: Poisson ratio of each element (the whole body keeps its volume anyway)");
   visit("slime.viscosity", s.slime.viscosity, Limits{0.0, 100.0, "Pa·s"},
         "bulk: viscosity of the dampers along the body's edges (the seed's damping slider)");
+  // Tearing and merging (core/simulation/tearing.h, merging.h): bounded so that a check stays cheap.
+  visit("slime.tearing", s.slime.tearing, Choices{},
+        "bulk: strands snap and pieces tear off once stretched past slime.tearStretch (off: always one piece)");
+  visit("slime.tearStretch", s.slime.tearStretch, Limits{1.2, 20.0, "stretch ratio"},
+        "bulk: the elastic (not yet flowed) stretch at which the slime tears; a slow pull flows first and tears later");
+  visit("slime.smallestPiece", s.slime.smallestPiece, Limits{0.005, 0.5, "of the slime's volume"},
+        "bulk: a torn part smaller than this stays joined");
+  visit("slime.maxPieces", s.slime.maxPieces, Limits{1, 32, "pieces"}, "bulk: no tear past this many pieces");
+  visit("slime.mergeTime", s.slime.mergeTime, Limits{0.0, 100.0, "s"},
+        "bulk: how long two pieces stay pressed together before they fuse into one (0 = never)");
   visit("slime.position", s.slime.position, Limits{-100.0, 100.0, "m"}, "start position of the centre");
   // Slime: optics
   visit("slime.color", s.slime.color, Limits{0.0, 1.0, "linear RGB"},

@@ -7,17 +7,22 @@
 #include "core/bulk/projective_dynamics.h"
 #include "core/contact/floor_adhesion.h"
 #include "core/simulation/piece.h"
+#include "core/simulation/tearing.h"
+
+#include <array>
 
 namespace slime {
 
 class BulkPiece final : public Piece {
  public:
-  explicit BulkPiece(BulkBody body);
+  // `slimeRestVolume` (m³): the whole slime's, of which this piece is a part (0: this piece's own), so
+  // that a change of slime.mass gives the piece its share.
+  explicit BulkPiece(BulkBody body, double slimeRestVolume = 0.0);
 
   std::unique_ptr<Piece> clone() const override;
   bool bulk() const override { return true; }
   void rebuildModels(const Settings& settings, Integrator integrator) override;
-  void applyMaterial(const SlimeSettings& slime) override { applyBulkMaterial(body_, slime); }
+  void applyMaterial(const SlimeSettings& slime) override;
   void beginStep(const StepContext& context) override;
   void substep(double h) override;
   void endStep(const StepContext& context) override;
@@ -40,6 +45,24 @@ class BulkPiece final : public Piece {
 
   const BulkBody& body() const { return body_; }
   const FloorAdhesion& adhesion() const { return adhesion_; }
+  double slimeRestVolume() const { return slimeRestVolume_; }
+
+  // The pieces `plan` (tearing.h) cuts this one into, each with its tetrahedra's rest and Maxwell
+  // states, its nodes' state, its floor contacts and a drawn surface made afresh on a grid of `spacing`
+  // (m) and carried by a smooth map of `support` (m). A holding hand goes with the part that has most
+  // of its nodes (handPart[hand]; −1 for a hand that holds nothing), holding the nodes it had there.
+  // Their models are not built yet (rebuildModels). None when a part would have no drawn surface.
+  std::vector<std::unique_ptr<BulkPiece>> split(const TearPlan& plan, double spacing, double support,
+                                                std::array<int, kHands>& handPart);
+  // This piece and `other` as one (merging.h), welded within `weldDistance` (m), its drawn surface the
+  // smooth union of theirs on a grid of `spacing`; a holding hand of either keeps its nodes
+  // (handFrom[hand]: 0 this piece's, 1 the other's, −1 none). Its models are not built yet. None when
+  // the smooth union of the drawn surfaces is not one surface (they do not meet).
+  std::unique_ptr<BulkPiece> mergedWith(BulkPiece& other, double weldDistance, double spacing, double support,
+                                        std::array<int, kHands>& handFrom);
+  // Hand `which` holds its nodes of another piece, renumbered here by `newOfOld` (kNoNode: not here).
+  static constexpr std::uint32_t kNoNode = 0xFFFFFFFFu;
+  void takeHand(int which, const Hand& hand, const std::vector<std::uint32_t>& newOfOld);
 
  private:
   const glm::dvec3& grabOffset(const Hand& hand, std::size_t k) const override { return hand.spring.offsets[k]; }
@@ -48,10 +71,15 @@ class BulkPiece final : public Piece {
   int travelSubstepsNeeded() const;  // substeps so that no node crosses kTravelPerSubstep of an edge
 
   BulkBody body_;
+  double slimeRestVolume_ = 0.0;  // the whole slime's rest volume, m³
+  // A piece made afresh (a tear): its drawn volume over its body's, which its drawn surface keeps
+  // (0: the icosphere's smooth map as it is).
+  double drawnVolumeShare_ = 0.0;
   BulkScratch scratch_;
   FloorAdhesion adhesion_;  // the sticky floor (slime.adhesion)
   mutable std::vector<glm::dvec3> drawnPositions_;  // placed from the body when first asked for
   mutable bool drawnStale_ = true;
+  mutable TriangleMesh drawnMesh_;  // offsetToVolume's scratch
   double restFrequency_ = 0.0;     // ω_max at the rest shape; highestFrequency_ never drops below it
   bool deformedFrequency_ = false; // highestFrequency_ is above the rest one (a stretched body)
   double dampingRate_ = 0.0;       // the dampers' Gershgorin rate, for symplectic_euler's cap

@@ -3,10 +3,16 @@
 #include "core/integrators/divergence.h"
 #include "core/simulation/integrator_choice.h"
 #include "core/geometry/level_of_detail.h"
+#include "core/bulk/piece_surface.h"
+#include "core/bulk/surface_embedding.h"
+#include "core/hands/grab.h"
+#include "core/simulation/merging.h"
+#include "core/simulation/tearing.h"
 
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -27,6 +33,9 @@ constexpr int kCleanStepsToCoarsen = 500;  // after this many steps with no roll
 // within a few steps and still passes any such limit.
 constexpr double kHandSpeedFactor = 2.0;
 constexpr double kHandSpeedMemory = 0.25;  // s
+// Steps between tearing checks (a pass over the tetrahedra's elastic stretch: 8 ms against the tens
+// of milliseconds a strand takes to snap).
+constexpr int kTearInterval = 8;
 
 }  // namespace
 
@@ -59,6 +68,13 @@ Simulation::Simulation(const Simulation& other)
       divergences_(other.divergences_),
       goodTime_(other.goodTime_),
       goodStep_(other.goodStep_),
+      handPiece_(other.handPiece_),
+      slimeRestVolume_(other.slimeRestVolume_),
+      drawnSpacing_(other.drawnSpacing_),
+      tears_(other.tears_),
+      merges_(other.merges_),
+      touchingFor_(other.touchingFor_),
+      lastTopologyMilliseconds_(other.lastTopologyMilliseconds_),
       handSpeed_(other.handSpeed_) {
   std::copy(std::begin(other.handHeld_), std::end(other.handHeld_), std::begin(handHeld_));
   std::copy(std::begin(other.handTarget_), std::end(other.handTarget_), std::begin(handTarget_));
@@ -87,6 +103,15 @@ void Simulation::start() {
   divergences_.clear();
   handSpeed_ = 0.0;
   for (bool& held : handHeld_) held = false;
+  handPiece_.fill(0);
+  tears_ = merges_ = 0;
+  touchingFor_.clear();
+  slimeRestVolume_ = 0.0;
+  for (const std::unique_ptr<Piece>& piece : pieces_) slimeRestVolume_ += piece->restVolume();
+  // A drawn surface made afresh is extracted on a grid of twice the drawn icosphere's edge (marching
+  // tetrahedra leave about four vertices per icosphere vertex at one edge), no finer than R/8 (the
+  // grid's cost grows as its inverse cube, the smooth map's as its inverse square).
+  drawnSpacing_ = std::max(2.0 * meanEdgeLength(pieces_.front()->surface()), settings_.slime.radius / 8.0);
   rebuildModels();
   saveGoodState();
 }
@@ -183,7 +208,75 @@ void Simulation::step() {
     refinement_ /= 2;
     cleanSteps_ = 0;
   }
+  if (settings_.slime.tearing && stepCount_ % kTearInterval == 0 && tearPieces()) return;
+  if (settings_.slime.mergeTime > 0.0 && pieces_.size() > 1 && stepCount_ % kTearInterval == 0 && mergePieces()) return;
   if (stepCount_ % kGoodStateInterval == 0) saveGoodState();
+}
+
+bool Simulation::mergePieces() {
+  const std::size_t count = pieces_.size();
+  touchingFor_.resize(count * count, 0.0);
+  const double interval = kTearInterval * settings_.sim.dt;
+  for (std::size_t i = 0; i < count; ++i)
+    for (std::size_t j = i + 1; j < count; ++j) {
+      auto* a = dynamic_cast<BulkPiece*>(pieces_[i].get());
+      auto* b = dynamic_cast<BulkPiece*>(pieces_[j].get());
+      if (a == nullptr || b == nullptr) continue;
+      double& touching = touchingFor_[i * count + j];
+      touching = touchingNodes(a->body(), b->body(), drawnSpacing_) >= kTouchingNodes ? touching + interval : 0.0;
+      if (touching < settings_.slime.mergeTime - 1e-9) continue;
+      const auto begin = std::chrono::steady_clock::now();
+      std::array<int, kHands> handFrom{};
+      const double support = kSmoothSupportSteps * settings_.slime.radius / std::ldexp(1.0, settings_.slime.resolution);
+      std::unique_ptr<BulkPiece> merged = a->mergedWith(*b, drawnSpacing_, drawnSpacing_, support, handFrom);
+      if (merged == nullptr) {  // their drawn surfaces do not meet: touching again for a whole mergeTime first
+        touching = -settings_.slime.mergeTime;
+        continue;
+      }
+      pieces_[i] = std::move(merged);
+      pieces_.erase(pieces_.begin() + static_cast<std::ptrdiff_t>(j));
+      for (std::size_t& piece : handPiece_) {
+        if (piece == j) piece = i;
+        else if (piece > j) --piece;
+      }
+      pieces_[i]->rebuildModels(settings_, integrator_);
+      ++merges_;
+      touchingFor_.clear();
+      saveGoodState();
+      lastTopologyMilliseconds_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
+      return true;
+    }
+  return false;
+}
+
+bool Simulation::tearPieces() {
+  for (std::size_t p = 0; p < pieces_.size(); ++p) {
+    auto* bulk = dynamic_cast<BulkPiece*>(pieces_[p].get());
+    if (bulk == nullptr) continue;
+    const auto begin = std::chrono::steady_clock::now();
+    const TearPlan plan = planTear(bulk->body(), settings_.slime.tearStretch, settings_.slime.smallestPiece * slimeRestVolume_);
+    if (plan.parts < 2) continue;
+    if (pieces_.size() - 1 + plan.parts > static_cast<std::size_t>(settings_.slime.maxPieces)) continue;
+    std::array<int, kHands> handPart{};
+    const double support = kSmoothSupportSteps * settings_.slime.radius / std::ldexp(1.0, settings_.slime.resolution);
+    std::vector<std::unique_ptr<BulkPiece>> parts = bulk->split(plan, drawnSpacing_, support, handPart);
+    if (parts.empty()) continue;
+    // Part 0 takes the torn piece's place; the others follow the last piece.
+    const std::size_t firstNew = pieces_.size();
+    for (int hand = 0; hand < kHands; ++hand)
+      if (handPiece_[hand] == p && handPart[hand] >= 0)
+        handPiece_[hand] = handPart[hand] == 0 ? p : firstNew + static_cast<std::size_t>(handPart[hand]) - 1;
+    pieces_[p] = std::move(parts[0]);
+    for (std::size_t k = 1; k < parts.size(); ++k) pieces_.push_back(std::move(parts[k]));
+    pieces_[p]->rebuildModels(settings_, integrator_);
+    for (std::size_t k = firstNew; k < pieces_.size(); ++k) pieces_[k]->rebuildModels(settings_, integrator_);
+    ++tears_;
+    touchingFor_.clear();
+    saveGoodState();  // the guard never rolls back across a tear
+    lastTopologyMilliseconds_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
+    return true;
+  }
+  return false;
 }
 
 void Simulation::saveGoodState() {
@@ -217,7 +310,16 @@ const std::vector<SurfaceView>& Simulation::surfaces() const {
   return drawnSurfaces_;
 }
 const std::vector<DivergenceEvent>& Simulation::divergences() const { return divergences_; }
-double Simulation::volume() const { return piece().volume(); }
+double Simulation::restVolume() const {
+  double sum = 0.0;
+  for (const std::unique_ptr<Piece>& piece : pieces_) sum += piece->restVolume();
+  return sum;
+}
+double Simulation::volume() const {
+  double sum = 0.0;
+  for (const std::unique_ptr<Piece>& piece : pieces_) sum += piece->volume();
+  return sum;
+}
 void Simulation::setVelocities(const std::vector<glm::dvec3>& velocities) {
   if (velocities.size() != state().size())
     throw std::invalid_argument("setVelocities: " + std::to_string(velocities.size()) + " velocities for " +
@@ -277,6 +379,20 @@ std::size_t Simulation::checkedHand(int hand) {
 bool Simulation::grab(const glm::dvec3& point, double radius, int which) {
   checkedHand(which);
   release(which);
+  // The piece whose drawn surface passes nearest to the point (the first of equals).
+  std::size_t nearest = 0;
+  if (pieces_.size() > 1) {
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t p = 0; p < pieces_.size(); ++p) {
+      const Piece& piece = *pieces_[p];
+      const double distance = glm::length(nearestSurfacePoint(piece.drawnPositions(), piece.drawnTriangles(), point) - point);
+      if (distance < best) {
+        best = distance;
+        nearest = p;
+      }
+    }
+  }
+  handPiece_[which] = nearest;
   return handPiece(which).grab(point, radius, which);
 }
 

@@ -28,6 +28,7 @@
 
 #include <glm/vec3.hpp>
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -105,7 +106,7 @@ class Simulation {
   double elasticEnergy() const;                             // bulk: elastic and volume energy, J
   std::size_t invertedElements() const;                     // bulk: tetrahedra with det Ds ≤ 0 (invertedBulkElements)
   const Settings& settings() const { return settings_; }
-  double restVolume() const { return piece().restVolume(); }
+  double restVolume() const;  // summed over the pieces, as volume()
   double volume() const;
   int substepsPerStep() const;  // sim.substeps times the guard's refinement after rollbacks
   int lastSolverIterations() const { return piece().lastSolverIterations(); }  // CG iterations (implicit_euler)
@@ -116,14 +117,21 @@ class Simulation {
   double highestFrequency() const { return piece().highestFrequency(); }  // ω_max, rad/s
   const FloorAdhesion& adhesion() const;  // bulk: which nodes stick to the floor (empty for a membrane)
   double largestStableStep() const;       // for the current integrator, s: the smallest of the pieces'
+  // Tearing and merging (slime.tearing, slime.mergeTime; tearing.h, merging.h).
+  std::size_t handPieceIndex(int hand) const { return handPiece_.at(checkedHand(hand)); }  // the piece it acts on
+  int tears() const { return tears_; }     // since (re)load
+  int merges() const { return merges_; }
+  double lastTopologyMilliseconds() const { return lastTopologyMilliseconds_; }  // the last tear's or merge's cost
 
  private:
   void start();  // time zero, models built for the pieces, their good state saved
   void rebuildModels();
   static std::size_t checkedHand(int hand);
-  // The piece hand `hand` acts on (today the one piece).
-  Piece& handPiece(int) { return *pieces_.front(); }
-  const Piece& handPiece(int) const { return *pieces_.front(); }
+  // The piece hand `hand` acts on: the one it grabbed (after a tear, the part that kept its nodes).
+  Piece& handPiece(int hand) { return *pieces_[handPiece_[checkedHand(hand)]]; }
+  const Piece& handPiece(int hand) const { return *pieces_[handPiece_[checkedHand(hand)]]; }
+  bool tearPieces();  // at most one tear per call; true if a piece tore
+  bool mergePieces();  // at most one merge per call; true if two pieces fused
   void saveGoodState();
   void rollBack(const std::string& what);
   // The divergence guard's speed limit for this step: kAbsurdSpeed, or more while the hands move fast
@@ -142,6 +150,12 @@ class Simulation {
   std::vector<DivergenceEvent> divergences_;
   double goodTime_ = 0.0;  // when the pieces' good states were saved
   std::int64_t goodStep_ = 0;
+  std::array<std::size_t, kHands> handPiece_{};   // per hand, the index of the piece it acts on
+  double slimeRestVolume_ = 0.0;  // the whole slime's, m³ (the smallest piece is a share of it)
+  double drawnSpacing_ = 0.0;     // the grid of a drawn surface made afresh, m
+  int tears_ = 0, merges_ = 0;
+  std::vector<double> touchingFor_;  // per pair (i < j, row after row) of pieces, s touching without a break
+  double lastTopologyMilliseconds_ = 0.0;
   bool handHeld_[kHands] = {false, false};  // the hand held at the last step
   glm::dvec3 handTarget_[kHands] = {};      // ... with this target
   double handSpeed_ = 0.0;                  // the hands' recent fastest target speed, m/s (speedLimit)

@@ -1,0 +1,39 @@
+// Drawn surfaces made afresh when pieces tear or merge (core/geometry/surface_extraction.h's grid
+// surfaces), in the current configuration, for carryDrawnSurface (sub_body.h) to embed:
+//  - split: each part's surface is the old drawn surface's inside intersected with the region nearer
+//    that part's tetrahedra than any other's (each grid point takes the part of the tetrahedron it lies
+//    in, points in none the part of their nearest labelled neighbour); the part's indicator is blurred
+//    so that the cut is round, not stepped. Away from the cut the surface is the old one's zero level.
+//  - merge: the smooth union of the pieces' drawn surfaces (blend radius about a spacing and a half),
+//    which fills the crease where they touch.
+// The grid spacing is about the old drawn surface's mean edge; Taubin's smoothing follows.
+#pragma once
+
+#include "core/bulk/bulk_body.h"
+#include "core/geometry/icosphere.h"
+#include "core/geometry/surface_view.h"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace slime {
+
+// The drawn surface of each of `parts` parts of `body` (at its current positions), `partOf` per
+// tetrahedron, cut from `drawn`, the body's drawn surface now. `spacing`, m: the grid's.
+std::vector<TriangleMesh> splitDrawnSurface(const SurfaceView& drawn, const BulkBody& body,
+                                            const std::vector<std::uint32_t>& partOf, std::uint32_t parts,
+                                            double spacing);
+
+// One closed surface around the smooth union of `surfaces`; empty when the union is not one connected
+// surface (pieces whose bodies touch, e.g. a foot glued to the floor, while their drawn surfaces do not).
+TriangleMesh mergedDrawnSurface(std::span<const SurfaceView> surfaces, double spacing);
+
+// Moves every vertex of the closed surface `mesh` along its normal by one distance, so that it encloses
+// `volume` (m³; two Newton steps on V(δ) ≈ V + A δ).
+void offsetToVolume(TriangleMesh& mesh, double volume);
+
+// The mean edge length of a surface, m.
+double meanEdgeLength(const SurfaceView& surface);
+
+}  // namespace slime

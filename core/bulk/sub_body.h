@@ -1,0 +1,50 @@
+// Bulk bodies made from other bodies' tetrahedra, for tearing and merging (issue 42 items 4 and 5):
+// the tetrahedra keep their rest data (Dm⁻¹, V0) and their Maxwell branches' flowed rest states, the
+// nodes their positions, velocities and mass density, and everything derived from the tetrahedra is
+// built again: the node numbering (the new surface's nodes first, as projectBulkVolume expects), the
+// surface (the faces of one tetrahedron only, wound outwards), the element blocks, the edges, their
+// dampers and colours, the rest volume Σ V0 and the masses. The drawn surface is the caller's (made
+// afresh in the current configuration) and is carried by the new body from there (carryDrawnSurface).
+#pragma once
+
+#include "core/bulk/bulk_body.h"
+#include "core/geometry/icosphere.h"
+#include "core/settings/settings.h"
+
+#include <cstdint>
+#include <span>
+#include <utility>
+#include <vector>
+
+namespace slime {
+
+// A body's content before it is laid out: nodes (rest position, state) and tetrahedra over them, each
+// with its rest data and its Maxwell branch's rest state.
+struct BodyParts {
+  std::vector<glm::dvec3> restPositions, positions, velocities;
+  std::vector<double> inverseMasses;  // as the state had them (0: pinned)
+  std::vector<Tetrahedron> tetrahedra;
+  std::vector<TetRest> rest;
+  std::vector<MaxwellRest> maxwell;
+};
+
+// The parts of `body` made of its tetrahedra `tetrahedra` (ascending), the nodes they use in the
+// body's order; partNode[k] is the body's node of part node k.
+BodyParts partsOf(const BulkBody& body, std::span<const std::uint32_t> tetrahedra, std::vector<std::uint32_t>& partNode);
+
+// The faces of exactly one of `tetrahedra`, wound counter-clockwise seen from outside, each with its
+// tetrahedron, in a fixed order (by the face's sorted nodes).
+std::vector<std::pair<Triangle, std::uint32_t>> boundaryFaces(const std::vector<Tetrahedron>& tetrahedra);
+
+// Lays `parts` out as a body of mass density `density` (kg/m³; slime's other material settings).
+// order[i] is the part node that became node i (surface nodes first, each group in the parts' order).
+// The drawn surface is left empty (carryDrawnSurface).
+BulkBody assembleBody(const BodyParts& parts, const SlimeSettings& slime, double density, int shellLevel,
+                      std::vector<std::uint32_t>& order);
+
+// Gives `body` the drawn surface `drawn` (positions in the body's current configuration): the smooth
+// map over the current node positions, support `support` m (surface_embedding.h: exact for affine
+// motion from any reference), and the element map into the tetrahedron under the nearest surface face.
+void carryDrawnSurface(BulkBody& body, TriangleMesh drawn, double support);
+
+}  // namespace slime
