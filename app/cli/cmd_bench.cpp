@@ -241,6 +241,8 @@ void registerViewer(CLI::App& bench, int& exitCode) {
   command->add_option("--size", options->size, "Image size WIDTHxHEIGHT")->capture_default_str();
   command->add_option("--seconds", options->bench.seconds,
                       "Simulated seconds to run (0: the scenario's last event + 6 s)")->check(CLI::Range(0.0, 3600.0))->capture_default_str();
+  command->add_option("--wall-seconds", options->bench.wallSeconds,
+                      "Stop after this much wall time even if the simulation is behind (0: twice --seconds + 30)")->check(CLI::Range(0.0, 36000.0))->capture_default_str();
   command->add_option("--gl", options->gl, "Headless GL: egl, osmesa or auto")->capture_default_str();
   command->add_option("--csv", options->bench.csvPath, "Write every frame (the frame log) as CSV");
   command->add_option("--json", options->bench.jsonPath, "Write the table as JSON");

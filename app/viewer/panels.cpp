@@ -291,6 +291,10 @@ void statsWindow(const PanelView& view, PanelRequests& requests) {
     ImGui::Text("reused  %.0f%% of pixels", 100.0 * stats.reusedFraction);
     ImGui::Text("threads %d, %.0f%% busy", stats.traceThreads, 100.0 * stats.threadUse);
     ImGui::Text("sim     x%.2f real time", stats.simulationSpeed);
+    // A setting that cannot run in real time here (a fine body, many substeps, a tiny step) slows the
+    // slime instead of the window: say so where the figure is.
+    if (stats.simulationSpeed > 0.0 && stats.simulationSpeed < 0.9)
+      ImGui::TextColored(ImVec4(1.0f, 0.6f, 0.2f, 1.0f), "physics behind real time:\nlower slime.resolution,\nsim.substeps or raise sim.dt");
     resolutionRows(stats, requests);
     ImGui::PlotLines("##frame", stats.frameHistoryMs.data(), FrameStats::kHistory, stats.historyNext,
                      "frame ms", 0.0f, FLT_MAX, ImVec2(kStatsWidth - 16.0f, 40.0f));

@@ -76,6 +76,7 @@ bool Viewer::frame() {
   handleInput(input);
   if (options_.maxFrames > 0 && stats_.frames + 1 >= options_.maxFrames) quit_ = true;
   if (options_.quitAtSimulatedSeconds > 0.0 && simulation_.time() >= options_.quitAtSimulatedSeconds) quit_ = true;
+  if (options_.quitAtWallSeconds > 0.0 && stats_.totalFrameMs >= 1000.0 * options_.quitAtWallSeconds) quit_ = true;
   if (quit_ && !options_.screenshotOnExit.empty()) requestScreenshot(options_.screenshotOnExit);
   // Physics runs on a second thread, never in series with the frame's other work: this frame traces
   // the slime as the last frame's steps left it (refit first, into the renderer's own buffers), while

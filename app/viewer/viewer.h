@@ -35,6 +35,7 @@ namespace slime {
 struct ViewerOptions {
   int maxFrames = 0;                                // quit after this many frames; 0 = until Esc
   double quitAtSimulatedSeconds = 0.0;              // quit once the simulation reaches this time; 0 = never
+  double quitAtWallSeconds = 0.0;                   // ... or once the frames have taken this long; 0 = never
   std::string screenshotOnExit;                     // PNG of the last frame, if set
   std::string reportPath;                           // JSON summary written at exit, if set
   std::string frameLogPath;                         // CSV of every frame (frame_log.h) at exit, if set

@@ -36,6 +36,7 @@ int runViewerBench(const Settings& settings, const ViewerBenchOptions& options) 
     seconds = last + 6.0;
   }
   viewerOptions.quitAtSimulatedSeconds = seconds;
+  viewerOptions.quitAtWallSeconds = options.wallSeconds > 0.0 ? options.wallSeconds : 2.0 * seconds + 30.0;
   viewerOptions.frameLogPath = options.csvPath.empty() ? "/dev/null" : options.csvPath;  // keeps the records
   Settings run = settings;
   run.camera.width = options.width;
@@ -49,6 +50,10 @@ int runViewerBench(const Settings& settings, const ViewerBenchOptions& options) 
                 options.height, options.scenarioPath.c_str(), seconds, nameOf(backend.api()));
     if (viewer.run() != 0) throw std::runtime_error("bench viewer: cannot write the frame log " + options.csvPath);
     records = viewer.frameRecords();
+    if (viewer.simulation().time() + 1e-9 < seconds)
+      std::printf("bench viewer: the wall-clock limit came first: simulated %.2f of %.1f s (%.2f of real time)\n",
+                  viewer.simulation().time(), seconds,
+                  viewer.stats().totalFrameMs > 0.0 ? viewer.simulation().time() / (viewer.stats().totalFrameMs / 1000.0) : 0.0);
   }
   const std::vector<PhaseSummary> phases = summarizePhases(records, options.afterSeconds);
   const FrameWindow slowest = slowestWindow(records, kWindowSeconds, options.afterSeconds);

@@ -19,6 +19,9 @@ struct ViewerBenchOptions {
   int height = 720;
   std::string scenarioPath = "tests/scenarios/viewer_phases.json";
   double seconds = 0.0;   // simulated seconds to run; 0: the scenario's last event + 6 s
+  // Wall seconds at most; 0: twice the simulated seconds and 30 s more (a setting that cannot run in
+  // real time, a level-7 surface, ends there with the simulation behind)
+  double wallSeconds = 0.0;
   HeadlessApi api = HeadlessApi::Auto;
   std::string csvPath;    // the frame log; empty: none
   std::string jsonPath;   // the table; empty: none

@@ -71,9 +71,11 @@ void forEachField(S& s, Visitor&& visitor) {
         "bulk (viscoelastic tetrahedral body) or membrane (the seed's skin of springs around a fill)");
   visit("slime.radius", s.slime.radius, Limits{0.005, 1.0, "m"}, "rest radius of the ball");
   visit("slime.level", s.slime.level, Limits{0, 7, "subdivision level"},
-        "drawn icosphere subdivision level: 20*4^level faces (or auto)");
+        "drawn icosphere subdivision level: 20*4^level faces (or auto); 7 is not real time on 2 cores "
+        "(about 2 frames a second)");
   visit("slime.resolution", s.slime.resolution, Limits{1, 4, "body shell level"},
-        "bulk: the simulated body's shell level (85, 487, 3,211 or 23,059 mass points)");
+        "bulk: the simulated body's shell level (85, 487, 3,211 or 23,059 mass points); 3 and 4 are "
+        "slower than real time on one core of an AMD family 23 (the viewer's Stats say how much)");
   visit("slime.autoLevel", s.slime.autoLevel, Choices{},
         "pick the smallest level whose image error is invisible");
   // Mass and stiffness are bounded so that the stiffest, lightest slime still keeps its volume within
