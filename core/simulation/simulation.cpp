@@ -37,6 +37,16 @@ Simulation::Simulation(const Settings& settings, std::vector<SlimeBody> bodies) 
   start();
 }
 
+Simulation::Simulation(const Settings& settings, std::vector<BulkBody> bodies) {
+  if (bodies.empty()) throw std::invalid_argument("Simulation: no bodies; a slime needs at least one piece");
+  settings_ = settings;
+  settings_.slime.level = effectiveLevel(settings);
+  settings_.slime.model = "bulk";
+  pieces_.clear();
+  for (BulkBody& body : bodies) pieces_.push_back(std::make_unique<BulkPiece>(std::move(body)));
+  start();
+}
+
 Simulation::Simulation(const Simulation& other)
     : settings_(other.settings_),
       integrator_(other.integrator_),
@@ -48,6 +58,7 @@ Simulation::Simulation(const Simulation& other)
       divergences_(other.divergences_),
       goodTime_(other.goodTime_),
       goodStep_(other.goodStep_) {
+  selfContact_ = other.selfContact_;
   for (const std::unique_ptr<Piece>& piece : other.pieces_) pieces_.push_back(piece->clone());
 }
 
@@ -71,6 +82,7 @@ void Simulation::start() {
   stepCount_ = 0;
   refinement_ = 1;
   divergences_.clear();
+  selfContact_.forget();
   rebuildModels();
   saveGoodState();
 }
@@ -133,8 +145,10 @@ void Simulation::step() {
   for (const std::unique_ptr<Piece>& piece : pieces_) piece->beginStep({stepCount_, automaticSubsteps_});
   const int substeps = substepsPerStep();
   const double h = settings_.sim.dt / substeps;
-  for (int s = 0; s < substeps; ++s)
+  for (int s = 0; s < substeps; ++s) {
     for (const std::unique_ptr<Piece>& piece : pieces_) piece->substep(h);
+    resolveSelfContact(h);
+  }
   time_ += settings_.sim.dt;
   ++stepCount_;
   for (const std::unique_ptr<Piece>& piece : pieces_) piece->endStep({stepCount_, automaticSubsteps_});
@@ -150,6 +164,19 @@ void Simulation::step() {
     cleanSteps_ = 0;
   }
   if (stepCount_ % kGoodStateInterval == 0) saveGoodState();
+}
+
+void Simulation::resolveSelfContact(double h) {
+  if (!settings_.slime.selfContact) return;
+  contactBodies_.clear();
+  for (const std::unique_ptr<Piece>& piece : pieces_)
+    if (auto* bulk = dynamic_cast<BulkPiece*>(piece.get())) contactBodies_.push_back(bulk->contactBody());
+  if (contactBodies_.empty()) return;  // the membrane has no self-contact
+  SelfContactOptions options;
+  options.friction = settings_.slime.friction;
+  options.cling = settings_.slime.cling;
+  options.dt = h;
+  selfContact_.resolve(contactBodies_, options);
 }
 
 void Simulation::saveGoodState() {
@@ -169,6 +196,7 @@ void Simulation::rollBack(const std::string& what) {
                std::to_string(substepsPerStep()) + " substeps per step";
   divergences_.push_back(event);
   for (const std::unique_ptr<Piece>& piece : pieces_) piece->rollBack();
+  selfContact_.forget();  // its last positions and contacts are not the good state's
   time_ = goodTime_;
   stepCount_ = goodStep_;
 }
