@@ -108,12 +108,12 @@ TEST(SelfContact, APiecePressedOntoAnotherDoesNotPassThroughIt) {
 
 TEST(SelfContact, ItsSettingsAreInTheTableAndBadValuesAreRefused) {
   Settings settings = defaultSettings();
-  EXPECT_TRUE(settings.slime.selfContact);
+  EXPECT_FALSE(settings.slime.selfContact) << "off until a slam's flattened slime comes back with it on (docs/physics.md)";
   EXPECT_LT(settings.slime.cling, settings.slime.modulus) << "pieces must part before the material tears";
   EXPECT_THROW(applyOverride(settings, "slime.cling=-1"), SettingsError);
   EXPECT_THROW(applyOverride(settings, "slime.selfContact=maybe"), SettingsError);
-  applyOverride(settings, "slime.selfContact=false");
-  EXPECT_FALSE(settings.slime.selfContact);
+  applyOverride(settings, "slime.selfContact=true");
+  EXPECT_TRUE(settings.slime.selfContact);
 }
 
 }  // namespace
