@@ -16,6 +16,15 @@ double creepFactor(double ratio) {
 
 }  // namespace
 
+double adhesionGrownShare(double age) {
+  return kAdhesionFreshShare + (1.0 - kAdhesionFreshShare) * (1.0 - std::exp(-age / kAdhesionDwell));
+}
+
+double adhesionCreepDistance(double pull, double holds, double h) {
+  const double ratio = holds > 0.0 ? pull / holds : 0.0;
+  return h * kAdhesionCreepSpeed * creepFactor(ratio);
+}
+
 void FloorAdhesion::reset(const std::vector<Triangle>& surface, std::size_t surfaceNodes) {
   stuck_.assign(surfaceNodes, 0);
   left_.assign(surfaceNodes, 0);
@@ -102,8 +111,7 @@ void FloorAdhesion::endSubstep(ParticleState& state, const std::vector<Triangle>
     move.z = std::max(move.z, 0.0);
     const double pull = glm::length(move) / (freeInverseMasses[i] * h * h);  // F = m |Δx| / h², N
     age_[i] += h;
-    const double grown = kAdhesionFreshShare + (1.0 - kAdhesionFreshShare) * (1.0 - std::exp(-age_[i] / kAdhesionDwell));
-    const double holds = grown * strength * area_[i];  // σ(t) A_i, N
+    const double holds = adhesionGrownShare(age_[i]) * strength * area_[i];  // σ(t) A_i, N
     const bool edge = onEdge(i);
     if (pull > holds && edge) {
       peel.push_back(static_cast<std::uint32_t>(i));
@@ -112,9 +120,8 @@ void FloorAdhesion::endSubstep(ParticleState& state, const std::vector<Triangle>
     strengthHeld_ += holds;
     // Held: it creeps by h v_c r^n along its pull (at most as far as the pull moved it); only an edge
     // node may lift, and lifted out of the band it has peeled.
-    const double ratio = holds > 0.0 ? pull / holds : 0.0;
     const double moved = glm::length(move);
-    const double creep = moved > 0.0 ? std::min(1.0, h * kAdhesionCreepSpeed * creepFactor(ratio) / moved) : 0.0;
+    const double creep = moved > 0.0 ? std::min(1.0, adhesionCreepDistance(pull, holds, h) / moved) : 0.0;
     glm::dvec3& x = state.positions[i];
     const glm::dvec3 before = x, velocityBefore = state.velocities[i];
     x.x = start_[i].x + creep * move.x;

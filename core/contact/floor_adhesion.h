@@ -41,6 +41,12 @@ constexpr double kAdhesionCreepExponent = 0.5;
 constexpr double kAdhesionFreshShare = 0.2;
 constexpr double kAdhesionDwell = 0.5;
 
+// The law's two rates, which the self-contact's cling (self_contact.h) shares with the floor:
+// the share of its full strength a contact holds after `age` s in contact, f₀ + (1 − f₀)(1 − exp(−t/τ_w));
+double adhesionGrownShare(double age);
+// and how far a held contact creeps in a substep h under a pull of `pull` against `holds` N, h v_c r^n, m.
+double adhesionCreepDistance(double pull, double holds, double h);
+
 class FloorAdhesion {
  public:
   // Forget every contact; `surfaceNodes` nodes 0..N_s−1 carry the `surface` triangles.

@@ -49,6 +49,8 @@ struct SlimeSettings {
   double friction = 0.6;                 // Coulomb friction coefficient against the floor
   double rolling = 5.0;                  // rolling resistance: 1/s at which the turning decays on the floor
   double adhesion = 8000.0;              // bulk: tension the floor contact holds before it peels, Pa (0 = none)
+  bool selfContact = false;              // bulk: the drawn surface does not pass through itself or another piece
+  double cling = 300.0;                  // bulk: tension touching surfaces hold before they peel, Pa (0 = none)
   double modulus = 1200.0;               // bulk: instantaneous shear modulus G = μ∞ + μ1, Pa (the seed's stiffness)
   double longTerm = 0.4;                 // bulk: μ∞ / G, the part of the modulus that never relaxes
   double relaxation = 0.6;               // bulk: relaxation time τ of the Maxwell branch, s

@@ -93,6 +93,12 @@ void forEachField(S& s, Visitor&& visitor) {
         "membrane: rate at which the slime's rolling decays on the floor");
   visit("slime.adhesion", s.slime.adhesion, Limits{0.0, 1.0e4, "Pa"},
         "bulk: tension the floor contact holds before it peels (a sticky table; 0 = none)");
+  visit("slime.selfContact", s.slime.selfContact, Choices{},
+        "bulk: the slime does not pass through itself or another piece (a fold, a stack; off: it does)");
+  // Touching pieces must part before the material tears (docs/physics.md, self-contact): the cling is
+  // bounded by the largest shear modulus and defaults to a quarter of the default one.
+  visit("slime.cling", s.slime.cling, Limits{0.0, 1.0e4, "Pa"},
+        "bulk: tension touching surfaces hold before they peel, as the sticky floor's (0 = none)");
   // The bulk material: moduli from a soft jelly to a stiff rubber; τ from a fast to a near-solid gel.
   visit("slime.modulus", s.slime.modulus, Limits{50.0, 1.0e5, "Pa"},
         "bulk: instantaneous shear modulus G (the seed's stiffness slider)");

@@ -370,6 +370,19 @@ void BulkPiece::rollBack() {
   drawnStale_ = true;
 }
 
+ContactBody BulkPiece::contactBody() {
+  drawnStale_ = true;
+  ContactBody contact;
+  contact.state = &body_.state;
+  contact.restNodes = body_.mesh.positions;
+  contact.surface = body_.mesh.surface;
+  contact.drawnTriangles = body_.drawn.triangles;
+  contact.carriers = body_.embedding.nodes;
+  contact.weights = body_.embedding.weights;
+  contact.verticesOfSurfaceTriangle = body_.embedding.verticesOfSurfaceTriangle;
+  return contact;
+}
+
 const std::vector<glm::dvec3>& BulkPiece::drawnPositions() const {
   if (drawnStale_) {
     placeEmbedded(body_.embedding, body_.state.positions, drawnPositions_);

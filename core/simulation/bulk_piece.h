@@ -6,6 +6,7 @@
 #include "core/bulk/bulk_body.h"
 #include "core/bulk/projective_dynamics.h"
 #include "core/contact/floor_adhesion.h"
+#include "core/contact/self_contact.h"
 #include "core/simulation/piece.h"
 #include "core/simulation/tearing.h"
 
@@ -44,6 +45,9 @@ class BulkPiece final : public Piece {
   bool grab(const glm::dvec3& point, double radius, int hand) override;
 
   const BulkBody& body() const { return body_; }
+  // The body as the self-contact sees it (self_contact.h), borrowed until the body changes; the drawn
+  // surface is placed again after the contact moves its nodes.
+  ContactBody contactBody();
   const FloorAdhesion& adhesion() const { return adhesion_; }
   double slimeRestVolume() const { return slimeRestVolume_; }
 

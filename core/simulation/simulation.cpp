@@ -57,6 +57,16 @@ Simulation::Simulation(const Settings& settings, std::vector<SlimeBody> bodies) 
   start();
 }
 
+Simulation::Simulation(const Settings& settings, std::vector<BulkBody> bodies) {
+  if (bodies.empty()) throw std::invalid_argument("Simulation: no bodies; a slime needs at least one piece");
+  settings_ = settings;
+  settings_.slime.level = effectiveLevel(settings);
+  settings_.slime.model = "bulk";
+  pieces_.clear();
+  for (BulkBody& body : bodies) pieces_.push_back(std::make_unique<BulkPiece>(std::move(body)));
+  start();
+}
+
 Simulation::Simulation(const Simulation& other)
     : settings_(other.settings_),
       integrator_(other.integrator_),
@@ -78,6 +88,7 @@ Simulation::Simulation(const Simulation& other)
       handSpeed_(other.handSpeed_) {
   std::copy(std::begin(other.handHeld_), std::end(other.handHeld_), std::begin(handHeld_));
   std::copy(std::begin(other.handTarget_), std::end(other.handTarget_), std::begin(handTarget_));
+  selfContact_ = other.selfContact_;
   for (const std::unique_ptr<Piece>& piece : other.pieces_) pieces_.push_back(piece->clone());
 }
 
@@ -112,6 +123,7 @@ void Simulation::start() {
   // tetrahedra leave about four vertices per icosphere vertex at one edge), no finer than R/8 (the
   // grid's cost grows as its inverse cube, the smooth map's as its inverse square).
   drawnSpacing_ = std::max(2.0 * meanEdgeLength(pieces_.front()->surface()), settings_.slime.radius / 8.0);
+  selfContact_.forget();
   rebuildModels();
   saveGoodState();
 }
@@ -192,8 +204,10 @@ void Simulation::step() {
   for (const std::unique_ptr<Piece>& piece : pieces_) piece->beginStep({stepCount_, automaticSubsteps_});
   const int substeps = substepsPerStep();
   const double h = settings_.sim.dt / substeps;
-  for (int s = 0; s < substeps; ++s)
+  for (int s = 0; s < substeps; ++s) {
     for (const std::unique_ptr<Piece>& piece : pieces_) piece->substep(h);
+    resolveSelfContact(h);
+  }
   time_ += settings_.sim.dt;
   ++stepCount_;
   for (const std::unique_ptr<Piece>& piece : pieces_) piece->endStep({stepCount_, automaticSubsteps_});
@@ -242,6 +256,7 @@ bool Simulation::mergePieces() {
       pieces_[i]->rebuildModels(settings_, integrator_);
       ++merges_;
       touchingFor_.clear();
+      selfContact_.forget();  // its contacts name the pieces' old vertices
       saveGoodState();
       lastTopologyMilliseconds_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
       return true;
@@ -272,11 +287,25 @@ bool Simulation::tearPieces() {
     for (std::size_t k = firstNew; k < pieces_.size(); ++k) pieces_[k]->rebuildModels(settings_, integrator_);
     ++tears_;
     touchingFor_.clear();
+    selfContact_.forget();  // its contacts name the pieces' old vertices
     saveGoodState();  // the guard never rolls back across a tear
     lastTopologyMilliseconds_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
     return true;
   }
   return false;
+}
+
+void Simulation::resolveSelfContact(double h) {
+  if (!settings_.slime.selfContact) return;
+  contactBodies_.clear();
+  for (const std::unique_ptr<Piece>& piece : pieces_)
+    if (auto* bulk = dynamic_cast<BulkPiece*>(piece.get())) contactBodies_.push_back(bulk->contactBody());
+  if (contactBodies_.empty()) return;  // the membrane has no self-contact
+  SelfContactOptions options;
+  options.friction = settings_.slime.friction;
+  options.cling = settings_.slime.cling;
+  options.dt = h;
+  selfContact_.resolve(contactBodies_, options);
 }
 
 void Simulation::saveGoodState() {
@@ -296,6 +325,7 @@ void Simulation::rollBack(const std::string& what) {
                std::to_string(substepsPerStep()) + " substeps per step";
   divergences_.push_back(event);
   for (const std::unique_ptr<Piece>& piece : pieces_) piece->rollBack();
+  selfContact_.forget();  // its last positions and contacts are not the good state's
   time_ = goodTime_;
   stepCount_ = goodStep_;
 }

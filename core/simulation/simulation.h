@@ -54,6 +54,9 @@ class Simulation {
   // As above with one piece per body (tests: a slime of several pieces, which nothing else makes yet).
   // Throws std::invalid_argument when `bodies` is empty.
   Simulation(const Settings& settings, std::vector<SlimeBody> bodies);
+  // A bulk slime of several pieces, one per body (tests: pieces stacked or pressed together).
+  // Throws std::invalid_argument when `bodies` is empty.
+  Simulation(const Settings& settings, std::vector<BulkBody> bodies);
   // A copy steps on from the same state on its own (its pieces cloned).
   Simulation(const Simulation& other);
   Simulation& operator=(const Simulation& other);
@@ -116,6 +119,7 @@ class Simulation {
   void setAutomaticSubsteps(bool automatic);
   double highestFrequency() const { return piece().highestFrequency(); }  // ω_max, rad/s
   const FloorAdhesion& adhesion() const;  // bulk: which nodes stick to the floor (empty for a membrane)
+  const SelfContact& selfContact() const { return selfContact_; }  // bulk: the pieces' contacts with themselves and each other
   double largestStableStep() const;       // for the current integrator, s: the smallest of the pieces'
   // Tearing and merging (slime.tearing, slime.mergeTime; tearing.h, merging.h).
   std::size_t handPieceIndex(int hand) const { return handPiece_.at(checkedHand(hand)); }  // the piece it acts on
@@ -137,9 +141,12 @@ class Simulation {
   // The divergence guard's speed limit for this step: kAbsurdSpeed, or more while the hands move fast
   // (simulation.cpp's kHandSpeedFactor); follows the hands' targets since the last step.
   double speedLimit();
+  void resolveSelfContact(double h);  // after each substep h: the bulk pieces' drawn surfaces apart
 
   Settings settings_;
   std::vector<std::unique_ptr<Piece>> pieces_;  // never empty
+  SelfContact selfContact_;                     // slime.selfContact, over the bulk pieces
+  std::vector<ContactBody> contactBodies_;      // its views of them, rebuilt each step (storage kept)
   mutable std::vector<SurfaceView> drawnSurfaces_;  // what surfaces() gives (its storage kept)
   Integrator integrator_ = Integrator::SymplecticEuler;
   bool automaticSubsteps_ = true;
