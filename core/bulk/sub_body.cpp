@@ -1,6 +1,7 @@
 #include "core/bulk/sub_body.h"
 
 #include "core/bulk/element_pass.h"
+#include "core/bulk/tet_lanes.h"
 
 #include <glm/geometric.hpp>
 
@@ -72,6 +73,7 @@ BodyParts partsOf(const BulkBody& body, std::span<const std::uint32_t> tetrahedr
     parts.rest.push_back(body.rest[e]);
     const MaxwellBlock& block = body.maxwell[e / kTetLanes];
     parts.maxwell.push_back({lane(block.metric, e % kTetLanes), lane(block.inverse, e % kTetLanes)});
+    parts.plastic.push_back(plasticMetric(body, e));
   }
   return parts;
 }
@@ -150,6 +152,7 @@ BulkBody assembleBody(const BodyParts& parts, const SlimeSettings& slime, double
     for (std::size_t l = 0; l < kTetLanes; ++l) {
       setLane(block.inverse, l, glm::dmat3(1.0));
       setLane(block.metric, l, glm::dmat3(1.0));
+      for (int entry = 0; entry < 3; ++entry) block.plastic[entry][l] = 1;
     }
   for (std::size_t e = 0; e < tetrahedra; ++e) {
     TetBlock& block = body.restBlocks[e / kTetLanes];
@@ -157,6 +160,12 @@ BulkBody assembleBody(const BodyParts& parts, const SlimeSettings& slime, double
     setLane(block.forceMap, e % kTetLanes, body.rest[e].forceMap);
     setLane(body.maxwell[e / kTetLanes].inverse, e % kTetLanes, parts.maxwell[e].inverse);
     setLane(body.maxwell[e / kTetLanes].metric, e % kTetLanes, parts.maxwell[e].metric);
+    // G_p's six entries (kSymmetricEntry): a part keeps its long-term branch's flowed rest shape (zeros
+    // there made its long-term stiffness vanish: a torn and merged slime lay flat, aspect 0.30 against 0.66).
+    for (int c = 0; c < 3; ++c)
+      for (int r = c; r < 3; ++r)
+        body.maxwell[e / kTetLanes].plastic[kSymmetricEntry[r][c]][e % kTetLanes] =
+            static_cast<ElementReal>(parts.plastic[e][c][r]);
   }
   fillElementBlocks(body);
   body.edges = tetrahedronEdges(mesh.tetrahedra);

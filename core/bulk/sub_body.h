@@ -26,6 +26,7 @@ struct BodyParts {
   std::vector<Tetrahedron> tetrahedra;
   std::vector<TetRest> rest;
   std::vector<MaxwellRest> maxwell;
+  std::vector<glm::dmat3> plastic;  // the long-term branch's rest metric G_p (plasticMetric), per tetrahedron
 };
 
 // The parts of `body` made of its tetrahedra `tetrahedra` (ascending), the nodes they use in the

@@ -114,6 +114,7 @@ BodyParts weldedParts(const BulkBody& a, const BulkBody& b, double weldDistance,
     parts.tetrahedra.emplace_back(bOf[nodesB[t.x]], bOf[nodesB[t.y]], bOf[nodesB[t.z]], bOf[nodesB[t.w]]);
   parts.rest.insert(parts.rest.end(), second.rest.begin(), second.rest.end());
   parts.maxwell.insert(parts.maxwell.end(), second.maxwell.begin(), second.maxwell.end());
+  parts.plastic.insert(parts.plastic.end(), second.plastic.begin(), second.plastic.end());
   // A tetrahedron with a welded node: its rest shape pulled back through its deformation before the weld.
   for (std::size_t e = 0; e < parts.tetrahedra.size(); ++e) {
     const Tetrahedron& t = parts.tetrahedra[e];
