@@ -20,10 +20,6 @@ namespace slime {
 // state their physical limit with it.
 constexpr double kGrabSpeed = 1.5;
 
-// Closest point to p on triangle abc (Ericson, Real-Time Collision Detection, 2005, §5.1.5).
-glm::dvec3 closestPointOnTriangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
-                                  const glm::dvec3& c);
-
 // The point of the mesh surface nearest to `point` (brute force over the triangles).
 glm::dvec3 nearestSurfacePoint(const std::vector<glm::dvec3>& positions,
                                const std::vector<Triangle>& triangles, const glm::dvec3& point);
