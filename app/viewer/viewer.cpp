@@ -36,7 +36,8 @@ constexpr double kScenarioTimeTolerance = 1e-9;
 // Every piece's drawn vertices into `out`, piece after piece: the order the renderer's one mesh has.
 void drawnVertices(const Simulation& simulation, std::vector<glm::dvec3>& out) {
   out.clear();
-  for (const SurfaceView& surface : simulation.surfaces()) out.insert(out.end(), surface.positions.begin(), surface.positions.end());
+  for (const SurfaceView& surface : simulation.surfaces())
+    out.insert(out.end(), surface.positions.begin(), surface.positions.end());
 }
 
 }  // namespace
@@ -303,7 +304,8 @@ Viewer::PhysicsOutcome Viewer::stepPhysics(double wallSeconds, const glm::dvec3&
     if (scenario_ && !scenario_->finished()) playScenarioAt(simulation_.time(), outcome);
     const int changes = simulation_.tears() + simulation_.merges();
     simulation_.step();
-    if (simulation_.tears() + simulation_.merges() != changes) outcome.topologyMs += simulation_.lastTopologyMilliseconds();
+    if (simulation_.tears() + simulation_.merges() != changes)
+      outcome.topologyMs += simulation_.lastTopologyMilliseconds();
     if (physicsTime.milliseconds() > kPhysicsBudgetMs && done + 1 < steps) {  // out of time: the rest waits
       if (!settings_.sim.paused) clock_.giveBack(steps - done - 1, settings_.sim.dt);
       ++done;

@@ -29,7 +29,10 @@ bool handledWhole(const FrameRecord& frame) { return frame.grabbed && frame.piec
 bool handledInPieces(const FrameRecord& frame) { return frame.grabbed && frame.pieces > 1 && frame.topologyMs == 0.0; }
 
 nlohmann::json timesJson(const PhaseSummary& times) {
-  return {{"frames", times.frames}, {"median_ms", times.medianMs}, {"p95_ms", times.p95Ms}, {"longest_ms", times.longestMs}};
+  return {{"frames", times.frames},
+          {"median_ms", times.medianMs},
+          {"p95_ms", times.p95Ms},
+          {"longest_ms", times.longestMs}};
 }
 
 // Prints and returns the pieces' table; null when nothing tore or merged.
@@ -48,11 +51,16 @@ nlohmann::json piecesTable(const std::vector<FrameRecord>& records, double after
   for (std::size_t index = 0; index < records.size(); ++index) {
     const FrameRecord& frame = records[index];
     if (frame.tears == tears && frame.merges == merges) continue;
-    const char* what = frame.tears != tears && frame.merges != merges ? "tear+merge" : frame.tears != tears ? "tear" : "merge";
-    std::printf("%-10s frame %zu at %.3f s simulated: %.1f ms, %.1f of them tearing and merging; %d pieces after\n", what,
-                index, frame.simulatedSeconds, frame.frameMs, frame.topologyMs, frame.pieces);
-    events.push_back({{"what", what}, {"frame", index}, {"simulated_s", frame.simulatedSeconds}, {"frame_ms", frame.frameMs},
-                      {"topology_ms", frame.topologyMs}, {"pieces", frame.pieces}});
+    const bool tore = frame.tears != tears, merged = frame.merges != merges;
+    const char* what = tore && merged ? "tear+merge" : tore ? "tear" : "merge";
+    std::printf("%-10s frame %zu at %.3f s simulated: %.1f ms, %.1f of them tearing and merging; pieces after: %d\n",
+                what, index, frame.simulatedSeconds, frame.frameMs, frame.topologyMs, frame.pieces);
+    events.push_back({{"what", what},
+                      {"frame", index},
+                      {"simulated_s", frame.simulatedSeconds},
+                      {"frame_ms", frame.frameMs},
+                      {"topology_ms", frame.topologyMs},
+                      {"pieces", frame.pieces}});
     tears = frame.tears;
     merges = frame.merges;
   }
