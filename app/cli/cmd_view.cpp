@@ -104,7 +104,7 @@ void registerViewCommand(CLI::App& root, int& exitCode) {
                       "Also write <prefix>-<n>.png when the simulation reaches each of these simulated times, s "
                       "(ascending; a scenario's moments whatever the machine's speed); --report lists them under "
                       "\"timed_screenshots\" with each piece's centroid's window pixel")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0.0, 3600.0));
   command->add_flag("--redraw-whole-window", options->redrawWholeWindow,
                     "Draw the whole window every frame and swap buffers, instead of drawing again and "
                     "showing only what changed (where GLX_MESA_copy_sub_buffer allows it); for comparison");
