@@ -384,10 +384,14 @@ void Viewer::applyPhysicsOutcome(const PhysicsOutcome& outcome) {
 void Viewer::refitSlime() {
   const Stopwatch refitTime;
   if (slimeMoved_) {
-    drawnVertices(simulation_, positionsNow_);
-    if (sceneChanged_ || motionWouldShow(positionsNow_)) {
+    // One piece (the slime untorn) is compared where it lies, without a copy each frame.
+    const bool onePiece = simulation_.pieceCount() == 1;
+    if (!onePiece) drawnVertices(simulation_, positionsNow_);
+    const std::vector<glm::dvec3>& now = onePiece ? simulation_.positions() : positionsNow_;
+    if (sceneChanged_ || motionWouldShow(now)) {
       renderer_.updateSlime(simulation_.surfaces());
-      drawnPositions_.swap(positionsNow_);
+      if (onePiece) drawnPositions_ = now;
+      else drawnPositions_.swap(positionsNow_);
       slimeMoved_ = false;
       sceneChanged_ = true;
     }
