@@ -1,6 +1,6 @@
 // `slime view` (and `slime` alone): the interactive window. Besides the scene options it takes the
 // camera options of `snapshot`, and a few for tests and scripts: --frames, --screenshot-on-exit, --report,
-// --frame-log, --check-every; and --target-fps, the adaptive resolution's target (off by default).
+// --frame-log, --check-every, --screenshot-at; and --target-fps, the adaptive resolution's target (off by default).
 #include "app/cli/commands.h"
 #include "app/cli/snapshot.h"
 #include "app/viewer/viewer.h"
@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -99,6 +100,11 @@ void registerViewCommand(CLI::App& root, int& exitCode) {
                       "--report's \"check\" (0 = never, the default); the checks' time is left out of the frame times")
       ->check(CLI::Range(0, 1000000));
   command->add_option("--screenshot-prefix", options->viewer.screenshotPrefix, "F12 writes <prefix>-<n>.png");
+  command->add_option("--screenshot-at", options->viewer.screenshotTimes,
+                      "Also write <prefix>-<n>.png when the simulation reaches each of these simulated times, s "
+                      "(ascending; a scenario's moments whatever the machine's speed); --report lists them under "
+                      "\"timed_screenshots\" with each piece's centroid's window pixel")
+      ->check(CLI::Range(0.0, 3600.0));
   command->add_flag("--redraw-whole-window", options->redrawWholeWindow,
                     "Draw the whole window every frame and swap buffers, instead of drawing again and "
                     "showing only what changed (where GLX_MESA_copy_sub_buffer allows it); for comparison");
@@ -108,6 +114,8 @@ void registerViewCommand(CLI::App& root, int& exitCode) {
     if (options->targetFps >= 0.0) settings.render.targetFps = options->targetFps;
     checkOutputFile("--report", options->viewer.reportPath);
     checkOutputFile("--frame-log", options->viewer.frameLogPath);
+    if (!std::is_sorted(options->viewer.screenshotTimes.begin(), options->viewer.screenshotTimes.end()))
+      throw SettingsError("--screenshot-at: the times must be in ascending order");
     if (!options->scene.scenarioFile.empty()) options->viewer.scenario = loadScenario(options->scene.scenarioFile);
     Window window("Slime", settings.camera.width, settings.camera.height, !options->redrawWholeWindow);
     Viewer viewer(window, settings, options->viewer);

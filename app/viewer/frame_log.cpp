@@ -25,7 +25,7 @@ bool writeFrameLogCsv(const std::vector<FrameRecord>& records, const std::string
   std::ofstream file(path);
   file << "frame,end_s,frame_ms,physics_ms,refit_ms,trace_ms,upload_ms,ui_ms,"
           "traced,full_resolution,width,height,scale,grabbed,simulated_s,check_psnr_db,caustics_ms,caustic_photons,"
-          "traced_rows,phase\n";
+          "traced_rows,phase,pieces,tears,merges,topology_ms\n";
   char line[360];
   for (std::size_t index = 0; index < records.size(); ++index) {
     const FrameRecord& frame = records[index];
@@ -40,8 +40,9 @@ bool writeFrameLogCsv(const std::vector<FrameRecord>& records, const std::string
       std::snprintf(line, sizeof line, "%.2f", frame.checkPsnrDb);
       file << line;
     }
-    std::snprintf(line, sizeof line, ",%.3f,%llu,%d,%s\n", stages.caustics,
-                  static_cast<unsigned long long>(frame.causticPhotons), frame.tracedRows, nameOf(frame.phase));
+    std::snprintf(line, sizeof line, ",%.3f,%llu,%d,%s,%d,%d,%d,%.3f\n", stages.caustics,
+                  static_cast<unsigned long long>(frame.causticPhotons), frame.tracedRows, nameOf(frame.phase),
+                  frame.pieces, frame.tears, frame.merges, frame.topologyMs);
     file << line;
   }
   file.flush();
@@ -84,31 +85,49 @@ FrameSummary summarizeFrames(const std::vector<FrameRecord>& records, bool (*inc
   return summary;
 }
 
+namespace {
+
+// Median, 95th and 99th percentile (nearest rank: the smallest frame time that p of the frames do not
+// exceed) and the longest of `times`, which it sorts.
+PhaseSummary summarizeTimes(std::vector<double>& times) {
+  PhaseSummary summary;
+  if (times.empty()) return summary;
+  std::sort(times.begin(), times.end());
+  const auto percentile = [&times](double p) {
+    const std::size_t rank = static_cast<std::size_t>(std::ceil(p * static_cast<double>(times.size())));
+    return times[std::clamp<std::size_t>(rank, 1, times.size()) - 1];
+  };
+  summary.frames = static_cast<std::int64_t>(times.size());
+  for (const double ms : times) summary.seconds += ms / 1000.0;
+  summary.medianMs = percentile(0.5);
+  summary.p95Ms = percentile(0.95);
+  summary.p99Ms = percentile(0.99);
+  summary.longestMs = times.back();
+  return summary;
+}
+
+}  // namespace
+
 std::vector<PhaseSummary> summarizePhases(const std::vector<FrameRecord>& records, double afterSeconds) {
   std::vector<double> frameMs[kFramePhases];
   for (const FrameRecord& record : records)
     if (record.endSeconds >= afterSeconds) frameMs[static_cast<int>(record.phase)].push_back(record.frameMs);
-  // The nearest-rank percentile: the smallest frame time that p of the frames do not exceed.
-  const auto percentile = [](const std::vector<double>& sorted, double p) {
-    const std::size_t rank = static_cast<std::size_t>(std::ceil(p * static_cast<double>(sorted.size())));
-    return sorted[std::clamp<std::size_t>(rank, 1, sorted.size()) - 1];
-  };
   std::vector<PhaseSummary> summaries;
   for (int phase = 0; phase < kFramePhases; ++phase) {
-    std::vector<double>& times = frameMs[phase];
-    if (times.empty()) continue;
-    std::sort(times.begin(), times.end());
-    PhaseSummary summary;
+    if (frameMs[phase].empty()) continue;
+    PhaseSummary summary = summarizeTimes(frameMs[phase]);
     summary.phase = static_cast<FramePhase>(phase);
-    summary.frames = static_cast<std::int64_t>(times.size());
-    for (const double ms : times) summary.seconds += ms / 1000.0;
-    summary.medianMs = percentile(times, 0.5);
-    summary.p95Ms = percentile(times, 0.95);
-    summary.p99Ms = percentile(times, 0.99);
-    summary.longestMs = times.back();
     summaries.push_back(summary);
   }
   return summaries;
+}
+
+PhaseSummary summarizeFrameTimes(const std::vector<FrameRecord>& records, bool (*include)(const FrameRecord&),
+                                 double afterSeconds) {
+  std::vector<double> frameMs;
+  for (const FrameRecord& record : records)
+    if (record.endSeconds >= afterSeconds && include(record)) frameMs.push_back(record.frameMs);
+  return summarizeTimes(frameMs);
 }
 
 FrameWindow slowestWindow(const std::vector<FrameRecord>& records, double windowSeconds, double afterSeconds) {

@@ -38,11 +38,17 @@ struct FrameRecord {
   std::uint64_t causticPhotons = 0;  // photons behind the caustic map of the frame's trace (0: none)
   int tracedRows = 0;             // image rows traced: a new image's, or a band of a refinement sample
   FramePhase phase = FramePhase::Resting;
+  // slime.tearing: the pieces at the frame's end, the tears and merges since the slime was built, and
+  // the milliseconds this frame's steps spent tearing and merging (Simulation::lastTopologyMilliseconds).
+  int pieces = 1;
+  int tears = 0;
+  int merges = 0;
+  double topologyMs = 0.0;
 };
 
 // One line per frame under a header naming the columns (units in the names: _s, _ms, _db; an
-// unchecked frame leaves check_psnr_db empty; caustics_ms, caustic_photons, traced_rows and phase
-// come last, so the plot scripts' column numbers hold). Returns false
+// unchecked frame leaves check_psnr_db empty; caustics_ms, caustic_photons, traced_rows, phase, then
+// pieces, tears, merges and topology_ms come last, so the plot scripts' column numbers hold). Returns false
 // if the file cannot be written.
 bool writeFrameLogCsv(const std::vector<FrameRecord>& records, const std::string& path);
 
@@ -67,6 +73,10 @@ struct PhaseSummary {
 // One summary per phase that has frames, in FramePhase's order. `afterSeconds`: frames ending before
 // this wall time (the window's first frames, shaders and caches warming) are left out.
 std::vector<PhaseSummary> summarizePhases(const std::vector<FrameRecord>& records, double afterSeconds = 0.0);
+
+// Frame times of the frames `include` takes, as a phase's (its `phase` left Resting); no frames: all 0.
+PhaseSummary summarizeFrameTimes(const std::vector<FrameRecord>& records, bool (*include)(const FrameRecord&),
+                                 double afterSeconds = 0.0);
 
 // The fewest frames a second in any `windowSeconds` of wall time (frames counted by their end) from
 // `afterSeconds` on, and where that window starts; {-1, 0} when the run is shorter than one window.

@@ -50,13 +50,12 @@ void PsnrFigures::add(double db) {
   minDb = std::min(minDb, db);
 }
 
-double ImageCheck::check(const Settings& settings, const std::vector<glm::dvec3>& positions,
-                         const std::vector<Triangle>& triangles, const std::vector<std::uint8_t>& shown,
-                         int shownWidth, int shownHeight, bool handled) {
+double ImageCheck::check(const Settings& settings, const std::vector<SurfaceView>& pieces,
+                         const std::vector<std::uint8_t>& shown, int shownWidth, int shownHeight, bool handled) {
   const auto start = std::chrono::steady_clock::now();
   // A renderer of its own each time: what `slime snapshot` does for one image, nothing carried over.
   Renderer renderer(settings);
-  renderer.updateSlime({SurfaceView{positions, triangles}});
+  renderer.updateSlime(pieces);
   reference_.resize(settings.camera.width, settings.camera.height);
   renderer.render(settings, reference_);
   toSrgb8(reference_, 4, referenceBytes_);

@@ -8,6 +8,7 @@
 #pragma once
 
 #include "core/geometry/icosphere.h"
+#include "core/geometry/surface_view.h"
 #include "core/settings/settings.h"
 #include "render/image/image.h"
 
@@ -45,10 +46,9 @@ class ImageCheck {
   bool due(std::int64_t frame) const { return every_ > 0 && frame % every_ == 0; }
 
   // Traces the reference for `settings` (camera.width × camera.height: the full view) and the slime
-  // at `positions`, compares `shown` with it and adds the result; returns the PSNR in dB.
-  double check(const Settings& settings, const std::vector<glm::dvec3>& positions,
-               const std::vector<Triangle>& triangles, const std::vector<std::uint8_t>& shown, int shownWidth,
-               int shownHeight, bool handled);
+  // as `pieces` (one closed surface each), compares `shown` with it and adds the result; returns the PSNR in dB.
+  double check(const Settings& settings, const std::vector<SurfaceView>& pieces,
+               const std::vector<std::uint8_t>& shown, int shownWidth, int shownHeight, bool handled);
   // A frame that showed a still image refined over several samples: not comparable with the
   // one-sample reference, counted apart.
   void skipRefined() { ++skippedRefined_; }

@@ -228,6 +228,9 @@ void simulationExtras(const Settings& draft, const PanelView& view, PanelRequest
   ImGui::SameLine();
   ImGui::Text("volume %.3f  height %.1f mm", view.metrics.volumeRatio, view.metrics.height * 1000.0);
   if (draft.sim.integrator == "auto") ImGui::Text("auto steps with %s", view.integrator.c_str());
+  if (draft.slime.tearing || view.pieces > 1)
+    ImGui::Text("pieces %zu  (%d %s, %d %s)", view.pieces, view.tears, view.tears == 1 ? "tear" : "tears", view.merges,
+                view.merges == 1 ? "merge" : "merges");
 }
 
 // The traced image's scale and the adaptive resolution's target frame rate (0: off), which the user
@@ -262,6 +265,7 @@ void handsSection(const PanelView& view, PanelRequests& requests) {
     ImGui::Text("%s", kNames[hand]);
     ImGui::SameLine();
     if (ImGui::SmallButton("release")) requests.releaseHand = static_cast<int>(hand);
+    if (view.pieces > 1) ImGui::Text("  holds piece %zu of %zu", h.piece + 1, view.pieces);
     ImGui::Text("  at %+.1f %+.1f %+.1f cm", 100.0 * h.position.x, 100.0 * h.position.y, 100.0 * h.position.z);
     ImGui::Text("  force %.2f N (%+.1f %+.1f %+.1f)", glm::length(h.force), h.force.x, h.force.y, h.force.z);
     ImGui::PopID();

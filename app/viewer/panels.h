@@ -35,6 +35,7 @@ struct HandView {
   glm::dvec3 position{0.0};  // where the hand's part of the surface is now, m
   glm::dvec3 target{0.0};    // where the hand pulls it, m
   glm::dvec3 force{0.0};     // the hand's force on the body, N (bulk)
+  std::size_t piece = 0;     // the piece it holds (slime.tearing: after a tear, the part that kept its nodes)
 };
 
 // Read-only facts the panels display.
@@ -51,6 +52,9 @@ struct PanelView {
   const Settings* shown = nullptr;
   std::vector<HandView> hands{};  // hand 0 (left-drag) and hand 1 (Ctrl+left-drag)
   std::string integrator{};      // the one stepping the slime (sim.integrator with auto resolved)
+  std::size_t pieces = 1;        // slime.tearing: the pieces now, and the tears and merges since the slime was built
+  int tears = 0;
+  int merges = 0;
 };
 
 // Width of the column for a display of this width, in window pixels.

@@ -33,6 +33,13 @@ class Stopwatch {
 // ScenarioPlayer fires the events due within this of the simulated time (core/simulation/scenario.cpp).
 constexpr double kScenarioTimeTolerance = 1e-9;
 
+// Every piece's drawn vertices into `out`, piece after piece: the order the renderer's one mesh has.
+void drawnVertices(const Simulation& simulation, std::vector<glm::dvec3>& out) {
+  out.clear();
+  for (const SurfaceView& surface : simulation.surfaces())
+    out.insert(out.end(), surface.positions.begin(), surface.positions.end());
+}
+
 }  // namespace
 
 Viewer::Viewer(ViewerBackend& backend, const Settings& settings, ViewerOptions options)
@@ -74,6 +81,7 @@ bool Viewer::frame() {
   const Stopwatch frameTime;
   const FrameInput input = readInput();
   handleInput(input);
+  requestTimedScreenshots();
   if (options_.maxFrames > 0 && stats_.frames + 1 >= options_.maxFrames) quit_ = true;
   if (options_.quitAtSimulatedSeconds > 0.0 && simulation_.time() >= options_.quitAtSimulatedSeconds) quit_ = true;
   if (options_.quitAtWallSeconds > 0.0 && stats_.totalFrameMs >= 1000.0 * options_.quitAtWallSeconds) quit_ = true;
@@ -142,6 +150,26 @@ int Viewer::run() {
     std::printf("slime view: wrote %s (%zu frames)\n", options_.frameLogPath.c_str(), frameRecords_.size());
   }
   return 0;
+}
+
+// The frame traces the slime as the last frame's steps left it, at the time the frame starts with.
+void Viewer::requestTimedScreenshots() {
+  const std::vector<double>& times = options_.screenshotTimes;
+  const glm::ivec2 size = viewSize();
+  while (timedScreenshots_.size() < times.size() && simulation_.time() + 1e-9 >= times[timedScreenshots_.size()]) {
+    TimedScreenshot shot;
+    shot.path = options_.screenshotPrefix + "-" + std::to_string(++screenshotCount_) + ".png";
+    shot.simulatedSeconds = simulation_.time();
+    const Camera camera = makeCamera(settings_.camera, std::max(size.x, 1), std::max(size.y, 1));
+    for (const EnclosedSolid& solid : simulation_.pieceSolids()) {
+      shot.volumes.push_back(solid.volume);
+      std::optional<glm::dvec2> pixel = projectToWindow(camera, solid.centroid, size);
+      if (pixel) pixel->x += std::lround(columnWidth_);
+      shot.windowPixels.push_back(pixel);
+    }
+    requestScreenshot(shot.path);
+    timedScreenshots_.push_back(std::move(shot));
+  }
 }
 
 // --- input -----------------------------------------------------------------------------------------
@@ -274,7 +302,10 @@ Viewer::PhysicsOutcome Viewer::stepPhysics(double wallSeconds, const glm::dvec3&
       simulation_.dragTo(from + (target - from) * progress, cursorHand_);
     }
     if (scenario_ && !scenario_->finished()) playScenarioAt(simulation_.time(), outcome);
+    const int changes = simulation_.tears() + simulation_.merges();
     simulation_.step();
+    if (simulation_.tears() + simulation_.merges() != changes)
+      outcome.topologyMs += simulation_.lastTopologyMilliseconds();
     if (physicsTime.milliseconds() > kPhysicsBudgetMs && done + 1 < steps) {  // out of time: the rest waits
       if (!settings_.sim.paused) clock_.giveBack(steps - done - 1, settings_.sim.dt);
       ++done;
@@ -333,6 +364,9 @@ void Viewer::applyPhysicsOutcome(const PhysicsOutcome& outcome) {
     sceneChanged_ = true;
     editedFrame_ = editDrawnFrame_ = stats_.frames;
   }
+  peakPieces_ = std::max(peakPieces_, simulation_.pieceCount());
+  topologyMs_ = outcome.topologyMs;
+  longestTopologyMs_ = std::max(longestTopologyMs_, topologyMs_);
   stats_.physicsSteps = outcome.steps;
   stats_.stages.physics = outcome.milliseconds;
   stats_.recordSimulatedTime(outcome.steps * settings_.sim.dt, outcome.wallSeconds);
@@ -345,21 +379,30 @@ void Viewer::applyPhysicsOutcome(const PhysicsOutcome& outcome) {
 // started from: creep is measured against it, not against the last frame, so it cannot add up unseen;
 // once it crosses the threshold the slime is traced again, in its footprint (its shadow and caustic
 // included; the rest of the image is copied: RenderStats::reusedPixels), and the refinement restarts.
+// With pieces (slime.tearing) every piece's vertices are compared, piece after piece: a piece that moves
+// alone is drawn, and a tear or a merge (the vertex count changes) always is.
 void Viewer::refitSlime() {
   const Stopwatch refitTime;
-  if (slimeMoved_ && (sceneChanged_ || motionWouldShow())) {
-    renderer_.updateSlime(simulation_.surfaces());
-    drawnPositions_ = simulation_.positions();
-    slimeMoved_ = false;
-    sceneChanged_ = true;
+  if (slimeMoved_) {
+    // One piece (the slime untorn) is compared where it lies, without a copy each frame.
+    const bool onePiece = simulation_.pieceCount() == 1;
+    if (!onePiece) drawnVertices(simulation_, positionsNow_);
+    const std::vector<glm::dvec3>& now = onePiece ? simulation_.positions() : positionsNow_;
+    if (sceneChanged_ || motionWouldShow(now)) {
+      renderer_.updateSlime(simulation_.surfaces());
+      if (onePiece) drawnPositions_ = now;
+      else drawnPositions_.swap(positionsNow_);
+      slimeMoved_ = false;
+      sceneChanged_ = true;
+    }
   }
   stats_.stages.refit = refitTime.milliseconds();
 }
 
-bool Viewer::motionWouldShow() const {
+bool Viewer::motionWouldShow(const std::vector<glm::dvec3>& now) const {
   const glm::ivec2 size = tracedImageSize();
-  return size.y <= 0 || largestMotionPixels(drawnPositions_, simulation_.positions(), settings_.camera.position,
-                                            settings_.camera.fov, size.y) >= kStillMotionPixels;
+  return size.y <= 0 || largestMotionPixels(drawnPositions_, now, settings_.camera.position, settings_.camera.fov,
+                                            size.y) >= kStillMotionPixels;
 }
 
 glm::ivec2 Viewer::fullImageSize() const {
@@ -489,8 +532,12 @@ bool Viewer::physicsBesideTrace() const {
 void Viewer::keepCheckState() {
   checkStateKept_ = check_.due(stats_.frames);
   if (!checkStateKept_) return;
-  checkPositions_ = simulation_.positions();
-  checkTriangles_ = simulation_.triangles();
+  const std::vector<SurfaceView>& surfaces = simulation_.surfaces();
+  checkPieces_.resize(surfaces.size());
+  for (std::size_t piece = 0; piece < surfaces.size(); ++piece) {
+    checkPieces_[piece].positions.assign(surfaces[piece].positions.begin(), surfaces[piece].positions.end());
+    checkPieces_[piece].triangles.assign(surfaces[piece].triangles.begin(), surfaces[piece].triangles.end());
+  }
   checkHandled_ = simulation_.anyGrabbing();
 }
 
@@ -510,8 +557,8 @@ double Viewer::checkImage() {
   }
   if (samples > 1) reference.render.spp = refinement_.target();
   const double before = check_.milliseconds();
-  framePsnrDb_ = check_.check(reference, checkPositions_, checkTriangles_, shown, image_.width,
-                              image_.height, checkHandled_);
+  const std::vector<SurfaceView> pieces(checkPieces_.begin(), checkPieces_.end());
+  framePsnrDb_ = check_.check(reference, pieces, shown, image_.width, image_.height, checkHandled_);
   const double spent = check_.milliseconds() - before;
   checkSecondsToSkip_ = spent / 1000.0;
   return spent;
@@ -552,6 +599,10 @@ void Viewer::finishFrame(double frameMs) {
   record.grabbed = simulation_.anyGrabbing();
   record.simulatedSeconds = simulation_.time();
   record.checkPsnrDb = framePsnrDb_;
+  record.pieces = static_cast<int>(simulation_.pieceCount());
+  record.tears = simulation_.tears();
+  record.merges = simulation_.merges();
+  record.topologyMs = topologyMs_;
   frameRecords_.push_back(record);
 }
 
@@ -626,11 +677,13 @@ int Viewer::refineTarget() const {
 glm::dvec3 Viewer::grabbedCentre() const { return simulation_.grabbedPoint(cursorHand_); }
 
 glm::dvec3 Viewer::slimeCentre() const {
-  const std::vector<glm::dvec3>& positions = simulation_.positions();
-  if (positions.empty()) return settings_.slime.position;
   glm::dvec3 sum(0.0);
-  for (const glm::dvec3& position : positions) sum += position;
-  return sum / static_cast<double>(positions.size());
+  std::size_t count = 0;
+  for (const SurfaceView& surface : simulation_.surfaces()) {
+    for (const glm::dvec3& position : surface.positions) sum += position;
+    count += surface.positions.size();
+  }
+  return count == 0 ? settings_.slime.position : sum / static_cast<double>(count);
 }
 
 }  // namespace slime

@@ -24,6 +24,7 @@
 #include "render/trace/accumulation_buffer.h"
 #include "render/trace/renderer.h"
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include <optional>
@@ -40,11 +41,23 @@ struct ViewerOptions {
   std::string reportPath;                           // JSON summary written at exit, if set
   std::string frameLogPath;                         // CSV of every frame (frame_log.h) at exit, if set
   std::string screenshotPrefix = "slime-screenshot";  // F12 writes <prefix>-<n>.png
+  // ... and so does the first frame that starts at or after each of these simulated times (seconds, ascending):
+  // a scenario's moments, whatever the machine's speed. The report lists them with each piece's centroid's
+  // window pixel (timed_screenshots), so a script can look for every piece in the picture.
+  std::vector<double> screenshotTimes;
   std::optional<Scenario> scenario;                 // timed grab/drag/press/set events to replay
   std::string scenePath = "slime-scene.json";       // where Ctrl+S saves and Ctrl+O loads (panel field)
   int refineSamples = 16;  // samples per pixel a still image accumulates (1: none, as `snapshot` shows it)
   int checkEvery = 0;      // every K-th frame, the image shown against a full trace (image_check.h); 0: never
   double refineBandMs = 14.0;  // wall time a frame may spend on a band of a refinement sample (Viewer::refineBandRows)
+};
+
+// A screenshot of ViewerOptions::screenshotTimes, as the report lists it.
+struct TimedScreenshot {
+  std::string path;
+  double simulatedSeconds = 0.0;
+  std::vector<double> volumes;                          // per piece, m³
+  std::vector<std::optional<glm::dvec2>> windowPixels;  // per piece, its centroid in the window; empty: behind the eye
 };
 
 // validateSettings, and what only the renderer finds out: that a floor image can be read
@@ -119,13 +132,15 @@ class Viewer {
     int scenarioGrabs = 0;        // the scenario's grabs and presses that took hold during the steps
     double heightAtGrab = 0.0;    // the slime's height when the last of them took hold
     bool settingsEdited = false;  // a scenario "set" event fired
+    double topologyMs = 0.0;      // spent on the tears and merges among the steps (slime.tearing)
   };
   PhysicsOutcome stepPhysics(double wallSeconds, const glm::dvec3& target);  // touches simulation_ only
   void playScenarioAt(double time, PhysicsOutcome& outcome);
   bool scenarioSetPending() const;  // a "set" event of the scenario is still to come
   void applyPhysicsOutcome(const PhysicsOutcome& outcome);
   void refitSlime();
-  bool motionWouldShow() const;         // the slime moved visibly since it was last drawn
+  // The slime moved visibly since it was last drawn: `now` (every piece's drawn vertices) against drawnPositions_.
+  bool motionWouldShow(const std::vector<glm::dvec3>& now) const;
   glm::ivec2 fullImageSize() const;     // the view's framebuffer pixels; {0, 0} when minimised
   glm::ivec2 tracedImageSize() const;   // ... scaled by render.scale and the adaptive resolution
   void traceImage();
@@ -152,6 +167,8 @@ class Viewer {
   struct GrabMarks {
     GrabMark hands[kHands];
     std::vector<HandView> views;
+    std::size_t pieces = 1;  // ... and the pieces, tears and merges the Simulation section shows
+    int tears = 0, merges = 0;
   };
   GrabMarks grabMarks() const;
   std::vector<HandView> handViews() const;  // what the Hands section shows
@@ -173,7 +190,7 @@ class Viewer {
   Settings frameSettings(glm::ivec2 imageSize) const;
   // Samples per pixel a still image refines to: ViewerOptions::refineSamples or render.spp, the more.
   int refineTarget() const;
-  glm::dvec3 slimeCentre() const;
+  glm::dvec3 slimeCentre() const;  // the mean of every piece's drawn vertices
   glm::dvec3 grabbedCentre() const;  // where the grabbed points are now
   bool interacting() const { return wallClock_ - lastInteraction_ < kRefineAfterSeconds; }
   void writeReport() const;
@@ -222,8 +239,7 @@ class Viewer {
   double checkSecondsToSkip_ = 0.0;  // the last check's time, taken off the next frame's elapsed time
   double framePsnrDb_ = -1.0;        // this frame's checked PSNR; < 0: not checked
   bool checkStateKept_ = false;      // this frame is checked: the state below is the traced one
-  std::vector<glm::dvec3> checkPositions_;
-  std::vector<Triangle> checkTriangles_;
+  std::vector<TriangleMesh> checkPieces_;  // one per piece
   bool checkHandled_ = false;
   std::vector<FrameRecord> frameRecords_;  // every frame, when a frame log or report is wanted
   SlimeMetrics metrics_;
@@ -238,7 +254,8 @@ class Viewer {
   bool quit_ = false;
   bool singleStepPending_ = false;
   bool slimeMoved_ = true;         // the mesh changed since the last refit
-  std::vector<glm::dvec3> drawnPositions_;  // the vertices as the renderer last got them
+  std::vector<glm::dvec3> drawnPositions_;  // every piece's vertices, piece after piece, as the renderer last got them
+  std::vector<glm::dvec3> positionsNow_;    // ... and as they are now (refitSlime's, storage kept)
   bool sceneChanged_ = true;       // camera, settings or size changed since the last trace
   bool cameraMoved_ = false;       // this frame's input moved the camera
   bool landed_ = false;            // the slime has touched the floor since it was (re)built
@@ -255,9 +272,14 @@ class Viewer {
   double peakHeightWhileGrabbing_ = 0.0;
   double widthBeforeGrabs_ = -1.0;      // the slime's width when the session's first grab began (< 0: none yet)
   double peakWidthWhileTwoHands_ = 0.0; // the widest the slime was while both hands held it
+  std::size_t peakPieces_ = 1;          // slime.tearing: the most pieces at once since the start
+  double topologyMs_ = 0.0;             // ... this frame's steps' tears and merges, ms
+  double longestTopologyMs_ = 0.0;      // ... the longest of those in one frame
   int screenshotCount_ = 0;
   std::vector<std::string> screenshotPaths_;
   std::vector<std::string> screenshotsWritten_;
+  std::vector<TimedScreenshot> timedScreenshots_;  // those requested so far, for the report
+  void requestTimedScreenshots();  // those due at the frame's start
 };
 
 }  // namespace slime

@@ -23,6 +23,50 @@ constexpr double kLongestAimMs = 100.0;
 // The aim for a phase's slow frames: the 95th percentile within max(1.5 × median, median + 8 ms).
 double p95Allowance(const PhaseSummary& phase) { return std::max(1.5 * phase.medianMs, phase.medianMs + 8.0); }
 
+// slime.tearing: the handled frames of one piece against those of several, without the frames that
+// tore or merged, which are listed one by one (issue 42: "as smooth while the slime is handled").
+bool handledWhole(const FrameRecord& frame) { return frame.grabbed && frame.pieces == 1 && frame.topologyMs == 0.0; }
+bool handledInPieces(const FrameRecord& frame) { return frame.grabbed && frame.pieces > 1 && frame.topologyMs == 0.0; }
+
+nlohmann::json timesJson(const PhaseSummary& times) {
+  return {{"frames", times.frames},
+          {"median_ms", times.medianMs},
+          {"p95_ms", times.p95Ms},
+          {"longest_ms", times.longestMs}};
+}
+
+// Prints and returns the pieces' table; null when nothing tore or merged.
+nlohmann::json piecesTable(const std::vector<FrameRecord>& records, double afterSeconds) {
+  if (records.empty() || records.back().tears + records.back().merges == 0) return nullptr;
+  const PhaseSummary whole = summarizeFrameTimes(records, handledWhole, afterSeconds);
+  const PhaseSummary pieces = summarizeFrameTimes(records, handledInPieces, afterSeconds);
+  std::printf("handled    %7s %9s %8s %9s   (frames that tore or merged left out)\n", "frames", "median_ms", "p95_ms",
+              "longest_ms");
+  std::printf("%-10s %7lld %9.1f %8.1f %9.1f\n", "1 piece", static_cast<long long>(whole.frames), whole.medianMs,
+              whole.p95Ms, whole.longestMs);
+  std::printf("%-10s %7lld %9.1f %8.1f %9.1f\n", "pieces", static_cast<long long>(pieces.frames), pieces.medianMs,
+              pieces.p95Ms, pieces.longestMs);
+  nlohmann::json events = nlohmann::json::array();
+  int tears = 0, merges = 0;
+  for (std::size_t index = 0; index < records.size(); ++index) {
+    const FrameRecord& frame = records[index];
+    if (frame.tears == tears && frame.merges == merges) continue;
+    const bool tore = frame.tears != tears, merged = frame.merges != merges;
+    const char* what = tore && merged ? "tear+merge" : tore ? "tear" : "merge";
+    std::printf("%-10s frame %zu at %.3f s simulated: %.1f ms, %.1f of them tearing and merging; pieces after: %d\n",
+                what, index, frame.simulatedSeconds, frame.frameMs, frame.topologyMs, frame.pieces);
+    events.push_back({{"what", what},
+                      {"frame", index},
+                      {"simulated_s", frame.simulatedSeconds},
+                      {"frame_ms", frame.frameMs},
+                      {"topology_ms", frame.topologyMs},
+                      {"pieces", frame.pieces}});
+    tears = frame.tears;
+    merges = frame.merges;
+  }
+  return {{"handled_one_piece", timesJson(whole)}, {"handled_in_pieces", timesJson(pieces)}, {"events", events}};
+}
+
 }  // namespace
 
 int runViewerBench(const Settings& settings, const ViewerBenchOptions& options) {
@@ -77,6 +121,7 @@ int runViewerBench(const Settings& settings, const ViewerBenchOptions& options) 
   std::printf("slowest %.0f s window: %.1f fps from %.1f s (aim %.0f: %s); longest frame %.1f ms (aim %.0f: %s)\n",
               kWindowSeconds, slowest.fps, slowest.startSeconds, kAimFps, slowest.fps >= kAimFps ? "met" : "MISSED",
               longest, kLongestAimMs, longest <= kLongestAimMs ? "met" : "MISSED");
+  const nlohmann::json pieces = piecesTable(records, options.afterSeconds);
   if (!options.jsonPath.empty()) {
     const nlohmann::json report = {{"machine", machineJson()},
                                    {"size", {options.width, options.height}},
@@ -86,7 +131,8 @@ int runViewerBench(const Settings& settings, const ViewerBenchOptions& options) 
                                    {"phases", table},
                                    {"slowest_window", {{"seconds", kWindowSeconds}, {"fps", slowest.fps},
                                                        {"start_s", slowest.startSeconds}}},
-                                   {"longest_ms", longest}};
+                                   {"longest_ms", longest},
+                                   {"pieces", pieces}};
     std::ofstream file(options.jsonPath);
     file << report.dump(2) << "\n";
     if (!file) throw std::runtime_error("bench viewer: cannot write " + options.jsonPath);

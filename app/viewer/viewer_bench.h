@@ -4,7 +4,8 @@
 // Prints each phase's frames a second and median / 95th / 99th percentile / longest frame, the
 // slowest 3-second window, and whether each phase meets the smoothness aims (docs/performance.md,
 // viewer section); writes the frame log (frame_log.h's CSV, which scripts/plots/viewer_phases.gp
-// charts) and a JSON of the same table.
+// charts) and a JSON of the same table. A run that tears or merges (slime.tearing) also gets the handled
+// frames of one piece against those of several, and each frame that tore or merged, with its time.
 #pragma once
 
 #include "app/viewer/headless_gl.h"

@@ -120,7 +120,24 @@ nlohmann::json handsJson(const std::vector<HandView>& hands) {
     list.push_back({{"holding", hand.holding},
                     {"position", vectorJson(hand.position)},
                     {"target", vectorJson(hand.target)},
-                    {"force", vectorJson(hand.force)}});
+                    {"force", vectorJson(hand.force)},
+                    {"piece", hand.piece}});
+  return list;
+}
+
+// --screenshot-at: each picture's simulated time and each piece's volume and centroid's window pixel
+// (null when behind the eye).
+nlohmann::json timedScreenshotsJson(const std::vector<TimedScreenshot>& shots) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const TimedScreenshot& shot : shots) {
+    nlohmann::json pieces = nlohmann::json::array();
+    for (std::size_t piece = 0; piece < shot.volumes.size(); ++piece) {
+      const std::optional<glm::dvec2>& pixel = shot.windowPixels[piece];
+      pieces.push_back({{"volume", shot.volumes[piece]},
+                        {"window_pixel", pixel ? nlohmann::json{pixel->x, pixel->y} : nlohmann::json(nullptr)}});
+    }
+    list.push_back({{"path", shot.path}, {"simulated_s", shot.simulatedSeconds}, {"pieces", pieces}});
+  }
   return list;
 }
 
@@ -158,6 +175,13 @@ void Viewer::writeReport() const {
       {"width_before_grabs", widthBeforeGrabs_},
       {"peak_width_while_two_hands", peakWidthWhileTwoHands_},
       {"hands", handsJson(handViews())},
+      // slime.tearing: the pieces at exit and the most at once, the tears and merges since the slime was
+      // built, and the longest a frame's steps spent on them (ms).
+      {"pieces", simulation_.pieceCount()},
+      {"peak_pieces", peakPieces_},
+      {"tears", simulation_.tears()},
+      {"merges", simulation_.merges()},
+      {"longest_topology_ms", longestTopologyMs_},
       {"metrics",
        {{"volume_ratio", metrics_.volumeRatio}, {"height", metrics_.height}, {"width", metrics_.width},
         {"aspect", metrics_.aspect}, {"min_z", metrics_.minZ}}},
@@ -166,6 +190,7 @@ void Viewer::writeReport() const {
       {"file_message", fileMessage_},
       {"reload_pending", differingReloadFields(wanted_, built_)},
       {"screenshots", screenshotsWritten_},
+      {"timed_screenshots", timedScreenshotsJson(timedScreenshots_)},
       // --check-every K: the shown images against full traces of the same state (image_check.h);
       // "frames" is 0 and the PSNRs 0 when no frame was checked. 100 dB: identical.
       {"check",

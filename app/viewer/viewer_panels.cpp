@@ -23,6 +23,9 @@ Viewer::GrabMarks Viewer::grabMarks() const {
     if (mark.target) mark.held = simulation_.grabbedPoint(hand);
   }
   marks.views = handViews();
+  marks.pieces = simulation_.pieceCount();
+  marks.tears = simulation_.tears();
+  marks.merges = simulation_.merges();
   return marks;
 }
 
@@ -34,6 +37,7 @@ std::vector<HandView> Viewer::handViews() const {
     views[hand].position = simulation_.grabbedPoint(hand);
     views[hand].target = simulation_.grabTarget(hand);
     views[hand].force = simulation_.handForce(hand);
+    views[hand].piece = simulation_.handPieceIndex(hand);
   }
   return views;
 }
@@ -45,8 +49,11 @@ PanelRequests Viewer::drawPanelsAndOverlay(const GrabMarks& marks) {
   // be edited (a kept invalid value made every later edit fail on it).
   draft_ = settings_;
   copyReloadFields(wanted_, draft_);
-  const PanelView view{stats_,       metrics_,    editError_, errorGroup_, differingReloadFields(draft_, built_),
-                       fileMessage_, fileFailed_, &settings_, marks.views, integratorName(simulation_.integrator())};
+  PanelView view{stats_,       metrics_,    editError_, errorGroup_, differingReloadFields(draft_, built_),
+                 fileMessage_, fileFailed_, &settings_, marks.views, integratorName(simulation_.integrator())};
+  view.pieces = marks.pieces;
+  view.tears = marks.tears;
+  view.merges = marks.merges;
   const PanelRequests requests = drawPanels(draft_, scenePath_, view);
   if (showHelp_) drawHelpOverlay(requests.columnWidth);
 

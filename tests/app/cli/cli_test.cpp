@@ -79,6 +79,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"view --target-fps 500", "--target-fps"},
         BadInput{"view --target-fps -1", "--target-fps"},
         BadInput{"view --target-fps fast", "--target-fps"},
+        BadInput{"view --screenshot-at 2 1", "ascending"},
+        BadInput{"view --screenshot-at -1", "0.000000 to 3600"},
         BadInput{"frobnicate", "frobnicate"}));
 
 // --eye and --look-at are readable names of --vp and --vi: the same picture.

@@ -57,6 +57,9 @@ TEST(FrameLog, CsvHasAHeaderAndOneLinePerFrame) {
   frame.causticPhotons = 20000;
   frame.tracedRows = 90;
   frame.phase = FramePhase::Held;
+  frame.pieces = 2;
+  frame.tears = 1;
+  frame.topologyMs = 12.5;
   ASSERT_TRUE(writeFrameLogCsv({record(40.0, true, true, false), frame}, path.string()));
   std::ifstream file(path);
   std::string header, first, second, extra;
@@ -67,10 +70,10 @@ TEST(FrameLog, CsvHasAHeaderAndOneLinePerFrame) {
   EXPECT_EQ(header,
             "frame,end_s,frame_ms,physics_ms,refit_ms,trace_ms,upload_ms,ui_ms,"
             "traced,full_resolution,width,height,scale,grabbed,simulated_s,check_psnr_db,caustics_ms,caustic_photons,"
-            "traced_rows,phase");
+            "traced_rows,phase,pieces,tears,merges,topology_ms");
   EXPECT_EQ(second,
-            "1,0.0000,33.500,5.000,0.000,40.000,0.000,8.000,1,0,320,180,0.500,1,0.0000,41.26,3.250,20000,90,held");
-  EXPECT_EQ(first.substr(first.size() - 26), ",0.0000,,0.000,0,0,resting");  // unchecked: check_psnr_db empty
+            "1,0.0000,33.500,5.000,0.000,40.000,0.000,8.000,1,0,320,180,0.500,1,0.0000,41.26,3.250,20000,90,held,2,1,0,12.500");
+  EXPECT_EQ(first.substr(first.size() - 38), ",0.0000,,0.000,0,0,resting,1,0,0,0.000");  // unchecked: check_psnr_db empty
 }
 
 // Per phase: the median, 95th and 99th percentile (nearest rank) and the longest frame, the first
@@ -105,6 +108,30 @@ TEST(FrameLog, PhasesHaveTheirPercentilesAndLongestFrame) {
   EXPECT_EQ(phases[1].p99Ms, 30.0);
   EXPECT_STREQ(nameOf(FramePhase::Orbiting), "orbiting");
   EXPECT_STREQ(nameOf(FramePhase::Editing), "editing");
+}
+
+// The frames a predicate takes (here the torn ones, pieces > 1), with the first second left out.
+TEST(FrameLog, FrameTimesOfTheFramesAPredicateTakes) {
+  std::vector<FrameRecord> records;
+  for (int i = 1; i <= 20; ++i) {  // one piece at 100 ms, two pieces at 1 .. 20 ms
+    FrameRecord frame = record(i % 2 == 0 ? 100.0 : static_cast<double>(i), false, false, false);
+    frame.endSeconds = 2.0;
+    frame.pieces = i % 2 == 0 ? 1 : 2;
+    records.push_back(frame);
+  }
+  FrameRecord early = record(500.0, false, false, false);
+  early.endSeconds = 0.5;
+  early.pieces = 2;
+  records.push_back(early);
+  const auto torn = [](const FrameRecord& frame) { return frame.pieces > 1; };
+  const PhaseSummary summary = summarizeFrameTimes(records, torn, 1.0);
+  EXPECT_EQ(summary.frames, 10);
+  EXPECT_EQ(summary.medianMs, 9.0);  // 1, 3, .., 19: the 5th
+  EXPECT_EQ(summary.p95Ms, 19.0);
+  EXPECT_EQ(summary.longestMs, 19.0);
+  EXPECT_NEAR(summary.seconds, 0.1, 1e-12);
+  const auto none = [](const FrameRecord&) { return false; };
+  EXPECT_EQ(summarizeFrameTimes(records, none).frames, 0);
 }
 
 TEST(FrameLog, TheSlowestWindowCountsTheFramesEndingInIt) {
