@@ -139,6 +139,14 @@ glm::dmat3 plasticInverse(const BulkBody& body, std::size_t tetrahedron) {
   return plasticInverseOf(plasticMetric(body, tetrahedron));
 }
 
+double damage(const BulkBody& body, std::size_t tetrahedron) {
+  if (body.material.damageStretch <= 0.0) return 0.0;
+  const MaxwellBlock& block = body.maxwell[tetrahedron / kTetLanes];
+  const std::size_t lane = tetrahedron % kTetLanes;
+  return damageOfTrace(double(block.plastic[0][lane]) + block.plastic[1][lane] + block.plastic[2][lane],
+                       body.material.damageStretch);
+}
+
 double elasticStretch(const BulkBody& body, const std::vector<glm::dvec3>& x, std::size_t tetrahedron) {
   const Tetrahedron& t = body.mesh.tetrahedra[tetrahedron];
   const glm::dmat3 f = deformationGradient(body.rest[tetrahedron], x[t.x], x[t.y], x[t.z], x[t.w]);
@@ -173,6 +181,7 @@ void applyBulkMaterial(BulkBody& body, const SlimeSettings& slime) {
   body.material.yieldStretch = slime.yieldStretch;
   body.material.plasticFlowTime = slime.flowTime;
   body.material.recoveryTime = slime.recoveryTime;
+  body.material.damageStretch = slime.plastic && slime.damage ? slime.damageStretch : 0.0;
   body.edgeDamping.resize(body.edges.size());
   for (std::size_t s = 0; s < body.edges.size(); ++s) {
     const glm::dvec3 d = mesh.positions[body.edges[s].y] - mesh.positions[body.edges[s].x];
