@@ -181,12 +181,17 @@ void applyBulkMaterial(BulkBody& body, const SlimeSettings& slime) {
   body.material.yieldStretch = slime.yieldStretch;
   body.material.plasticFlowTime = slime.flowTime;
   body.material.recoveryTime = slime.recoveryTime;
-  body.material.damageStretch = slime.plastic && slime.damage ? slime.damageStretch : 0.0;
+  // Damage scales the long-term force maps K_p (element_pass.h): a change refreshes them (a torn part's body is
+  // filled before its material is applied).
+  const double damageStretch = slime.plastic && slime.damage ? slime.damageStretch : 0.0;
+  const bool damageChanged = damageStretch != body.material.damageStretch;
+  body.material.damageStretch = damageStretch;
   body.edgeDamping.resize(body.edges.size());
   for (std::size_t s = 0; s < body.edges.size(); ++s) {
     const glm::dvec3 d = mesh.positions[body.edges[s].y] - mesh.positions[body.edges[s].x];
     body.edgeDamping[s] = slime.viscosity * edgeVolume[s] / glm::dot(d, d);
   }
+  if (damageChanged && !body.restBlocks.empty()) refreshMaxwellForceMaps(body, true);
 }
 
 void bulkInternalForces(const BulkBody& body, const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v,
