@@ -1,7 +1,9 @@
 // The slow two-hand pull (issue 42's "Slow two-hand pull", hands 5 cm/s apart): each hand takes a wad of the
 // resting slime (4.5 cm holds) and they part to 40 cm over 6 s (tests/scenarios/two_hands_slow_pull.json).
 // With the long-term branch's plastic flow (slime.plastic) the slime draws out into a strand between the wads, thinnest in the
-// middle third, and keeps its volume; without it, the elastic body stops the hands (16 N) at about 23 cm.
+// middle third, and keeps its volume; without it, the elastic body stops the hands (16 N) at about 23 cm. With damage
+// (slime.damage) and tearing it snaps in the middle once drawn out, at nearly twice the distance the fast pull
+// (fast_pull.json, 1 m/s) snaps at.
 #include "core/geometry/enclosed_solid.h"
 #include "core/geometry/strand_profile.h"
 #include "core/settings/settings_io.h"
