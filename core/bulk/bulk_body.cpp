@@ -139,6 +139,14 @@ glm::dmat3 plasticInverse(const BulkBody& body, std::size_t tetrahedron) {
   return plasticInverseOf(plasticMetric(body, tetrahedron));
 }
 
+double damage(const BulkBody& body, std::size_t tetrahedron) {
+  if (body.material.damageStretch <= 0.0) return 0.0;
+  const MaxwellBlock& block = body.maxwell[tetrahedron / kTetLanes];
+  const std::size_t lane = tetrahedron % kTetLanes;
+  return damageOfTrace(double(block.plastic[0][lane]) + block.plastic[1][lane] + block.plastic[2][lane],
+                       body.material.damageStretch);
+}
+
 double elasticStretch(const BulkBody& body, const std::vector<glm::dvec3>& x, std::size_t tetrahedron) {
   const Tetrahedron& t = body.mesh.tetrahedra[tetrahedron];
   const glm::dmat3 f = deformationGradient(body.rest[tetrahedron], x[t.x], x[t.y], x[t.z], x[t.w]);
@@ -173,11 +181,17 @@ void applyBulkMaterial(BulkBody& body, const SlimeSettings& slime) {
   body.material.yieldStretch = slime.yieldStretch;
   body.material.plasticFlowTime = slime.flowTime;
   body.material.recoveryTime = slime.recoveryTime;
+  // Damage scales the long-term force maps K_p (element_pass.h): a change refreshes them (a torn part's body is
+  // filled before its material is applied).
+  const double damageStretch = slime.plastic && slime.damage ? slime.damageStretch : 0.0;
+  const bool damageChanged = damageStretch != body.material.damageStretch;
+  body.material.damageStretch = damageStretch;
   body.edgeDamping.resize(body.edges.size());
   for (std::size_t s = 0; s < body.edges.size(); ++s) {
     const glm::dvec3 d = mesh.positions[body.edges[s].y] - mesh.positions[body.edges[s].x];
     body.edgeDamping[s] = slime.viscosity * edgeVolume[s] / glm::dot(d, d);
   }
+  if (damageChanged && !body.restBlocks.empty()) refreshMaxwellForceMaps(body, true);
 }
 
 void bulkInternalForces(const BulkBody& body, const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v,

@@ -92,6 +92,8 @@ glm::dmat3 maxwellInverse(const BulkBody& body, std::size_t tetrahedron);
 // G_p and B_p = G_p⁻¹ of one tetrahedron's long-term branch (the identity until it yields).
 glm::dmat3 plasticMetric(const BulkBody& body, std::size_t tetrahedron);
 glm::dmat3 plasticInverse(const BulkBody& body, std::size_t tetrahedron);
+// The long-term branch's damage D of one tetrahedron (viscoelastic.h's damageOfTrace; 0 without slime.damage).
+double damage(const BulkBody& body, std::size_t tetrahedron);
 
 // The elastic stretch of one tetrahedron's long-term branch at `positions`: F = Ds·Dm⁻¹ measured against
 // its flowed rest shape U_p, as the isochoric uniaxial stretch with the same deviatoric elastic stress

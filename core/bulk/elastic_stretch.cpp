@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace slime {
@@ -43,6 +44,27 @@ double elasticStretchSquared(const BulkBody& body, const std::vector<glm::dvec3>
   const glm::dmat3 f = deformationGradient(body.rest[e], x[t.x], x[t.y], x[t.z], x[t.w]);
   const glm::dmat3 inverse = body.material.maxwellShear > 0.0 ? maxwellInverse(body, e) : glm::dmat3(1.0);
   return largestSymmetricEigenvalue(f * inverse * glm::transpose(f), direction);
+}
+
+double tearMeasure(const BulkBody& body, const std::vector<glm::dvec3>& x, std::size_t e, double tearStretch) {
+  const double excess = std::sqrt(std::max(elasticStretchSquared(body, x, e), 0.0)) - 1.0;
+  const double room = (tearStretch - 1.0) * (1.0 - damage(body, e));
+  if (room <= 0.0) return excess > 0.0 ? std::numeric_limits<double>::infinity() : 0.0;
+  return excess / room;
+}
+
+MostTorn mostTornDamagedElement(const BulkBody& body, double tearStretch) {
+  MostTorn most;
+  if (body.material.damageStretch <= 0.0) return most;
+  for (std::size_t e = 0; e < body.mesh.tetrahedra.size(); ++e) {
+    if (damage(body, e) <= 0.0) continue;
+    const double measure = tearMeasure(body, body.state.positions, e, tearStretch);
+    if (measure >= 1.0 && measure > most.measure) {
+      most.measure = measure;
+      most.tetrahedron = e;
+    }
+  }
+  return most;
 }
 
 MostStretched mostStretchedElement(const BulkBody& body, double atLeast) {

@@ -34,6 +34,21 @@ struct MostStretched {
 // (the check runs every few steps; at rest all the traces are 3).
 MostStretched mostStretchedElement(const BulkBody& body, double atLeast = 0.0);
 
+// How near a tetrahedron is to tearing, 1 where it tears: q = (λ_e − 1) / ((λ_tear − 1)(1 − D)), λ_e its elastic
+// stretch above and D its long-term branch's damage (bulk_body.h's damage; 0 without slime.damage, where q ≥ 1
+// is λ_e ≥ λ_tear). A strand drawn out slowly flows, so λ_e stays small, but where it has flowed past the damage
+// stretch its crosslinks break (D → 1) and it tears at a smaller and smaller elastic stretch: broken through
+// (D = 1), at any. Infinite where D = 1 and λ_e > 1.
+double tearMeasure(const BulkBody& body, const std::vector<glm::dvec3>& x, std::size_t tetrahedron, double tearStretch);
+
+// The damaged tetrahedron (D > 0) with the largest tear measure at the body's positions, among those with q ≥ 1;
+// none (measure 0) without damage or when no damaged element tears.
+struct MostTorn {
+  std::size_t tetrahedron = 0;
+  double measure = 0.0;
+};
+MostTorn mostTornDamagedElement(const BulkBody& body, double tearStretch);
+
 // The largest eigenvalue of a symmetric 3×3 matrix (trigonometric closed form, Smith 1961) and, when
 // `direction` is not null, its unit eigenvector.
 double largestSymmetricEigenvalue(const glm::dmat3& m, glm::dvec3* direction = nullptr);

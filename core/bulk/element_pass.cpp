@@ -49,6 +49,17 @@ void refreshLongTermMap(BulkBody& body, std::size_t b, std::size_t o) {
     plasticInverseLanes<double>(body.maxwell[b].plastic, lanes, inverse);
     congruenceLanes<double, ElementReal, kTetLanes>(block.restInverse, block.forceMap, inverse, lanes, block.stiffnessMap);
   }
+  // Damage (slime.damage): the branch's stress is (1 − D) times its own, D from G_p's trace.
+  const double damageStretch = body.material.damageStretch;
+  if (damageStretch <= 0.0) return;
+  const MaxwellBlock& rest = body.maxwell[b];
+  for (std::size_t lane = o; lane < o + kLaneWidth; ++lane) {
+    const double intact = 1.0 - damageOfTrace(double(rest.plastic[0][lane]) + rest.plastic[1][lane] + rest.plastic[2][lane],
+                                              damageStretch);
+    if (intact == 1.0) continue;
+    for (int entry = 0; entry < 6; ++entry)
+      block.stiffnessMap[entry][lane] = static_cast<ElementReal>(intact * block.stiffnessMap[entry][lane]);
+  }
 }
 
 }  // namespace

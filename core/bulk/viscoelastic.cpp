@@ -102,6 +102,23 @@ glm::dmat3 relaxLongTermBranch(const glm::dmat3& f, const glm::dmat3& metric, co
   return g * inverseCubeRootOfPositive(det);
 }
 
+double plasticStretchOfTrace(double trace) {
+  if (!(trace > 3.0)) return 1.0;
+  // λ² + 2/λ is increasing for λ ≥ 1 and convex: Newton from above (λ² < trace) converges monotonically.
+  double stretch = std::sqrt(trace);
+  for (int i = 0; i < 60; ++i) {
+    const double step = (stretch * stretch + 2.0 / stretch - trace) / (2.0 * stretch - 2.0 / (stretch * stretch));
+    stretch -= step;
+    if (!(std::abs(step) > 1e-12 * stretch)) break;
+  }
+  return std::max(stretch, 1.0);
+}
+
+double damageOfTrace(double trace, double damageStretch) {
+  if (damageStretch <= 0.0) return 0.0;
+  return std::clamp((plasticStretchOfTrace(trace) - damageStretch) / damageStretch, 0.0, 1.0);
+}
+
 double plasticHoldTime(double yieldStretch, double flowTime, double u0, double u) {
   const double a = yieldStretch, c = 1.0 / a;
   const double weight = 1.0 / (2.0 * a * a + c);

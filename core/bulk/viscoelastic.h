@@ -49,6 +49,7 @@ struct ViscoelasticMaterial {
   double yieldStretch = 2.0;   // u_y: the isochoric uniaxial elastic stretch at which it yields
   double plasticFlowTime = 1.0;  // τ_p, s: η_p = μ∞ τ_p
   double recoveryTime = 0.0;   // τ_r, s: G_p's return to the identity below the yield (0: none)
+  double damageStretch = 0.0;  // λ_d: the plastic stretch past which the long-term branch breaks (0: never)
 };
 
 // Lamé λ for a shear modulus and a Poisson ratio: 2 μ ν / (1 − 2ν).
@@ -127,6 +128,15 @@ glm::dmat3 plasticInverseOf(const glm::dmat3& metric);
 // w = flow·(1 − s_y/s) above the yield (s > s_y) and r = recovery below it, then G_p = G det(G)^(−1/3).
 // An element whose G is not positive keeps its G_p. (tet_lanes.h's flowLongTermLanes is the same per lane.)
 glm::dmat3 relaxLongTermBranch(const glm::dmat3& f, const glm::dmat3& metric, const PlasticFlow& flow);
+
+// The plastic stretch of a flowed rest metric: the isochoric uniaxial stretch λ ≥ 1 with the same trace,
+// λ² + 2/λ = tr G_p (1 for G_p = I).
+double plasticStretchOfTrace(double trace);
+
+// The long-term branch's damage D of a flowed rest metric with trace tr G_p: 0 until its plastic stretch λ_p
+// passes λ_d, then (λ_p − λ_d)/λ_d, 1 (broken through) from 2 λ_d; always 0 when λ_d = 0. The branch's stress
+// is (1 − D) times its undamaged one (the element pass scales K_p), and tearing reads D (elastic_stretch.h).
+double damageOfTrace(double trace, double damageStretch);
 
 // The closed form of a bar held at a constant isochoric uniaxial stretch λ (F = diag(λ, λ^−½, λ^−½)) above
 // the yield: the time its elastic stretch takes to decay from u0 (= λ at the hold's start, G_p = I) to u

@@ -58,6 +58,8 @@ struct SlimeSettings {
   double yieldStretch = 1.8;             // bulk: its yield, an isochoric uniaxial elastic stretch
   double flowTime = 0.6;                 // bulk: τ_p of that flow, s (viscosity μ∞ τ_p)
   double recoveryTime = 1.0;             // bulk: τ_r of the rest shape's return below the yield, s (0 = never)
+  bool damage = false;                   // bulk: a flowed strand's crosslinks break: it softens, necks and snaps
+  double damageStretch = 3.0;            // bulk: the flowed stretch at which that starts (broken through at twice it)
   double poisson = 0.4;                  // bulk: Poisson ratio ν of each element
   double viscosity = 30.0;               // bulk: viscosity η of the edge dampers, Pa·s (the seed's damping)
   bool tearing = false;                  // bulk: strands snap and pieces tear off past tearStretch (off: one piece, as before)

@@ -115,6 +115,11 @@ void forEachField(S& s, Visitor&& visitor) {
         "bulk: time of the rest shape's flow past the yield (its viscosity is the long-term modulus times this)");
   visit("slime.recoveryTime", s.slime.recoveryTime, Limits{0.0, 1000.0, "s (0 = never)"},
         "bulk: time in which a flowed rest shape returns to the ball while below the yield");
+  visit("slime.damage", s.slime.damage, Choices{},
+        "bulk, with slime.plastic: a strand drawn past slime.damageStretch softens where it has flowed most, necks "
+        "there and, with slime.tearing, snaps (off: it never softens)");
+  visit("slime.damageStretch", s.slime.damageStretch, Limits{1.1, 100.0, "stretch"},
+        "bulk: the flowed (plastic) stretch at which the long-term part starts to break; broken through at twice it");
   visit("slime.poisson", s.slime.poisson, Limits{0.0, 0.49, ""},
         "bulk: Poisson ratio of each element (the whole body keeps its volume anyway)");
   visit("slime.viscosity", s.slime.viscosity, Limits{0.0, 100.0, "Pa·s"},

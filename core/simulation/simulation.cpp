@@ -148,6 +148,8 @@ void Simulation::applySettings(const Settings& settings) {
                         settings.slime.yieldStretch != settings_.slime.yieldStretch ||
                         settings.slime.flowTime != settings_.slime.flowTime ||
                         settings.slime.recoveryTime != settings_.slime.recoveryTime ||
+                        settings.slime.damage != settings_.slime.damage ||
+                        settings.slime.damageStretch != settings_.slime.damageStretch ||
                         settings.slime.poisson != settings_.slime.poisson ||
                         settings.slime.viscosity != settings_.slime.viscosity;
   const int level = settings_.slime.level;

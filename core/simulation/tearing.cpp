@@ -51,18 +51,30 @@ std::vector<std::array<std::uint32_t, 2>> faceNeighbours(const std::vector<Tetra
 TearPlan planTear(const BulkBody& body, double tearStretch, double smallestVolume) {
   TearPlan plan;
   const MostStretched most = mostStretchedElement(body, tearStretch);
+  const MostTorn torn = mostTornDamagedElement(body, tearStretch);
   plan.stretch = most.stretch;
-  if (most.stretch < tearStretch) return plan;
+  if (most.stretch < tearStretch && torn.measure < 1.0) return plan;
   const std::vector<glm::dvec3>& x = body.state.positions;
   const std::vector<Tetrahedron>& tetrahedra = body.mesh.tetrahedra;
   const std::size_t count = tetrahedra.size();
+  // The seed: the most stretched element, or a damaged one that tears first (its measure the larger). A
+  // damaged seed is cut across its total stretch's principal direction (its elastic stretch, small in a
+  // strand drawn out slowly, may point anywhere); an undamaged one across its elastic stretch's.
+  const bool damaged = torn.measure >= 1.0 && (most.stretch < tearStretch || torn.measure > (most.stretch - 1.0) / (tearStretch - 1.0));
+  const std::size_t seed = damaged ? torn.tetrahedron : most.tetrahedron;
   glm::dvec3 normal;
-  elasticStretchSquared(body, x, most.tetrahedron, &normal);
+  if (damaged) {
+    const Tetrahedron& t = tetrahedra[seed];
+    const glm::dmat3 f = deformationGradient(body.rest[seed], x[t.x], x[t.y], x[t.z], x[t.w]);
+    largestSymmetricEigenvalue(f * glm::transpose(f), &normal);
+  } else {
+    elasticStretchSquared(body, x, seed, &normal);
+  }
   const auto centroid = [&](std::size_t e) {
     const Tetrahedron& t = tetrahedra[e];
     return 0.25 * (x[t.x] + x[t.y] + x[t.z] + x[t.w]);
   };
-  const glm::dvec3 origin = centroid(most.tetrahedron);
+  const glm::dvec3 origin = centroid(seed);
   const auto straddles = [&](std::size_t e) {
     double low = 1e300, high = -1e300;
     for (int corner = 0; corner < 4; ++corner) {
@@ -72,7 +84,13 @@ TearPlan planTear(const BulkBody& body, double tearStretch, double smallestVolum
     }
     return low < 0.0 && high > 0.0;
   };
+  // Without damage, tearMeasure ≥ kCrackStretchShare is λ_e ≥ 1 + kCrackStretchShare (λ_tear − 1).
+  const bool anyDamage = body.material.damageStretch > 0.0;
   const double crackStretch = 1.0 + kCrackStretchShare * (tearStretch - 1.0);
+  const auto joinsCrack = [&](std::size_t e) {
+    return anyDamage ? tearMeasure(body, x, e, tearStretch) >= kCrackStretchShare
+                     : elasticStretchSquared(body, x, e) >= crackStretch * crackStretch;
+  };
   const auto neighbours = faceNeighbours(tetrahedra);
   std::vector<std::uint32_t> start(count + 1, 0), adjacent(neighbours.size() * 2);
   for (const auto& pair : neighbours) {
@@ -89,14 +107,14 @@ TearPlan planTear(const BulkBody& body, double tearStretch, double smallestVolum
   }
   // The crack: straddling, stretched tetrahedra reached from the seed over shared faces.
   std::vector<std::uint8_t> crack(count, 0);
-  std::vector<std::uint32_t> frontier{static_cast<std::uint32_t>(most.tetrahedron)};
-  crack[most.tetrahedron] = 1;
+  std::vector<std::uint32_t> frontier{static_cast<std::uint32_t>(seed)};
+  crack[seed] = 1;
   while (!frontier.empty()) {
     const std::uint32_t e = frontier.back();
     frontier.pop_back();
     for (std::uint32_t k = start[e]; k < start[e + 1]; ++k) {
       const std::uint32_t f = adjacent[k];
-      if (crack[f] || !straddles(f) || elasticStretchSquared(body, x, f) < crackStretch * crackStretch) continue;
+      if (crack[f] || !straddles(f) || !joinsCrack(f)) continue;
       crack[f] = 1;
       frontier.push_back(f);
     }

@@ -6,8 +6,11 @@
 // between them on opposite sides are cut. The pieces are then the connected components of the
 // tetrahedra over the faces left. A cut that leaves one component (the crack has not yet run across)
 // waits for more stretch; a component smaller than slime.smallestPiece of the slime stays joined to its
-// largest neighbour across the cut. Serial and in a fixed order: the same tear for the same state on
-// any number of threads.
+// largest neighbour across the cut. With slime.damage a damaged tetrahedron tears at a smaller elastic
+// stretch (elastic_stretch.h's tearMeasure, 1 where it tears): the seed is the one nearest to tearing, a
+// damaged seed cut across its total stretch, and the crack takes straddling tetrahedra past
+// kCrackStretchShare of that measure (without damage the same elements as before). Serial and in a fixed
+// order: the same tear for the same state on any number of threads.
 #pragma once
 
 #include "core/bulk/bulk_body.h"
@@ -18,7 +21,7 @@
 namespace slime {
 
 // A straddling tetrahedron joins the crack when its elastic stretch is past this share of the way
-// from 1 to slime.tearStretch.
+// from 1 to slime.tearStretch (with damage: its tear measure past this share).
 constexpr double kCrackStretchShare = 0.2;
 
 struct TearPlan {

@@ -2,6 +2,8 @@
 // form under a held stretch, nothing below the yield, the recovery, the stress as the energy's gradient,
 // and the vectorised flow (tet_lanes.h's flowLongTermLanes) against the scalar one.
 #include "core/bulk/bulk_body.h"
+#include "core/bulk/elastic_stretch.h"
+#include "core/bulk/element_pass.h"
 #include "core/bulk/tet_lanes.h"
 #include "core/bulk/viscoelastic.h"
 
@@ -194,6 +196,66 @@ TEST(PlasticFlow, TheClosedFormsDerivativeIsTheFlowLaw) {
     }
     EXPECT_NEAR(plasticHoldTime(yield, 0.6, 3.0, 3.0), 0.0, 1e-12);
   }
+}
+
+// Damage (slime.damage): the plastic stretch of a flowed rest metric, and D from it.
+TEST(PlasticDamage, GrowsFromTheDamageStretchToTwiceIt) {
+  for (const double stretch : {1.0, 1.5, 4.0, 11.0}) {
+    const double trace = stretch * stretch + 2.0 / stretch;  // G_p of an isochoric uniaxial plastic stretch
+    EXPECT_NEAR(plasticStretchOfTrace(trace), stretch, 1e-10 * stretch);
+  }
+  const auto damageAt = [](double stretch, double damageStretch) {
+    return damageOfTrace(stretch * stretch + 2.0 / stretch, damageStretch);
+  };
+  EXPECT_EQ(damageAt(1.0, 3.0), 0.0);
+  EXPECT_EQ(damageAt(2.9, 3.0), 0.0);
+  EXPECT_NEAR(damageAt(4.5, 3.0), 0.5, 1e-9);
+  EXPECT_EQ(damageAt(6.0 + 1e-6, 3.0), 1.0);
+  EXPECT_EQ(damageAt(50.0, 3.0), 1.0);
+  EXPECT_EQ(damageAt(50.0, 0.0), 0.0) << "λ_d = 0: no damage";
+}
+
+// The element pass scales a damaged element's long-term force map K_p by 1 − D, and only when damage is on;
+// the tear measure reads D: (λ_e − 1)/((λ_tear − 1)(1 − D)), infinite once broken through.
+TEST(PlasticDamage, SoftensTheLongTermBranchAndLowersTheTearStretch) {
+  SlimeSettings slime;
+  slime.resolution = 1;
+  slime.plastic = true;
+  slime.damageStretch = 3.0;
+  BulkBody intact = buildBulkBody(slime);
+  slime.damage = true;
+  BulkBody damaged = buildBulkBody(slime);
+  ASSERT_EQ(damaged.material.damageStretch, 3.0);
+  const std::size_t element = 5, other = 6;
+  const double stretch = 4.5;  // D = 0.5
+  for (BulkBody* body : {&intact, &damaged}) {
+    MaxwellBlock& block = body->maxwell[element / kTetLanes];
+    const std::size_t lane = element % kTetLanes;
+    block.plastic[0][lane] = static_cast<ElementReal>(stretch * stretch);
+    block.plastic[1][lane] = static_cast<ElementReal>(1.0 / stretch);
+    block.plastic[2][lane] = static_cast<ElementReal>(1.0 / stretch);
+    refreshMaxwellForceMaps(*body, true);
+  }
+  EXPECT_NEAR(damage(damaged, element), 0.5, 1e-6);
+  EXPECT_EQ(damage(intact, element), 0.0);
+  EXPECT_EQ(damage(damaged, other), 0.0);
+  const TetBlock& a = intact.restBlocks[element / kTetLanes];
+  const TetBlock& b = damaged.restBlocks[element / kTetLanes];
+  for (int entry = 0; entry < 6; ++entry) {
+    EXPECT_NEAR(b.stiffnessMap[entry][element % kTetLanes], 0.5 * a.stiffnessMap[entry][element % kTetLanes],
+                1e-6 * std::abs(a.stiffnessMap[0][element % kTetLanes]));
+    EXPECT_EQ(b.stiffnessMap[entry][other % kTetLanes], a.stiffnessMap[entry][other % kTetLanes]);
+  }
+  // Stretch the body 1.3× along x: the intact element is 0.3 / 1.5 = 0.2 of the way to tearing (λ_tear 2.5), the
+  // damaged one twice that; broken through it tears.
+  std::vector<glm::dvec3> x = damaged.state.positions;
+  for (glm::dvec3& p : x) p.x *= 1.3;
+  const double measure = tearMeasure(intact, x, element, 2.5);
+  EXPECT_NEAR(tearMeasure(damaged, x, element, 2.5), 2.0 * measure, 1e-9);
+  EXPECT_NEAR(measure, (std::sqrt(elasticStretchSquared(intact, x, element)) - 1.0) / 1.5, 1e-12);
+  MaxwellBlock& block = damaged.maxwell[element / kTetLanes];
+  block.plastic[0][element % kTetLanes] = static_cast<ElementReal>(49.0);  // λ_p ≈ 7 > 2 λ_d
+  EXPECT_TRUE(std::isinf(tearMeasure(damaged, x, element, 2.5)));
 }
 
 }  // namespace
