@@ -45,17 +45,18 @@ bool mayTouchFloor(const std::vector<glm::dvec3>& x, const Triangle& triangle) {
   return !(lowest > 0.0 && lowest * lowest > 0.25 * spanSquared);
 }
 
-// visit(t, w, z) for each drawn vertex over a surface triangle that may touch the floor: the element
-// map's nodes t and weights w, and the vertex's height z (read when it is visited, so a visit that
-// moves nodes is seen by the next).
+// visit(t, w, z) for each floor point (BulkBody::floorPoints, or the drawn vertices where that is empty)
+// over a surface triangle that may touch the floor: the element map's nodes t and weights w, and the
+// point's height z (read when it is visited, so a visit that moves nodes is seen by the next).
 template <typename Visit>
-void forEachDrawnVertexNearFloor(const BulkBody& body, Visit&& visit) {
+void forEachFloorPointNearFloor(const BulkBody& body, Visit&& visit) {
   const std::vector<glm::dvec3>& x = body.state.positions;
+  const SurfaceEmbedding& points = body.floorPoints.nodes.empty() ? body.embedding : body.floorPoints;
   for (std::size_t s = 0; s < body.mesh.surface.size(); ++s) {
     if (!mayTouchFloor(x, body.mesh.surface[s])) continue;
-    for (std::uint32_t vertex : body.embedding.verticesOfSurfaceTriangle[s]) {
-      const Tetrahedron& t = body.embedding.nodes[vertex];
-      const glm::dvec4& w = body.embedding.weights[vertex];
+    for (std::uint32_t vertex : points.verticesOfSurfaceTriangle[s]) {
+      const Tetrahedron& t = points.nodes[vertex];
+      const glm::dvec4& w = points.weights[vertex];
       visit(t, w, w.x * x[t.x].z + w.y * x[t.y].z + w.z * x[t.z].z + w.w * x[t.w].z);
     }
   }
@@ -93,6 +94,9 @@ BulkBody buildBulkBody(const SlimeSettings& slime) {
   body.edges = tetrahedronEdges(mesh.tetrahedra);
   body.edgeColours = colourEdges(body.edges, mesh.positions.size());
   body.drawn = makeIcosphere(slime.level, slime.radius, slime.position);
+  const int floorLevel = std::max(kFloorContactLevel, mesh.shellLevel);
+  if (slime.level != floorLevel)
+    body.floorPoints = embedByElements(mesh, makeIcosphere(floorLevel, slime.radius, slime.position), floorLevel);
   if (slime.level >= mesh.shellLevel) {
     body.embedding = embedSurface(mesh, body.drawn, slime.level);
   } else {  // a coarser drawn sphere: its vertices are the first body nodes themselves
@@ -302,11 +306,11 @@ int bulkFlowInterval(const SlimeSettings& slime, double dt, int fewest) {
 std::size_t resolveDrawnFloorContact(BulkBody& body, double friction) {
   ParticleState& state = body.state;
   std::size_t touched = 0;
-  // The element map's vertex (4 terms), not the smooth one the drawn surface shows (~45 terms: 6× the
+  // The element map's point (4 terms), not the smooth one the drawn surface shows (~45 terms: 6× the
   // step's cost at level 6, and lifting ~45 nodes per vertex in one pass left drawn vertices 0.95 mm
   // under the floor in the torture runs). The smooth map's vertices are set on the floor where they dip
-  // under it when placed (liftOntoFloor, surface_embedding.h).
-  forEachDrawnVertexNearFloor(body, [&](const Tetrahedron& t, const glm::dvec4& w, double z) {
+  // under it when placed (bulk_piece.cpp's liftOntoFloor).
+  forEachFloorPointNearFloor(body, [&](const Tetrahedron& t, const glm::dvec4& w, double z) {
     if (z >= 0.0) return;
     // Only the nodes with positive weights lift the vertex (a node the affine map extrapolates
     // with a negative weight would be pushed down); lifted nodes lose their downward speed.
@@ -325,10 +329,16 @@ std::size_t resolveDrawnFloorContact(BulkBody& body, double friction) {
   return touched;
 }
 
+std::size_t floorPointsNearFloor(const BulkBody& body) {
+  std::size_t count = 0;
+  forEachFloorPointNearFloor(body, [&](const Tetrahedron&, const glm::dvec4&, double) { ++count; });
+  return count;
+}
+
 void drawnFloorHeights(const BulkBody& body, std::vector<double>& heights) {
   const std::vector<glm::dvec3>& x = body.state.positions;
   heights.assign(x.size(), 0.0);
-  forEachDrawnVertexNearFloor(body, [&](const Tetrahedron& t, const glm::dvec4& w, double z) {
+  forEachFloorPointNearFloor(body, [&](const Tetrahedron& t, const glm::dvec4& w, double z) {
     int owner = 0;
     for (int j = 1; j < 4; ++j)
       if (w[j] > w[owner]) owner = j;

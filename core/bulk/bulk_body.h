@@ -83,7 +83,19 @@ struct BulkBody {
   double totalMass = 0.0;                 // kg
   TriangleMesh drawn;                     // the drawn icosphere at rest
   SurfaceEmbedding embedding;             // how it rides on the body
+  // The points the floor holds up (resolveDrawnFloorContact, drawnFloorHeights): the element map of the
+  // icosphere of level kFloorContactLevel, whatever slime.level draws. Empty where they are the drawn
+  // vertices themselves: the drawn level is that level, or a piece made afresh by a tear or a merge
+  // (its drawn surface is on a grid of a spacing that the drawn level barely changes).
+  SurfaceEmbedding floorPoints;
 };
+
+// The icosphere level of the floor's points (BulkBody::floorPoints): the default drawn level. Read
+// through the element map every step, the drawn vertices over the contact patch made a step at level 6
+// cost 2.0× one at level 4 (AMD EPYC family 25 model 17), though the body is the same; with a level of
+// its own the physics is the same at every drawn level. A finer drawn surface shows the smooth map,
+// which is set on the floor where it dips under it when placed (bulk_piece.cpp's liftOntoFloor).
+constexpr int kFloorContactLevel = 4;
 
 BulkBody buildBulkBody(const SlimeSettings& slime);
 
@@ -151,19 +163,23 @@ void relaxBulk(BulkBody& body, double dt);
 // branch's τ and (when the long-term branch yields) its flow time τ_p.
 int bulkFlowInterval(const SlimeSettings& slime, double dt, int fewest);
 
-// Lifts every drawn vertex that went below the floor back onto it by moving the nodes that carry it
-// with positive weight in proportion to w_j / m_j, and takes away those nodes' downward speed with
-// Coulomb friction on their sliding (a position-level contact on the drawn surface, where a person
-// sees it; the nodes it holds sit just above the floor, where the nodes' own contact never acts). Returns how many drawn
-// vertices touched. (Its lifts squeeze the body by up to 1 % while it lands; the next substep's volume
+// Lifts every floor point (BulkBody::floorPoints: points of the drawn sphere, by the element map) that
+// went below the floor back onto it by moving the nodes that carry it with positive weight in proportion
+// to w_j / m_j, and takes away those nodes' downward speed with Coulomb friction on their sliding (a
+// position-level contact on the drawn surface, where a person sees it; the nodes it holds sit just above
+// the floor, where the nodes' own contact never acts). Returns how many floor points touched. (Its lifts squeeze the body by up to 1 % while it lands; the next substep's volume
 // projection gives that back. Projecting again right here, as shape or as speed, kept the resting
 // body from settling.)
 std::size_t resolveDrawnFloorContact(BulkBody& body, double friction);
 
+// How many floor points the two above read at the body's state: those over the surface triangles that
+// may touch the floor. The same at every drawn level (tests hold the physics to it).
+std::size_t floorPointsNearFloor(const BulkBody& body);
+
 // The drawn surface's floor as a floor under each node, for a solver that holds its nodes on the floor
-// inside its solve (projective_dynamics.h). Each drawn vertex v rests on the node j it follows most
-// (its largest element-map weight φ_j): j may go down to z_j − z_v / φ_j (z_v the vertex's height),
-// where it alone would put v on the floor; never below 0. A vertex on the floor holds its node where
+// inside its solve (projective_dynamics.h). Each floor point v rests on the node j it follows most
+// (its largest element-map weight φ_j): j may go down to z_j − z_v / φ_j (z_v the point's height),
+// where it alone would put v on the floor; never below 0. A point on the floor holds its node where
 // it is. Only that node: holding every node with a positive weight held the rim of the contact patch
 // up (a 20 kPa slime rested 1.0 mm too tall, 78.3 mm against 77.1 explicit); what the other nodes do
 // to v, the drawn contact after the step (resolveDrawnFloorContact) still sees to. `heights` is

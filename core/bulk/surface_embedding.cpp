@@ -56,7 +56,7 @@ glm::dvec4 barycentric(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec
   return {1.0 - local.x - local.y - local.z, local.x, local.y, local.z};
 }
 
-SurfaceEmbedding embedSurface(const TetMesh& body, const TriangleMesh& drawn, int drawnLevel) {
+SurfaceEmbedding embedByElements(const TetMesh& body, const TriangleMesh& drawn, int drawnLevel) {
   if (drawnLevel < body.shellLevel)
     throw std::invalid_argument("the drawn level must be at least the body's shell level");
   const int shift = 2 * (drawnLevel - body.shellLevel);
@@ -89,6 +89,11 @@ SurfaceEmbedding embedSurface(const TetMesh& body, const TriangleMesh& drawn, in
       embedding.verticesOfSurfaceTriangle[parent].push_back(vertex);
     }
   }
+  return embedding;
+}
+
+SurfaceEmbedding embedSurface(const TetMesh& body, const TriangleMesh& drawn, int drawnLevel) {
+  SurfaceEmbedding embedding = embedByElements(body, drawn, drawnLevel);
   // The radial step R / 2^s: node 0 is on the outer shell, the last node is the centre (tet_mesh.h).
   const double radius = glm::length(body.positions.front() - body.positions.back());
   embedSmoothly(body, drawn.positions, kSmoothSupportSteps * radius / static_cast<double>(1 << body.shellLevel),

@@ -59,6 +59,10 @@ glm::dvec4 barycentric(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec
 // level L lies in surface triangle j >> 2(L − s)): the element map and the smooth map.
 SurfaceEmbedding embedSurface(const TetMesh& body, const TriangleMesh& drawn, int drawnLevel);
 
+// The element map alone of the same (nodes, weights, verticesOfSurfaceTriangle; no smooth map): for
+// points the physics reads through the element map only, as the floor contact's (bulk_body.h).
+SurfaceEmbedding embedByElements(const TetMesh& body, const TriangleMesh& drawn, int drawnLevel);
+
 // The smooth map's terms for the points `rest` (at rest) over the body's nodes, support radius
 // `support` (m; grown by 25 % at a time where fewer nodes than an affine fit needs surround a point).
 void embedSmoothly(const TetMesh& body, const std::vector<glm::dvec3>& rest, double support,

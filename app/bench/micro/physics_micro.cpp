@@ -1,7 +1,8 @@
 // Micro-benchmarks of the physics kernels on the default slime at levels 4 and 6: the spring forces
 // alone, the whole force evaluation (springs, damper, fill pressure, gravity), and one full step of
-// each integrator (Simulation::step with sim.dt = 1 ms and the substeps it needs); and the bulk body's
-// projective local step (its targets with the Maxwell flow) at resolutions 2 and 3.
+// each integrator (Simulation::step with sim.dt = 1 ms and the substeps it needs); the bulk slime's step
+// at rest on the floor at drawn levels 4, 6 and 7; and the bulk body's projective local step (its targets
+// with the Maxwell flow) at resolutions 2 and 3.
 #include "core/bulk/projective_local.h"
 #include "core/membrane/force_model.h"
 #include "core/integrators/integrators.h"
@@ -13,6 +14,8 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <cstdint>
+#include <ctime>
 
 namespace slime {
 namespace {
@@ -66,6 +69,33 @@ void integratorStep(benchmark::State& state) {
   state.SetLabel(integrator + ", " + std::to_string(simulation.substepsPerStep()) + " substeps");
 }
 BENCHMARK(integratorStep)->ArgsProduct({{0, 1, 2, 3, 4}, {4}})->Unit(benchmark::kMillisecond);
+
+// One Simulation::step of the default bulk slime resting on the floor (landed 0.5 s before) at drawn level
+// range(0), the drawn surface placed every range(1) steps between them (0: never; `slime sim` places it
+// every 10 steps for its series, a viewer once a frame). Timed: the step's own thread CPU time. The floor
+// holds up level 4's points at every drawn level (BulkBody::floorPoints), so the step does the same work;
+// what a placement at level 6 leaves behind is caches without the body (its 1.8 M smooth-map terms, 30 MB).
+void restingStepByLevel(benchmark::State& state) {
+  Settings settings = defaultSettings();
+  settings.slime.level = static_cast<int>(state.range(0));
+  Simulation simulation(settings);
+  while (simulation.time() < 0.5) simulation.step();
+  const auto threadSeconds = [] {
+    timespec now{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+    return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
+  };
+  const std::int64_t placeEvery = state.range(1);
+  std::int64_t steps = 0;
+  for (auto _ : state) {
+    const double start = threadSeconds();
+    simulation.step();
+    state.SetIterationTime(threadSeconds() - start);
+    if (placeEvery > 0 && ++steps % placeEvery == 0) benchmark::DoNotOptimize(simulation.positions().data());
+  }
+  state.counters["drawn_vertices"] = static_cast<double>(simulation.positions().size());
+}
+BENCHMARK(restingStepByLevel)->ArgsProduct({{4, 6, 7}, {0, 10}})->UseManualTime()->Unit(benchmark::kMicrosecond);
 
 // projectiveTargets with the flow, on the bulk body of resolution range(0) twisted and squashed a little
 // (each element its own F, so the polar decompositions do work), R warm-started from the last call.
