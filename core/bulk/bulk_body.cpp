@@ -94,7 +94,7 @@ BulkBody buildBulkBody(const SlimeSettings& slime) {
   body.edges = tetrahedronEdges(mesh.tetrahedra);
   body.edgeColours = colourEdges(body.edges, mesh.positions.size());
   body.drawn = makeIcosphere(slime.level, slime.radius, slime.position);
-  const int floorLevel = std::max(kFloorContactLevel, mesh.shellLevel);
+  const int floorLevel = floorContactLevel(mesh.shellLevel);
   if (slime.level != floorLevel)
     body.floorPoints = embedByElements(mesh, makeIcosphere(floorLevel, slime.radius, slime.position), floorLevel);
   if (slime.level >= mesh.shellLevel) {

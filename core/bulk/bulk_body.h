@@ -30,6 +30,7 @@
 
 #include <glm/mat3x3.hpp>
 
+#include <algorithm>
 #include <vector>
 
 namespace slime {
@@ -84,18 +85,24 @@ struct BulkBody {
   TriangleMesh drawn;                     // the drawn icosphere at rest
   SurfaceEmbedding embedding;             // how it rides on the body
   // The points the floor holds up (resolveDrawnFloorContact, drawnFloorHeights): the element map of the
-  // icosphere of level kFloorContactLevel, whatever slime.level draws. Empty where they are the drawn
-  // vertices themselves: the drawn level is that level, or a piece made afresh by a tear or a merge
-  // (its drawn surface is on a grid of a spacing that the drawn level barely changes).
+  // icosphere of level floorContactLevel(mesh.shellLevel), whatever slime.level draws. Empty where they
+  // are the drawn vertices themselves: the drawn level is that level, or a piece made afresh by a tear
+  // or a merge (its drawn surface is on a grid of a spacing that the drawn level barely changes).
   SurfaceEmbedding floorPoints;
 };
 
-// The icosphere level of the floor's points (BulkBody::floorPoints): the default drawn level. Read
+// The icosphere level of the floor's points (BulkBody::floorPoints): two levels finer than the body's
+// shells (16 points a surface triangle), at most kFloorContactLevel, the default drawn level. Read
 // through the element map every step, the drawn vertices over the contact patch made a step at level 6
 // cost 2.0× one at level 4 (AMD EPYC family 25 model 17), though the body is the same; with a level of
 // its own the physics is the same at every drawn level. A finer drawn surface shows the smooth map,
-// which is set on the floor where it dips under it when placed (bulk_piece.cpp's liftOntoFloor).
+// which is set on the floor where it dips under it when placed (bulk_piece.cpp's liftOntoFloor). At
+// resolution 1, level 4's 64 points a surface triangle kept a slammed rk4 slime from settling back in
+// 7 s (aspect 0.61 against 0.67 at level 3's; BulkTorture's fling_up_and_slam).
 constexpr int kFloorContactLevel = 4;
+inline int floorContactLevel(int shellLevel) {
+  return std::max(shellLevel, std::min(shellLevel + 2, kFloorContactLevel));
+}
 
 BulkBody buildBulkBody(const SlimeSettings& slime);
 

@@ -42,6 +42,7 @@ class DrawnLevel : public ::testing::TestWithParam<std::string> {};
 // floor contact reads as many points every step (it read the drawn vertices over the contact patch:
 // 16 times as many at level 6, and the step cost 2.0× level 4's), and the body ends bitwise the same.
 TEST_P(DrawnLevel, ThePhysicsDoesTheSameWorkAndReachesTheSameState) {
+  ASSERT_EQ(floorContactLevel(defaultSettings().slime.resolution), kFloorContactLevel);
   const LevelRun reference = runAtLevel(GetParam(), kFloorContactLevel);
   EXPECT_GT(reference.floorPoints, 0u) << "the slime never came near the floor";
   for (int level : {2, 6}) {
@@ -50,6 +51,18 @@ TEST_P(DrawnLevel, ThePhysicsDoesTheSameWorkAndReachesTheSameState) {
     EXPECT_TRUE(run.nodes == reference.nodes) << "level " << level << ": the body moved otherwise than at level "
                                               << kFloorContactLevel;
   }
+}
+
+// Two levels finer than the body's shells, at most level 4: the coarsest body (resolution 1, shell level 1)
+// is held up at level 3, every finer one at level 4.
+TEST(DrawnLevel, TheFloorPointsAreTwoLevelsFinerThanTheShellsAtMostFour) {
+  EXPECT_EQ(floorContactLevel(1), 3);
+  for (int shell : {2, 3, 4}) EXPECT_EQ(floorContactLevel(shell), 4) << "shell level " << shell;
+  SlimeSettings slime = defaultSettings().slime;
+  slime.resolution = 1;
+  slime.level = 6;
+  const BulkBody body = buildBulkBody(slime);
+  EXPECT_EQ(body.floorPoints.nodes.size(), 642u) << "level 3's icosphere";
 }
 
 INSTANTIATE_TEST_SUITE_P(Integrators, DrawnLevel, ::testing::Values("symplectic_euler", "projective"));
