@@ -36,6 +36,9 @@ constexpr double kTravelPerSubstep = 0.25;
 // a 1,900-vertex surface in 60 steps, a few ms of each viewer frame instead of 25 ms in one.
 constexpr std::size_t kSmoothFitVerticesPerStep = 32;
 constexpr int kFrequencyInterval = 200;
+// A merged piece rounds up (endStep) every this many steps, for this many flow times τ_p (e^−8: done).
+constexpr int kRoundingInterval = 8;
+constexpr double kRoundingFlowTimes = 8.0;
 
 // Sets every drawn vertex below the floor (z < 0) on it. The physics holds the element map's vertices
 // on the floor (resolveDrawnFloorContact); the smooth map that places the drawn surface differs by
@@ -117,13 +120,15 @@ std::unique_ptr<BulkPiece> BulkPiece::mergedWith(BulkPiece& other, double weldDi
   if (drawn.triangles.empty()) return nullptr;
   std::vector<std::uint32_t> bOf, order;
   const double density = (body_.totalMass + other.body_.totalMass) / (body_.restVolume + other.body_.restVolume);
-  BulkBody body = assembleBody(weldedParts(body_, other.body_, weldDistance, bOf), settings_.slime, density,
-                               body_.mesh.shellLevel, order);
+  BodyParts parts = weldedParts(body_, other.body_, weldDistance, bOf);
+  rebaseRestTowardBall(parts);  // the merged slime rounds up like one never torn (roundingLeft_)
+  BulkBody body = assembleBody(parts, settings_.slime, density, body_.mesh.shellLevel, order);
   offsetToVolume(drawn, drawnVolume / bodyVolume * enclosedVolume(body.state.positions, body.mesh.surface));
   carryDrawnSurface(body, std::move(drawn), support);
   auto piece = std::make_unique<BulkPiece>(std::move(body), slimeRestVolume_);
   piece->settings_ = settings_;
   piece->drawnVolumeShare_ = drawnVolume / bodyVolume;
+  piece->roundingLeft_ = kRoundingFlowTimes * settings_.slime.flowTime;
   // Where each new node came from, in this piece and in the other.
   const std::size_t ownNodes = body_.state.positions.size();
   std::vector<std::uint32_t> ownSource(order.size(), FloorAdhesion::kNoSource), otherSource(order.size(), FloorAdhesion::kNoSource);
@@ -345,6 +350,14 @@ void BulkPiece::endStep(const StepContext& context) {
     } else {
       relaxBulk(body_, flowInterval * settings_.sim.dt);
     }
+  }
+  // A merged piece's long-term rest shape flows to its reference, a ball (rebaseRestTowardBall), over the
+  // material's flow time τ_p.
+  if (roundingLeft_ > 0.0 && context.stepCount % kRoundingInterval == 0) {
+    const double dt = kRoundingInterval * settings_.sim.dt;
+    relaxLongTermTowardReference(body_, -std::expm1(-dt / settings_.slime.flowTime));
+    if (projectiveActive_) projective_.loadPlastic(body_);
+    roundingLeft_ -= dt;
   }
   const bool touching = resolveDrawnFloorContact(body_, settings_.slime.friction) > 0;
   // The floor's rolling resistance acts on the bulk slime too: Coulomb friction lets a ball roll,

@@ -79,6 +79,7 @@ class BulkPiece final : public Piece {
   // A piece made afresh (a tear): its drawn volume over its body's, which its drawn surface keeps
   // (0: the icosphere's smooth map as it is).
   double drawnVolumeShare_ = 0.0;
+  double roundingLeft_ = 0.0;  // s: a merged piece's long-term rest shape still flowing to its ball
   BulkScratch scratch_;
   FloorAdhesion adhesion_;  // the sticky floor (slime.adhesion)
   mutable std::vector<glm::dvec3> drawnPositions_;  // placed from the body when first asked for
