@@ -116,7 +116,8 @@ std::unique_ptr<BulkPiece> BulkPiece::mergedWith(BulkPiece& other, double weldDi
   const SurfaceView surfaces[2] = {surface(), other.surface()};
   const double drawnVolume = enclosedSolid(surfaces[0]).volume + enclosedSolid(surfaces[1]).volume;
   const double bodyVolume = volume() + other.volume();
-  TriangleMesh drawn = mergedDrawnSurface(surfaces, spacing);
+  const BulkBody* bodies[2] = {&body_, &other.body_};
+  TriangleMesh drawn = mergedDrawnSurface(bodies, surfaces, spacing, settings_.slime.level);
   if (drawn.triangles.empty()) return nullptr;
   std::vector<std::uint32_t> bOf, order;
   const double density = (body_.totalMass + other.body_.totalMass) / (body_.restVolume + other.body_.restVolume);
