@@ -329,25 +329,37 @@ void carryDrawnSurface(BulkBody& body, TriangleMesh drawn, double support) {
   for (const auto& face : boundary) meanEdge += glm::length(x[face.first.y] - x[face.first.x]);
   const double cell = std::max(meanEdge / static_cast<double>(std::max<std::size_t>(boundary.size(), 1)), 1e-4);
   const auto cellOf = [&](const glm::dvec3& p) { return glm::i64vec3(glm::floor(p / cell)); };
-  const auto key = [](const glm::i64vec3& c) {
-    return ((c.x & 0x1FFFFF) << 42) | ((c.y & 0x1FFFFF) << 21) | (c.z & 0x1FFFFF);
-  };
-  std::vector<std::pair<std::int64_t, std::uint32_t>> cells;  // (cell, face), sorted
-  for (std::uint32_t f = 0; f < boundary.size(); ++f) {
-    const Triangle& t = boundary[f].first;
-    const glm::i64vec3 low = cellOf(glm::min(x[t.x], glm::min(x[t.y], x[t.z])));
-    const glm::i64vec3 high = cellOf(glm::max(x[t.x], glm::max(x[t.y], x[t.z])));
-    for (std::int64_t a = low.x; a <= high.x; ++a)
-      for (std::int64_t b = low.y; b <= high.y; ++b)
-        for (std::int64_t c = low.z; c <= high.z; ++c) cells.emplace_back(key({a, b, c}), f);
-  }
-  std::sort(cells.begin(), cells.end());
-  // Each face's box: a face whose box lies farther than the nearest face found so far is not measured
-  // (without it the search measured about 270 faces a vertex, most of the tear's and merge's 17 ms here).
+  // The faces by cell, in a dense grid of cells over the faces' box (a face in every cell its box meets),
+  // and each face's box: a face whose box lies farther than the nearest face found so far is not measured.
   std::vector<std::pair<glm::dvec3, glm::dvec3>> boxes(boundary.size());
+  glm::dvec3 lowest(std::numeric_limits<double>::infinity()), highest(-std::numeric_limits<double>::infinity());
   for (std::uint32_t f = 0; f < boundary.size(); ++f) {
     const Triangle& t = boundary[f].first;
     boxes[f] = {glm::min(x[t.x], glm::min(x[t.y], x[t.z])), glm::max(x[t.x], glm::max(x[t.y], x[t.z]))};
+    lowest = glm::min(lowest, boxes[f].first);
+    highest = glm::max(highest, boxes[f].second);
+  }
+  const glm::i64vec3 first = cellOf(lowest), last = cellOf(highest), span = last - first + glm::i64vec3(1);
+  const auto cellIndex = [&](const glm::i64vec3& c) {
+    return static_cast<std::size_t>((c.z - first.z) * span.y * span.x + (c.y - first.y) * span.x + (c.x - first.x));
+  };
+  std::vector<std::uint32_t> cellStart(static_cast<std::size_t>(span.x * span.y * span.z) + 1, 0), cellFaces;
+  for (int fill = 0; fill < 2; ++fill) {  // count, then place
+    if (fill == 1) {
+      for (std::size_t c = 1; c < cellStart.size(); ++c) cellStart[c] += cellStart[c - 1];
+      cellFaces.resize(cellStart.back());
+    }
+    std::vector<std::uint32_t> placed(fill == 1 ? cellStart.size() - 1 : 0);
+    for (std::uint32_t f = 0; f < boundary.size(); ++f) {
+      const glm::i64vec3 low = cellOf(boxes[f].first), high = cellOf(boxes[f].second);
+      for (std::int64_t c = low.z; c <= high.z; ++c)
+        for (std::int64_t b = low.y; b <= high.y; ++b)
+          for (std::int64_t a = low.x; a <= high.x; ++a) {
+            const std::size_t k = cellIndex({a, b, c});
+            if (fill == 0) ++cellStart[k + 1];
+            else cellFaces[cellStart[k] + placed[k]++] = f;
+          }
+    }
   }
   body.mesh.surface.clear();
   for (const auto& face : boundary) body.mesh.surface.push_back(face.first);
@@ -361,27 +373,31 @@ void carryDrawnSurface(BulkBody& body, TriangleMesh drawn, double support) {
     const glm::i64vec3 home = cellOf(p);
     std::uint32_t best = 0;
     double bestDistance = std::numeric_limits<double>::infinity();
-    const auto visit = [&](const glm::i64vec3& cellIndex) {
-      const std::int64_t k = key(cellIndex);
-      auto it = std::lower_bound(cells.begin(), cells.end(), std::make_pair(k, std::uint32_t{0}));
-      for (; it != cells.end() && it->first == k; ++it) {
-        const glm::dvec3 outside = glm::max(glm::max(boxes[it->second].first - p, p - boxes[it->second].second), glm::dvec3(0.0));
+    const auto visit = [&](const glm::i64vec3& c) {
+      if (glm::any(glm::lessThan(c, first)) || glm::any(glm::greaterThan(c, last))) return;
+      const std::size_t k = cellIndex(c);
+      for (std::uint32_t slot = cellStart[k]; slot < cellStart[k + 1]; ++slot) {
+        const std::uint32_t f = cellFaces[slot];
+        const glm::dvec3 outside = glm::max(glm::max(boxes[f].first - p, p - boxes[f].second), glm::dvec3(0.0));
         if (glm::dot(outside, outside) > bestDistance) continue;
-        const Triangle& t = boundary[it->second].first;
+        const Triangle& t = boundary[f].first;
         const double d = squaredDistanceToTriangle(p, x[t.x], x[t.y], x[t.z]);
-        if (d < bestDistance || (d == bestDistance && it->second < best)) {
+        if (d < bestDistance || (d == bestDistance && f < best)) {
           bestDistance = d;
-          best = it->second;
+          best = f;
         }
       }
     };
     visit(home);  // first, so that the boxes prune most of the faces around it
     for (std::int64_t ring = 1; ring < (1 << 20); ring *= 2) {
-      for (std::int64_t a = home.x - ring; a <= home.x + ring; ++a)
-        for (std::int64_t b = home.y - ring; b <= home.y + ring; ++b)
-          for (std::int64_t c = home.z - ring; c <= home.z + ring; ++c) visit({a, b, c});
-      // Found within the ring's reach: no face outside it is nearer.
+      // Only the cells of the grid: a ring past it on every side holds nothing more.
+      const glm::i64vec3 from = glm::max(home - glm::i64vec3(ring), first), to = glm::min(home + glm::i64vec3(ring), last);
+      for (std::int64_t c = from.z; c <= to.z; ++c)
+        for (std::int64_t b = from.y; b <= to.y; ++b)
+          for (std::int64_t a = from.x; a <= to.x; ++a) visit({a, b, c});
+      // Found within the ring's reach: no face outside it is nearer; or the ring held every cell.
       if (bestDistance <= (static_cast<double>(ring) * cell) * (static_cast<double>(ring) * cell)) break;
+      if (glm::all(glm::lessThanEqual(home - glm::i64vec3(ring), first)) && glm::all(glm::greaterThanEqual(home + glm::i64vec3(ring), last))) break;
     }
     const Tetrahedron& t = body.mesh.tetrahedra[boundary[best].second];
     embedding.nodes[v] = t;
