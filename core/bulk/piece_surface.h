@@ -4,8 +4,9 @@
 //    that part's tetrahedra than any other's (each grid point takes the part of the tetrahedron it lies
 //    in, points in none the part of their nearest labelled neighbour); the part's indicator is blurred
 //    so that the cut is round, not stepped. Away from the cut the surface is the old one's zero level.
-//  - merge: the smooth union of the pieces' drawn surfaces (blend radius about a spacing and a half),
-//    which fills the crease where they touch.
+//  - merge: the union of the pieces' bodies, blurred, which fills the crease where they touch, drawn
+//    as the drawn icosphere moved along its rays onto it (a small torn piece's own drawn surface is
+//    crumpled: its union with the other kept that as the seam).
 // The grid spacing is about the old drawn surface's mean edge; Taubin's smoothing follows.
 #pragma once
 
