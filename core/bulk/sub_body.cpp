@@ -13,6 +13,7 @@
 #include <limits>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 
 namespace slime {
 namespace {
@@ -316,10 +317,13 @@ BulkBody assembleBody(const BodyParts& parts, const SlimeSettings& slime, double
   return body;
 }
 
-void carryDrawnSurface(BulkBody& body, TriangleMesh drawn, double support) {
-  const std::vector<glm::dvec3>& x = body.state.positions;
-  // The smooth map is fitted from the body now (exact for affine motion from here), a few vertices a
-  // step (BulkPiece::endStep); the element map, exact now too, places the surface meanwhile.
+void carryDrawnSurface(BulkBody& body, TriangleMesh drawn, double support, const std::vector<glm::dvec3>& reference) {
+  if (reference.size() != body.state.positions.size())
+    throw std::invalid_argument("carryDrawnSurface: " + std::to_string(reference.size()) + " reference positions for " +
+                                std::to_string(body.state.positions.size()) + " nodes");
+  const std::vector<glm::dvec3>& x = reference;
+  // The smooth map is fitted from the reference (exact for affine motion from there), a few vertices a
+  // step (BulkPiece::endStep); the element map, exact there too, places the surface meanwhile.
   beginSmoothFit(x, drawn.positions, support, body.embedding);
 
   // The element map: each drawn vertex in the tetrahedron under its nearest surface face, found in

@@ -60,9 +60,11 @@ void rebaseRestTowardBall(BodyParts& parts);
 // tetrahedron's reference.
 void relaxLongTermTowardReference(BulkBody& body, double w);
 
-// Gives `body` the drawn surface `drawn` (positions in the body's current configuration): the smooth
-// map over the current node positions, support `support` m (surface_embedding.h: exact for affine
-// motion from any reference), and the element map into the tetrahedron under the nearest surface face.
-void carryDrawnSurface(BulkBody& body, TriangleMesh drawn, double support);
+// Gives `body` the drawn surface `drawn`, made where the body's nodes were at `reference` (its node
+// numbering; the current positions, or those of a few steps before, as a tear spread over two steps
+// made its surfaces): the smooth map over those node positions, support `support` m (surface_embedding.h:
+// exact for affine motion from any reference), and the element map into the tetrahedron under the
+// nearest surface face there.
+void carryDrawnSurface(BulkBody& body, TriangleMesh drawn, double support, const std::vector<glm::dvec3>& reference);
 
 }  // namespace slime

@@ -60,16 +60,22 @@ void BulkPiece::applyMaterial(const SlimeSettings& slime) {
   applyBulkMaterial(body_, own);
 }
 
-std::vector<std::unique_ptr<BulkPiece>> BulkPiece::split(const TearPlan& plan, double spacing, double support,
-                                                         std::array<int, kHands>& handPart) {
-  if (projectiveActive_) projective_.storeMaxwell(body_);  // the live Maxwell states are the solver's
-  std::vector<TriangleMesh> surfaces = splitDrawnSurface(surface(), body_, plan.partOf, plan.parts, spacing);
-  handPart.fill(-1);
-  for (const TriangleMesh& drawn : surfaces)
+BulkPiece::SplitSurfaces BulkPiece::splitSurfaces(const TearPlan& plan, double spacing) const {
+  SplitSurfaces made;
+  made.surfaces = splitDrawnSurface(surface(), body_, plan.partOf, plan.parts, spacing);
+  for (const TriangleMesh& drawn : made.surfaces)
     if (drawn.triangles.empty()) return {};  // a part outside the drawn surface: no tear
+  made.plan = plan;
+  made.reference = body_.state.positions;
   // Each part's drawn surface encloses its body as the whole one's did (the drawn surface stands proud
-  // of the body's faces by about 2 %): moved along its normals to that volume.
-  const double drawnShare = enclosedSolid(surface()).volume / volume();
+  // of the body's faces by about 2 %): moved along its normals to that volume (split).
+  made.drawnShare = enclosedSolid(surface()).volume / volume();
+  return made;
+}
+
+std::vector<std::unique_ptr<BulkPiece>> BulkPiece::split(const SplitSurfaces& made, double support, std::array<int, kHands>& handPart) {
+  if (projectiveActive_) projective_.storeMaxwell(body_);  // the live Maxwell states are the solver's
+  const TearPlan& plan = made.plan;
   const double density = body_.totalMass / body_.restVolume;
   std::vector<std::unique_ptr<BulkPiece>> pieces;
   std::vector<std::vector<std::uint32_t>> newOfOld(plan.parts);
@@ -80,12 +86,14 @@ std::vector<std::unique_ptr<BulkPiece>> BulkPiece::split(const TearPlan& plan, d
     for (std::uint32_t e = 0; e < plan.partOf.size(); ++e)
       if (plan.partOf[e] == part) tetrahedra.push_back(e);
     BulkBody body = assembleBody(partsOf(body_, tetrahedra, partNode), settings_.slime, density, body_.mesh.shellLevel, order);
-
-    offsetToVolume(surfaces[part], drawnShare * enclosedVolume(body.state.positions, body.mesh.surface));
-    carryDrawnSurface(body, surfaces[part], support);
+    std::vector<glm::dvec3> reference(order.size());
+    for (std::uint32_t i = 0; i < order.size(); ++i) reference[i] = made.reference[partNode[order[i]]];
+    TriangleMesh drawn = made.surfaces[part];
+    offsetToVolume(drawn, made.drawnShare * enclosedVolume(reference, body.mesh.surface));
+    carryDrawnSurface(body, std::move(drawn), support, reference);
     auto piece = std::make_unique<BulkPiece>(std::move(body), slimeRestVolume_);
     piece->settings_ = settings_;
-    piece->drawnVolumeShare_ = drawnShare;
+    piece->drawnVolumeShare_ = made.drawnShare;
     std::vector<std::uint32_t> source(order.size());
     newOfOld[part].assign(body_.state.positions.size(), kNoNode);
     for (std::uint32_t i = 0; i < order.size(); ++i) {
@@ -125,7 +133,7 @@ std::unique_ptr<BulkPiece> BulkPiece::mergedWith(BulkPiece& other, double weldDi
   rebaseRestTowardBall(parts);  // the merged slime rounds up like one never torn (roundingLeft_)
   BulkBody body = assembleBody(parts, settings_.slime, density, body_.mesh.shellLevel, order);
   offsetToVolume(drawn, drawnVolume / bodyVolume * enclosedVolume(body.state.positions, body.mesh.surface));
-  carryDrawnSurface(body, std::move(drawn), support);
+  carryDrawnSurface(body, std::move(drawn), support, std::vector<glm::dvec3>(body.state.positions));
   auto piece = std::make_unique<BulkPiece>(std::move(body), slimeRestVolume_);
   piece->settings_ = settings_;
   piece->drawnVolumeShare_ = drawnVolume / bodyVolume;
