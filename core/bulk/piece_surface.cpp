@@ -14,7 +14,11 @@ namespace slime {
 namespace {
 
 constexpr int kTaubinPasses = 8;
-constexpr double kBlend = 2.0;  // the blend radius of the cut's rim and of the merged seam, in spacings
+// The merged bodies' indicator's blur (blurGrid's passes; about 2 spacings' standard deviation): 7 left
+// normal jumps of 10.3° across a merged seam 2 s later, 9 left 8.7° (the drawn slime a little rounder,
+// aspect 0.710 against 0.704), 11 left 7.9° (0.716).
+constexpr int kMergeBlurPasses = 9;
+constexpr double kBlend = 2.0;  // the blend radius of the cut's rim, in spacings
 // The extraction grid's cells per spacing along each axis: surface nets put one vertex per cell the
 // surface crosses, so the grid is as fine as the drawn surface's edges (spacing is twice their length).
 constexpr double kCellsPerSpacing = 1.5;
@@ -23,6 +27,26 @@ void bounds(const SurfaceView& surface, glm::dvec3& low, glm::dvec3& high) {
   for (const glm::dvec3& p : surface.positions) {
     low = glm::min(low, p);
     high = glm::max(high, p);
+  }
+}
+
+// f(grid point, tetrahedron) for every grid point inside a tetrahedron of `body` at its positions now.
+template <typename F>
+void forGridPointsInTetrahedra(const ScalarGrid& grid, const BulkBody& body, F f) {
+  const glm::ivec3 n = grid.size;
+  const double h = grid.spacing;
+  const std::vector<glm::dvec3>& x = body.state.positions;
+  for (std::size_t e = 0; e < body.mesh.tetrahedra.size(); ++e) {
+    const Tetrahedron& t = body.mesh.tetrahedra[e];
+    const glm::dvec3 a = x[t.x], b = x[t.y], c = x[t.z], d = x[t.w];
+    const glm::dvec3 lo = (glm::min(glm::min(a, b), glm::min(c, d)) - grid.origin) / h;
+    const glm::dvec3 hi = (glm::max(glm::max(a, b), glm::max(c, d)) - grid.origin) / h;
+    for (int k = std::max(0, static_cast<int>(std::ceil(lo.z))); k <= std::min(n.z - 1, static_cast<int>(std::floor(hi.z))); ++k)
+      for (int j = std::max(0, static_cast<int>(std::ceil(lo.y))); j <= std::min(n.y - 1, static_cast<int>(std::floor(hi.y))); ++j)
+        for (int i = std::max(0, static_cast<int>(std::ceil(lo.x))); i <= std::min(n.x - 1, static_cast<int>(std::floor(hi.x))); ++i) {
+          const glm::dvec4 w = barycentric(grid.point(i, j, k), a, b, c, d);
+          if (w.x >= 0.0 && w.y >= 0.0 && w.z >= 0.0 && w.w >= 0.0) f(grid.index(i, j, k), e);
+        }
   }
 }
 
@@ -63,23 +87,10 @@ std::vector<TriangleMesh> splitDrawnSurface(const SurfaceView& drawn, const Bulk
   ScalarGrid distance = gridAround(low, high, spacing / kCellsPerSpacing, 3.0 * spacing);
   signedDistanceOnGrid(drawn, distance);
   const glm::ivec3 n = distance.size;
-  const double h = distance.spacing;
   // Each grid point's part: the tetrahedron it lies in.
   constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
   std::vector<std::uint32_t> label(distance.count(), kNone);
-  const std::vector<glm::dvec3>& x = body.state.positions;
-  for (std::size_t e = 0; e < body.mesh.tetrahedra.size(); ++e) {
-    const Tetrahedron& t = body.mesh.tetrahedra[e];
-    const glm::dvec3 a = x[t.x], b = x[t.y], c = x[t.z], d = x[t.w];
-    const glm::dvec3 lo = (glm::min(glm::min(a, b), glm::min(c, d)) - distance.origin) / h;
-    const glm::dvec3 hi = (glm::max(glm::max(a, b), glm::max(c, d)) - distance.origin) / h;
-    for (int k = std::max(0, static_cast<int>(std::ceil(lo.z))); k <= std::min(n.z - 1, static_cast<int>(std::floor(hi.z))); ++k)
-      for (int j = std::max(0, static_cast<int>(std::ceil(lo.y))); j <= std::min(n.y - 1, static_cast<int>(std::floor(hi.y))); ++j)
-        for (int i = std::max(0, static_cast<int>(std::ceil(lo.x))); i <= std::min(n.x - 1, static_cast<int>(std::floor(hi.x))); ++i) {
-          const glm::dvec4 w = barycentric(distance.point(i, j, k), a, b, c, d);
-          if (w.x >= 0.0 && w.y >= 0.0 && w.z >= 0.0 && w.w >= 0.0) label[distance.index(i, j, k)] = partOf[e];
-        }
-  }
+  forGridPointsInTetrahedra(distance, body, [&](std::size_t g, std::size_t e) { label[g] = partOf[e]; });
   // Points in no tetrahedron (the drawn surface stands proud of the body's faces) take a labelled
   // neighbour's part, pass after pass.
   std::vector<std::uint32_t> next;
@@ -123,19 +134,75 @@ std::vector<TriangleMesh> splitDrawnSurface(const SurfaceView& drawn, const Bulk
   return surfaces;
 }
 
-TriangleMesh mergedDrawnSurface(std::span<const SurfaceView> surfaces, double spacing) {
+TriangleMesh mergedDrawnSurface(std::span<const BulkBody* const> bodies, std::span<const SurfaceView> surfaces, double spacing,
+                                int level) {
   glm::dvec3 low(std::numeric_limits<double>::infinity()), high(-std::numeric_limits<double>::infinity());
   for (const SurfaceView& surface : surfaces) bounds(surface, low, high);
   ScalarGrid merged = gridAround(low, high, spacing / kCellsPerSpacing, 3.0 * spacing);
-  merged.values.assign(merged.count(), -std::numeric_limits<double>::infinity());
-  ScalarGrid one = merged;
-  for (const SurfaceView& surface : surfaces) {
-    signedDistanceOnGrid(surface, one);
-    for (std::size_t g = 0; g < one.values.size(); ++g)
-      merged.values[g] = std::isinf(merged.values[g]) ? one.values[g] : smoothMax(merged.values[g], one.values[g], kBlend * spacing);
+  // The bodies' indicator, blurred: the union of their tetrahedra, rounded over a few spacings, which
+  // fills the seam's crease. (Not the drawn surfaces' signed distance: a small torn piece's drawn surface
+  // is crumpled, its normals jumping by 70–170°, and their smooth union kept that as the seam: 52°.)
+  for (const BulkBody* body : bodies) forGridPointsInTetrahedra(merged, *body, [&](std::size_t g, std::size_t) { merged.values[g] = 1.0; });
+  blurGrid(merged, kMergeBlurPasses);
+  glm::dvec3 centre(0.0);
+  double inside = 0.0;
+  for (int k = 0; k < merged.size.z; ++k)
+    for (int j = 0; j < merged.size.y; ++j)
+      for (int i = 0; i < merged.size.x; ++i) {
+        double& value = merged.values[merged.index(i, j, k)];
+        value -= 0.5;
+        if (value > 0.0) {
+          centre += merged.point(i, j, k);
+          inside += 1.0;
+        }
+      }
+  if (inside == 0.0) return {};
+  centre /= inside;
+  // Drawn as a slime never torn: the drawn icosphere about the union's centroid, each vertex where its
+  // ray from the centre last leaves the union (the field's outermost fall through zero, bisected). A
+  // union that is not star-shaped about its centroid (rays that leave it more than once) is drawn by
+  // the grid's surface nets instead.
+  TriangleMesh mesh = makeIcosphere(level, 1.0, glm::dvec3(0.0));
+  double reach = 0.0;  // the farthest inside point, and a spacing: every ray has left the union by then
+  for (int k = 0; k < merged.size.z; ++k)
+    for (int j = 0; j < merged.size.y; ++j)
+      for (int i = 0; i < merged.size.x; ++i)
+        if (merged.values[merged.index(i, j, k)] > 0.0) reach = std::max(reach, glm::length(merged.point(i, j, k) - centre));
+  reach += merged.spacing;
+  const double step = 0.5 * merged.spacing;
+  std::size_t reentering = 0;
+  bool star = sampleGrid(merged, centre) > 0.0;
+  for (glm::dvec3& p : mesh.positions) {
+    if (!star) break;
+    const glm::dvec3 d = p;
+    double exit = -1.0, previous = sampleGrid(merged, centre);
+    int exits = 0;
+    for (double r = step; r <= reach; r += step) {
+      const double value = sampleGrid(merged, centre + r * d);
+      if (previous > 0.0 && value <= 0.0) {
+        exit = r;
+        ++exits;
+      }
+      previous = value;
+    }
+    if (exit < 0.0) {
+      star = false;
+      break;
+    }
+    reentering += exits > 1;
+    double in = exit - step, out = exit;
+    for (int iteration = 0; iteration < 30; ++iteration) {
+      const double middle = 0.5 * (in + out);
+      (sampleGrid(merged, centre + middle * d) > 0.0 ? in : out) = middle;
+    }
+    p = centre + 0.5 * (in + out) * d;
   }
-  TriangleMesh mesh = extractSurface(merged);
-  if (keepLargestPart(mesh) > 0) return {};  // the surfaces do not meet
+  if (star && reentering * 50 <= mesh.positions.size()) {  // at most 2 % of the rays re-enter
+    taubinSmooth(mesh, kTaubinPasses);  // the body's facets, which the blur leaves as faint creases
+    return mesh;
+  }
+  mesh = extractSurface(merged);
+  if (keepLargestPart(mesh) > 0) return {};  // the bodies do not meet
   taubinSmooth(mesh, kTaubinPasses);
   return mesh;
 }

@@ -1,15 +1,19 @@
+#include "core/bulk/eigen.h"  // first: see its header
 #include "core/bulk/sub_body.h"
 
 #include "core/bulk/element_pass.h"
 #include "core/bulk/tet_lanes.h"
 
 #include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
+#include <string>
 
 namespace slime {
 namespace {
@@ -49,7 +53,144 @@ double squaredDistanceToTriangle(const glm::dvec3& p, const glm::dvec3& a, const
   return glm::dot(d, d);
 }
 
+// ρ(d) of rebaseRestTowardBall: the farthest node's distance from the centre per cell of a latitude–
+// longitude grid (rows of equal z = cos θ, columns of equal φ), empty cells filled from their neighbours,
+// smoothed once, interpolated bilinearly between cell centres (φ wraps around; rows clamp at the poles).
+class RadiusOfDirection {
+ public:
+  RadiusOfDirection(const std::vector<glm::dvec3>& offsets) : radius_(kRows * kColumns, 0.0) {
+    for (const glm::dvec3& offset : offsets) {
+      const double length = glm::length(offset);
+      if (length <= 0.0) continue;
+      const glm::dvec2 cell = cellOf(offset / length);
+      const int row = std::clamp(static_cast<int>(std::floor(cell.x + 0.5)), 0, kRows - 1);
+      const int column = (static_cast<int>(std::floor(cell.y + 0.5)) % kColumns + kColumns) % kColumns;
+      double& r = radius_[row * kColumns + column];
+      r = std::max(r, length);
+    }
+    for (int pass = 0; pass < kRows + kColumns; ++pass) {  // empty cells: the mean of filled neighbours
+      bool empty = false;
+      std::vector<double> next = radius_;
+      for (int row = 0; row < kRows; ++row)
+        for (int column = 0; column < kColumns; ++column) {
+          if (radius_[row * kColumns + column] > 0.0) continue;
+          double sum = 0.0;
+          int count = 0;
+          forNeighbours(row, column, [&](double r) {
+            if (r > 0.0) sum += r, ++count;
+          });
+          if (count > 0) next[row * kColumns + column] = sum / count;
+          else empty = true;
+        }
+      radius_.swap(next);
+      if (!empty) break;
+    }
+    std::vector<double> smooth(radius_.size());
+    for (int row = 0; row < kRows; ++row)
+      for (int column = 0; column < kColumns; ++column) {
+        double sum = 0.0;
+        int count = 0;
+        forNeighbours(row, column, [&](double r) { sum += r, ++count; });
+        smooth[row * kColumns + column] = 0.5 * radius_[row * kColumns + column] + 0.5 * sum / count;
+      }
+    radius_.swap(smooth);
+  }
+
+  double operator()(const glm::dvec3& direction) const {
+    const glm::dvec2 cell = cellOf(direction);
+    const double u = std::clamp(cell.x, 0.0, static_cast<double>(kRows - 1));
+    const int row = std::min(static_cast<int>(std::floor(u)), kRows - 2);
+    const double fu = u - row;
+    const double floorV = std::floor(cell.y), fv = cell.y - floorV;
+    const int column = (static_cast<int>(floorV) % kColumns + kColumns) % kColumns, nextColumn = (column + 1) % kColumns;
+    const auto at = [&](int r, int c) { return radius_[r * kColumns + c]; };
+    return (1.0 - fu) * ((1.0 - fv) * at(row, column) + fv * at(row, nextColumn)) +
+           fu * ((1.0 - fv) * at(row + 1, column) + fv * at(row + 1, nextColumn));
+  }
+
+ private:
+  static constexpr int kRows = 12, kColumns = 24;
+  // Continuous cell coordinates (row, column) of a unit direction, cell centres at integers.
+  static glm::dvec2 cellOf(const glm::dvec3& d) {
+    double phi = std::atan2(d.y, d.x);
+    if (phi < 0.0) phi += 2.0 * std::numbers::pi;
+    return {(std::clamp(d.z, -1.0, 1.0) + 1.0) * 0.5 * kRows - 0.5, phi / (2.0 * std::numbers::pi) * kColumns - 0.5};
+  }
+  template <typename Visit>
+  void forNeighbours(int row, int column, Visit visit) const {
+    for (int r = std::max(row - 1, 0); r <= std::min(row + 1, kRows - 1); ++r)
+      for (int c = column - 1; c <= column + 1; ++c)
+        if (r != row || c != column) visit(radius_[r * kColumns + (c + kColumns) % kColumns]);
+  }
+  std::vector<double> radius_;
+};
+
+glm::dmat3 unitDeterminant(const glm::dmat3& m) { return m / std::cbrt(glm::determinant(m)); }
+
 }  // namespace
+
+void rebaseRestTowardBall(BodyParts& parts) {
+  const std::vector<glm::dvec3>& x = parts.positions;
+  glm::dvec3 centre(0.0);
+  double volume = 0.0;
+  for (const Tetrahedron& t : parts.tetrahedra) {
+    const double v = glm::determinant(glm::dmat3(x[t.y] - x[t.x], x[t.z] - x[t.x], x[t.w] - x[t.x]));
+    centre += v * (x[t.x] + x[t.y] + x[t.z] + x[t.w]) * 0.25;
+    volume += v;
+  }
+  if (!(volume > 0.0)) return;
+  centre /= volume;
+  // The affine part first: the map that takes the tetrahedra's second moment about the centre to a
+  // multiple of the identity, S^(−1/2) (a slime squashed by a hand or sagging on the floor is a nearly
+  // affine image of a ball: a radial map alone would leave each part's squash in its rest shape).
+  Eigen::Matrix3d moment = Eigen::Matrix3d::Zero();
+  for (const Tetrahedron& t : parts.tetrahedra) {
+    const double v = glm::determinant(glm::dmat3(x[t.y] - x[t.x], x[t.z] - x[t.x], x[t.w] - x[t.x]));
+    const glm::dvec3 d = (x[t.x] + x[t.y] + x[t.z] + x[t.w]) * 0.25 - centre;
+    const Eigen::Vector3d e(d.x, d.y, d.z);
+    moment += v * e * e.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> spectrum(moment);
+  if (!(spectrum.eigenvalues()(0) > 0.0)) return;
+  const Eigen::Matrix3d rounding = spectrum.operatorInverseSqrt();
+  std::vector<glm::dvec3> ball(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const glm::dvec3 d = x[i] - centre;
+    const Eigen::Vector3d r = rounding * Eigen::Vector3d(d.x, d.y, d.z);
+    ball[i] = glm::dvec3(r.x(), r.y(), r.z());
+  }
+  // Then radially onto a sphere: what is not affine (a piece pressed on as a nub) rounds in.
+  const RadiusOfDirection radius(ball);
+  for (glm::dvec3& p : ball) {
+    const double length = glm::length(p);
+    if (length > 0.0) p /= radius(p / length);
+  }
+  for (std::size_t e = 0; e < parts.tetrahedra.size(); ++e) {
+    const Tetrahedron& t = parts.tetrahedra[e];
+    const glm::dmat3 image(ball[t.y] - ball[t.x], ball[t.z] - ball[t.x], ball[t.w] - ball[t.x]);
+    const double imageDeterminant = glm::determinant(image);
+    const glm::dmat3 old = glm::inverse(parts.rest[e].restInverse);
+    const double oldDeterminant = glm::determinant(old);
+    if (!(imageDeterminant > 0.0) || !(oldDeterminant > 0.0)) continue;
+    const glm::dmat3 reference = image * std::cbrt(oldDeterminant / imageDeterminant);
+    const glm::dmat3 a = old * glm::inverse(reference);  // the old reference seen from the new one, det 1
+    parts.rest[e] = makeTetRest(glm::dvec3(0.0), reference[0], reference[1], reference[2]);
+    parts.plastic[e] = unitDeterminant(glm::transpose(a) * parts.plastic[e] * a);
+    MaxwellRest& maxwell = parts.maxwell[e];
+    maxwell.metric = unitDeterminant(glm::transpose(a) * maxwell.metric * a);
+    maxwell.inverse = glm::inverse(maxwell.metric);
+  }
+}
+
+void relaxLongTermTowardReference(BulkBody& body, double w) {
+  for (std::size_t e = 0; e < body.mesh.tetrahedra.size(); ++e) {
+    const glm::dmat3 metric = unitDeterminant(plasticMetric(body, e) * (1.0 - w) + glm::dmat3(w));
+    for (int c = 0; c < 3; ++c)
+      for (int r = c; r < 3; ++r)
+        body.maxwell[e / kTetLanes].plastic[kSymmetricEntry[r][c]][e % kTetLanes] = static_cast<ElementReal>(metric[c][r]);
+  }
+  refreshMaxwellForceMaps(body);
+}
 
 BodyParts partsOf(const BulkBody& body, std::span<const std::uint32_t> tetrahedra, std::vector<std::uint32_t>& partNode) {
   BodyParts parts;
@@ -176,10 +317,13 @@ BulkBody assembleBody(const BodyParts& parts, const SlimeSettings& slime, double
   return body;
 }
 
-void carryDrawnSurface(BulkBody& body, TriangleMesh drawn, double support) {
-  const std::vector<glm::dvec3>& x = body.state.positions;
-  // The smooth map is fitted from the body now (exact for affine motion from here), a few vertices a
-  // step (BulkPiece::endStep); the element map, exact now too, places the surface meanwhile.
+void carryDrawnSurface(BulkBody& body, TriangleMesh drawn, double support, const std::vector<glm::dvec3>& reference) {
+  if (reference.size() != body.state.positions.size())
+    throw std::invalid_argument("carryDrawnSurface: " + std::to_string(reference.size()) + " reference positions for " +
+                                std::to_string(body.state.positions.size()) + " nodes");
+  const std::vector<glm::dvec3>& x = reference;
+  // The smooth map is fitted from the reference (exact for affine motion from there), a few vertices a
+  // step (BulkPiece::endStep); the element map, exact there too, places the surface meanwhile.
   beginSmoothFit(x, drawn.positions, support, body.embedding);
 
   // The element map: each drawn vertex in the tetrahedron under its nearest surface face, found in
@@ -189,19 +333,38 @@ void carryDrawnSurface(BulkBody& body, TriangleMesh drawn, double support) {
   for (const auto& face : boundary) meanEdge += glm::length(x[face.first.y] - x[face.first.x]);
   const double cell = std::max(meanEdge / static_cast<double>(std::max<std::size_t>(boundary.size(), 1)), 1e-4);
   const auto cellOf = [&](const glm::dvec3& p) { return glm::i64vec3(glm::floor(p / cell)); };
-  const auto key = [](const glm::i64vec3& c) {
-    return ((c.x & 0x1FFFFF) << 42) | ((c.y & 0x1FFFFF) << 21) | (c.z & 0x1FFFFF);
-  };
-  std::vector<std::pair<std::int64_t, std::uint32_t>> cells;  // (cell, face), sorted
+  // The faces by cell, in a dense grid of cells over the faces' box (a face in every cell its box meets),
+  // and each face's box: a face whose box lies farther than the nearest face found so far is not measured.
+  std::vector<std::pair<glm::dvec3, glm::dvec3>> boxes(boundary.size());
+  glm::dvec3 lowest(std::numeric_limits<double>::infinity()), highest(-std::numeric_limits<double>::infinity());
   for (std::uint32_t f = 0; f < boundary.size(); ++f) {
     const Triangle& t = boundary[f].first;
-    const glm::i64vec3 low = cellOf(glm::min(x[t.x], glm::min(x[t.y], x[t.z])));
-    const glm::i64vec3 high = cellOf(glm::max(x[t.x], glm::max(x[t.y], x[t.z])));
-    for (std::int64_t a = low.x; a <= high.x; ++a)
-      for (std::int64_t b = low.y; b <= high.y; ++b)
-        for (std::int64_t c = low.z; c <= high.z; ++c) cells.emplace_back(key({a, b, c}), f);
+    boxes[f] = {glm::min(x[t.x], glm::min(x[t.y], x[t.z])), glm::max(x[t.x], glm::max(x[t.y], x[t.z]))};
+    lowest = glm::min(lowest, boxes[f].first);
+    highest = glm::max(highest, boxes[f].second);
   }
-  std::sort(cells.begin(), cells.end());
+  const glm::i64vec3 first = cellOf(lowest), last = cellOf(highest), span = last - first + glm::i64vec3(1);
+  const auto cellIndex = [&](const glm::i64vec3& c) {
+    return static_cast<std::size_t>((c.z - first.z) * span.y * span.x + (c.y - first.y) * span.x + (c.x - first.x));
+  };
+  std::vector<std::uint32_t> cellStart(static_cast<std::size_t>(span.x * span.y * span.z) + 1, 0), cellFaces;
+  for (int fill = 0; fill < 2; ++fill) {  // count, then place
+    if (fill == 1) {
+      for (std::size_t c = 1; c < cellStart.size(); ++c) cellStart[c] += cellStart[c - 1];
+      cellFaces.resize(cellStart.back());
+    }
+    std::vector<std::uint32_t> placed(fill == 1 ? cellStart.size() - 1 : 0);
+    for (std::uint32_t f = 0; f < boundary.size(); ++f) {
+      const glm::i64vec3 low = cellOf(boxes[f].first), high = cellOf(boxes[f].second);
+      for (std::int64_t c = low.z; c <= high.z; ++c)
+        for (std::int64_t b = low.y; b <= high.y; ++b)
+          for (std::int64_t a = low.x; a <= high.x; ++a) {
+            const std::size_t k = cellIndex({a, b, c});
+            if (fill == 0) ++cellStart[k + 1];
+            else cellFaces[cellStart[k] + placed[k]++] = f;
+          }
+    }
+  }
   body.mesh.surface.clear();
   for (const auto& face : boundary) body.mesh.surface.push_back(face.first);
   SurfaceEmbedding& embedding = body.embedding;
@@ -214,23 +377,31 @@ void carryDrawnSurface(BulkBody& body, TriangleMesh drawn, double support) {
     const glm::i64vec3 home = cellOf(p);
     std::uint32_t best = 0;
     double bestDistance = std::numeric_limits<double>::infinity();
+    const auto visit = [&](const glm::i64vec3& c) {
+      if (glm::any(glm::lessThan(c, first)) || glm::any(glm::greaterThan(c, last))) return;
+      const std::size_t k = cellIndex(c);
+      for (std::uint32_t slot = cellStart[k]; slot < cellStart[k + 1]; ++slot) {
+        const std::uint32_t f = cellFaces[slot];
+        const glm::dvec3 outside = glm::max(glm::max(boxes[f].first - p, p - boxes[f].second), glm::dvec3(0.0));
+        if (glm::dot(outside, outside) > bestDistance) continue;
+        const Triangle& t = boundary[f].first;
+        const double d = squaredDistanceToTriangle(p, x[t.x], x[t.y], x[t.z]);
+        if (d < bestDistance || (d == bestDistance && f < best)) {
+          bestDistance = d;
+          best = f;
+        }
+      }
+    };
+    visit(home);  // first, so that the boxes prune most of the faces around it
     for (std::int64_t ring = 1; ring < (1 << 20); ring *= 2) {
-      for (std::int64_t a = home.x - ring; a <= home.x + ring; ++a)
-        for (std::int64_t b = home.y - ring; b <= home.y + ring; ++b)
-          for (std::int64_t c = home.z - ring; c <= home.z + ring; ++c) {
-            const std::int64_t k = key({a, b, c});
-            auto it = std::lower_bound(cells.begin(), cells.end(), std::make_pair(k, std::uint32_t{0}));
-            for (; it != cells.end() && it->first == k; ++it) {
-              const Triangle& t = boundary[it->second].first;
-              const double d = squaredDistanceToTriangle(p, x[t.x], x[t.y], x[t.z]);
-              if (d < bestDistance || (d == bestDistance && it->second < best)) {
-                bestDistance = d;
-                best = it->second;
-              }
-            }
-          }
-      // Found within the ring's reach: no face outside it is nearer.
+      // Only the cells of the grid: a ring past it on every side holds nothing more.
+      const glm::i64vec3 from = glm::max(home - glm::i64vec3(ring), first), to = glm::min(home + glm::i64vec3(ring), last);
+      for (std::int64_t c = from.z; c <= to.z; ++c)
+        for (std::int64_t b = from.y; b <= to.y; ++b)
+          for (std::int64_t a = from.x; a <= to.x; ++a) visit({a, b, c});
+      // Found within the ring's reach: no face outside it is nearer; or the ring held every cell.
       if (bestDistance <= (static_cast<double>(ring) * cell) * (static_cast<double>(ring) * cell)) break;
+      if (glm::all(glm::lessThanEqual(home - glm::i64vec3(ring), first)) && glm::all(glm::greaterThanEqual(home + glm::i64vec3(ring), last))) break;
     }
     const Tetrahedron& t = body.mesh.tetrahedra[boundary[best].second];
     embedding.nodes[v] = t;

@@ -43,9 +43,28 @@ std::vector<std::pair<Triangle, std::uint32_t>> boundaryFaces(const std::vector<
 BulkBody assembleBody(const BodyParts& parts, const SlimeSettings& slime, double density, int shellLevel,
                       std::vector<std::uint32_t>& order);
 
-// Gives `body` the drawn surface `drawn` (positions in the body's current configuration): the smooth
-// map over the current node positions, support `support` m (surface_embedding.h: exact for affine
-// motion from any reference), and the element map into the tetrahedron under the nearest surface face.
-void carryDrawnSurface(BulkBody& body, TriangleMesh drawn, double support);
+// The rest shape of `parts` derived again as a ball (a merge: a torn piece pressed back keeps its share
+// of the old ball as its rest shape and would stand out of the merged slime as a nub). The nodes as they
+// are now are mapped about the tetrahedra's centroid c by the affine map that makes their second moment
+// isotropic, y = S^(−1/2) (x − c), then radially onto a sphere, x* = y/ρ(y/|y|), where ρ(d) is the
+// farthest node's distance along the direction d (the largest per cell of a latitude–longitude grid,
+// smoothed, interpolated); each tetrahedron's new reference is its image there scaled to keep its
+// volume V0 (so the volume is the body's, exactly), and its long-term and Maxwell rest metrics are carried
+// into it, G' = Aᵀ G A with A = Dm Dm'⁻¹ (det 1): the stress now is what it was. Letting G_p flow to the
+// identity (relaxLongTermTowardReference) then rounds the body up toward the ball. A tetrahedron whose
+// image is inverted (a part of the body folded back on itself about c) keeps its reference.
+void rebaseRestTowardBall(BodyParts& parts);
+
+// G_p ← (G_p + w (I − G_p)) / det^(1/3) for every tetrahedron of `body` (w in [0, 1]), then its long-term
+// force maps K_p (element_pass.h): the long-term branch's rest shape flows a share w of the way to the
+// tetrahedron's reference.
+void relaxLongTermTowardReference(BulkBody& body, double w);
+
+// Gives `body` the drawn surface `drawn`, made where the body's nodes were at `reference` (its node
+// numbering; the current positions, or those of a few steps before, as a tear spread over two steps
+// made its surfaces): the smooth map over those node positions, support `support` m (surface_embedding.h:
+// exact for affine motion from any reference), and the element map into the tetrahedron under the
+// nearest surface face there.
+void carryDrawnSurface(BulkBody& body, TriangleMesh drawn, double support, const std::vector<glm::dvec3>& reference);
 
 }  // namespace slime

@@ -391,4 +391,17 @@ void taubinSmooth(TriangleMesh& mesh, int passes, double lambda, double mu) {
   }
 }
 
+double sampleGrid(const ScalarGrid& grid, const glm::dvec3& p) {
+  const glm::dvec3 u = (p - grid.origin) / grid.spacing;
+  const glm::ivec3 low = glm::clamp(glm::ivec3(glm::floor(u)), glm::ivec3(0), grid.size - glm::ivec3(2));
+  const glm::dvec3 f = glm::clamp(u - glm::dvec3(low), glm::dvec3(0.0), glm::dvec3(1.0));
+  double value = 0.0;
+  for (int corner = 0; corner < 8; ++corner) {
+    const int dx = corner & 1, dy = (corner >> 1) & 1, dz = corner >> 2;
+    const double w = (dx ? f.x : 1.0 - f.x) * (dy ? f.y : 1.0 - f.y) * (dz ? f.z : 1.0 - f.z);
+    value += w * grid.values[grid.index(low.x + dx, low.y + dy, low.z + dz)];
+  }
+  return value;
+}
+
 }  // namespace slime

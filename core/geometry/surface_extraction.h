@@ -74,4 +74,7 @@ std::size_t keepLargestPart(TriangleMesh& mesh);
 // Taubin's smoothing, `passes` pairs of a shrinking step λ and an inflating step μ (umbrella operator).
 void taubinSmooth(TriangleMesh& mesh, int passes, double lambda = 0.5, double mu = -0.53);
 
+// The grid's value at p, trilinear (p clamped into the grid).
+double sampleGrid(const ScalarGrid& grid, const glm::dvec3& p);
+
 }  // namespace slime

@@ -36,6 +36,9 @@ constexpr double kTravelPerSubstep = 0.25;
 // a 1,900-vertex surface in 60 steps, a few ms of each viewer frame instead of 25 ms in one.
 constexpr std::size_t kSmoothFitVerticesPerStep = 32;
 constexpr int kFrequencyInterval = 200;
+// A merged piece rounds up (endStep) every this many steps, for this many flow times τ_p (e^−8: done).
+constexpr int kRoundingInterval = 8;
+constexpr double kRoundingFlowTimes = 8.0;
 
 // Sets every drawn vertex below the floor (z < 0) on it. The physics holds the element map's vertices
 // on the floor (resolveDrawnFloorContact); the smooth map that places the drawn surface differs by
@@ -57,16 +60,22 @@ void BulkPiece::applyMaterial(const SlimeSettings& slime) {
   applyBulkMaterial(body_, own);
 }
 
-std::vector<std::unique_ptr<BulkPiece>> BulkPiece::split(const TearPlan& plan, double spacing, double support,
-                                                         std::array<int, kHands>& handPart) {
-  if (projectiveActive_) projective_.storeMaxwell(body_);  // the live Maxwell states are the solver's
-  std::vector<TriangleMesh> surfaces = splitDrawnSurface(surface(), body_, plan.partOf, plan.parts, spacing);
-  handPart.fill(-1);
-  for (const TriangleMesh& drawn : surfaces)
+BulkPiece::SplitSurfaces BulkPiece::splitSurfaces(const TearPlan& plan, double spacing) const {
+  SplitSurfaces made;
+  made.surfaces = splitDrawnSurface(surface(), body_, plan.partOf, plan.parts, spacing);
+  for (const TriangleMesh& drawn : made.surfaces)
     if (drawn.triangles.empty()) return {};  // a part outside the drawn surface: no tear
+  made.plan = plan;
+  made.reference = body_.state.positions;
   // Each part's drawn surface encloses its body as the whole one's did (the drawn surface stands proud
-  // of the body's faces by about 2 %): moved along its normals to that volume.
-  const double drawnShare = enclosedSolid(surface()).volume / volume();
+  // of the body's faces by about 2 %): moved along its normals to that volume (split).
+  made.drawnShare = enclosedSolid(surface()).volume / volume();
+  return made;
+}
+
+std::vector<std::unique_ptr<BulkPiece>> BulkPiece::split(const SplitSurfaces& made, double support, std::array<int, kHands>& handPart) {
+  if (projectiveActive_) projective_.storeMaxwell(body_);  // the live Maxwell states are the solver's
+  const TearPlan& plan = made.plan;
   const double density = body_.totalMass / body_.restVolume;
   std::vector<std::unique_ptr<BulkPiece>> pieces;
   std::vector<std::vector<std::uint32_t>> newOfOld(plan.parts);
@@ -77,12 +86,14 @@ std::vector<std::unique_ptr<BulkPiece>> BulkPiece::split(const TearPlan& plan, d
     for (std::uint32_t e = 0; e < plan.partOf.size(); ++e)
       if (plan.partOf[e] == part) tetrahedra.push_back(e);
     BulkBody body = assembleBody(partsOf(body_, tetrahedra, partNode), settings_.slime, density, body_.mesh.shellLevel, order);
-
-    offsetToVolume(surfaces[part], drawnShare * enclosedVolume(body.state.positions, body.mesh.surface));
-    carryDrawnSurface(body, surfaces[part], support);
+    std::vector<glm::dvec3> reference(order.size());
+    for (std::uint32_t i = 0; i < order.size(); ++i) reference[i] = made.reference[partNode[order[i]]];
+    TriangleMesh drawn = made.surfaces[part];
+    offsetToVolume(drawn, made.drawnShare * enclosedVolume(reference, body.mesh.surface));
+    carryDrawnSurface(body, std::move(drawn), support, reference);
     auto piece = std::make_unique<BulkPiece>(std::move(body), slimeRestVolume_);
     piece->settings_ = settings_;
-    piece->drawnVolumeShare_ = drawnShare;
+    piece->drawnVolumeShare_ = made.drawnShare;
     std::vector<std::uint32_t> source(order.size());
     newOfOld[part].assign(body_.state.positions.size(), kNoNode);
     for (std::uint32_t i = 0; i < order.size(); ++i) {
@@ -113,17 +124,20 @@ std::unique_ptr<BulkPiece> BulkPiece::mergedWith(BulkPiece& other, double weldDi
   const SurfaceView surfaces[2] = {surface(), other.surface()};
   const double drawnVolume = enclosedSolid(surfaces[0]).volume + enclosedSolid(surfaces[1]).volume;
   const double bodyVolume = volume() + other.volume();
-  TriangleMesh drawn = mergedDrawnSurface(surfaces, spacing);
+  const BulkBody* bodies[2] = {&body_, &other.body_};
+  TriangleMesh drawn = mergedDrawnSurface(bodies, surfaces, spacing, settings_.slime.level);
   if (drawn.triangles.empty()) return nullptr;
   std::vector<std::uint32_t> bOf, order;
   const double density = (body_.totalMass + other.body_.totalMass) / (body_.restVolume + other.body_.restVolume);
-  BulkBody body = assembleBody(weldedParts(body_, other.body_, weldDistance, bOf), settings_.slime, density,
-                               body_.mesh.shellLevel, order);
+  BodyParts parts = weldedParts(body_, other.body_, weldDistance, bOf);
+  rebaseRestTowardBall(parts);  // the merged slime rounds up like one never torn (roundingLeft_)
+  BulkBody body = assembleBody(parts, settings_.slime, density, body_.mesh.shellLevel, order);
   offsetToVolume(drawn, drawnVolume / bodyVolume * enclosedVolume(body.state.positions, body.mesh.surface));
-  carryDrawnSurface(body, std::move(drawn), support);
+  carryDrawnSurface(body, std::move(drawn), support, std::vector<glm::dvec3>(body.state.positions));
   auto piece = std::make_unique<BulkPiece>(std::move(body), slimeRestVolume_);
   piece->settings_ = settings_;
   piece->drawnVolumeShare_ = drawnVolume / bodyVolume;
+  piece->roundingLeft_ = kRoundingFlowTimes * settings_.slime.flowTime;
   // Where each new node came from, in this piece and in the other.
   const std::size_t ownNodes = body_.state.positions.size();
   std::vector<std::uint32_t> ownSource(order.size(), FloorAdhesion::kNoSource), otherSource(order.size(), FloorAdhesion::kNoSource);
@@ -345,6 +359,14 @@ void BulkPiece::endStep(const StepContext& context) {
     } else {
       relaxBulk(body_, flowInterval * settings_.sim.dt);
     }
+  }
+  // A merged piece's long-term rest shape flows to its reference, a ball (rebaseRestTowardBall), over the
+  // material's flow time τ_p.
+  if (roundingLeft_ > 0.0 && context.stepCount % kRoundingInterval == 0) {
+    const double dt = kRoundingInterval * settings_.sim.dt;
+    relaxLongTermTowardReference(body_, -std::expm1(-dt / settings_.slime.flowTime));
+    if (projectiveActive_) projective_.loadPlastic(body_);
+    roundingLeft_ -= dt;
   }
   const bool touching = resolveDrawnFloorContact(body_, settings_.slime.friction) > 0;
   // The floor's rolling resistance acts on the bulk slime too: Coulomb friction lets a ball roll,

@@ -51,13 +51,22 @@ class BulkPiece final : public Piece {
   const FloorAdhesion& adhesion() const { return adhesion_; }
   double slimeRestVolume() const { return slimeRestVolume_; }
 
-  // The pieces `plan` (tearing.h) cuts this one into, each with its tetrahedra's rest and Maxwell
-  // states, its nodes' state, its floor contacts and a drawn surface made afresh on a grid of `spacing`
-  // (m) and carried by a smooth map of `support` (m). A holding hand goes with the part that has most
+  // A tear in two steps, so that no one step does all of it: first the drawn surfaces of the parts that
+  // `plan` (tearing.h) cuts this piece into, made afresh on a grid of `spacing` (m) at the state now
+  // (empty when a part would have no drawn surface: no tear), with the node positions they were made at.
+  struct SplitSurfaces {
+    TearPlan plan;
+    std::vector<TriangleMesh> surfaces;  // per part
+    std::vector<glm::dvec3> reference;   // this piece's node positions when they were made
+    double drawnShare = 0.0;             // its drawn volume over its body's then
+  };
+  SplitSurfaces splitSurfaces(const TearPlan& plan, double spacing) const;
+  // Then, steps later (the plan's topology unchanged), the pieces themselves, each with its tetrahedra's
+  // rest and Maxwell states, its nodes' state now, its floor contacts and its drawn surface, carried from
+  // where it was made by a smooth map of `support` (m). A holding hand goes with the part that has most
   // of its nodes (handPart[hand]; −1 for a hand that holds nothing), holding the nodes it had there.
-  // Their models are not built yet (rebuildModels). None when a part would have no drawn surface.
-  std::vector<std::unique_ptr<BulkPiece>> split(const TearPlan& plan, double spacing, double support,
-                                                std::array<int, kHands>& handPart);
+  // Their models are not built yet (rebuildModels).
+  std::vector<std::unique_ptr<BulkPiece>> split(const SplitSurfaces& made, double support, std::array<int, kHands>& handPart);
   // This piece and `other` as one (merging.h), welded within `weldDistance` (m), its drawn surface the
   // smooth union of theirs on a grid of `spacing`; a holding hand of either keeps its nodes
   // (handFrom[hand]: 0 this piece's, 1 the other's, −1 none). Its models are not built yet. None when
@@ -79,6 +88,7 @@ class BulkPiece final : public Piece {
   // A piece made afresh (a tear): its drawn volume over its body's, which its drawn surface keeps
   // (0: the icosphere's smooth map as it is).
   double drawnVolumeShare_ = 0.0;
+  double roundingLeft_ = 0.0;  // s: a merged piece's long-term rest shape still flowing to its ball
   BulkScratch scratch_;
   FloorAdhesion adhesion_;  // the sticky floor (slime.adhesion)
   mutable std::vector<glm::dvec3> drawnPositions_;  // placed from the body when first asked for

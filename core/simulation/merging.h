@@ -6,7 +6,8 @@
 // (the pair meets half-way). Welding moves a node by at most half the weld distance, so each tetrahedron
 // that holds a welded node has its rest shape pulled back through its deformation gradient before the
 // weld, D_m' = F⁻¹ D_s' (its stress is as before: the weld adds none); its Maxwell state is kept. The
-// drawn surface is the smooth union of the two (piece_surface.h), which closes the seam.
+// merged rest shape is then derived again as a ball (sub_body.h's rebaseRestTowardBall), and the drawn
+// surface is the two bodies' union, blurred, which closes the seam (piece_surface.h).
 #pragma once
 
 #include "core/bulk/bulk_body.h"

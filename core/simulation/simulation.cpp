@@ -36,6 +36,9 @@ constexpr double kHandSpeedMemory = 0.25;  // s
 // Steps between tearing checks (a pass over the tetrahedra's elastic stretch: 8 ms against the tens
 // of milliseconds a strand takes to snap).
 constexpr int kTearInterval = 8;
+// Steps between a tear's two halves (its drawn surfaces, then its pieces): a 60 Hz viewer frame holds
+// about 17 steps of 1 ms, so the halves fall mostly in different frames.
+constexpr int kTearStageSteps = 2 * kTearInterval;
 
 }  // namespace
 
@@ -84,6 +87,7 @@ Simulation::Simulation(const Simulation& other)
       tears_(other.tears_),
       merges_(other.merges_),
       touchingFor_(other.touchingFor_),
+      pendingTear_(other.pendingTear_),
       lastTopologyMilliseconds_(other.lastTopologyMilliseconds_),
       handSpeed_(other.handSpeed_) {
   std::copy(std::begin(other.handHeld_), std::end(other.handHeld_), std::begin(handHeld_));
@@ -117,6 +121,7 @@ void Simulation::start() {
   handPiece_.fill(0);
   tears_ = merges_ = 0;
   touchingFor_.clear();
+  pendingTear_.reset();
   slimeRestVolume_ = 0.0;
   for (const std::unique_ptr<Piece>& piece : pieces_) slimeRestVolume_ += piece->restVolume();
   // A drawn surface made afresh is extracted on a grid of twice the drawn icosphere's edge (marching
@@ -224,8 +229,10 @@ void Simulation::step() {
     refinement_ /= 2;
     cleanSteps_ = 0;
   }
+  if (!settings_.slime.tearing) pendingTear_.reset();  // switched off half-way
   if (settings_.slime.tearing && stepCount_ % kTearInterval == 0 && tearPieces()) return;
-  if (settings_.slime.mergeTime > 0.0 && pieces_.size() > 1 && stepCount_ % kTearInterval == 0 && mergePieces()) return;
+  if (settings_.slime.mergeTime > 0.0 && pieces_.size() > 1 && !pendingTear_ && stepCount_ % kTearInterval == 0 && mergePieces())
+    return;
   if (stepCount_ % kGoodStateInterval == 0) saveGoodState();
 }
 
@@ -267,17 +274,16 @@ bool Simulation::mergePieces() {
 }
 
 bool Simulation::tearPieces() {
-  for (std::size_t p = 0; p < pieces_.size(); ++p) {
-    auto* bulk = dynamic_cast<BulkPiece*>(pieces_[p].get());
-    if (bulk == nullptr) continue;
+  if (pendingTear_) {
+    if (stepCount_ < pendingTear_->dueStep) return false;
     const auto begin = std::chrono::steady_clock::now();
-    const TearPlan plan = planTear(bulk->body(), settings_.slime.tearStretch, settings_.slime.smallestPiece * slimeRestVolume_);
-    if (plan.parts < 2) continue;
-    if (pieces_.size() - 1 + plan.parts > static_cast<std::size_t>(settings_.slime.maxPieces)) continue;
+    PendingTear pending = std::move(*pendingTear_);
+    pendingTear_.reset();
+    const std::size_t p = pending.piece;
+    auto* bulk = dynamic_cast<BulkPiece*>(pieces_[p].get());
     std::array<int, kHands> handPart{};
     const double support = kSmoothSupportSteps * settings_.slime.radius / std::ldexp(1.0, settings_.slime.resolution);
-    std::vector<std::unique_ptr<BulkPiece>> parts = bulk->split(plan, drawnSpacing_, support, handPart);
-    if (parts.empty()) continue;
+    std::vector<std::unique_ptr<BulkPiece>> parts = bulk->split(pending.surfaces, support, handPart);
     // Part 0 takes the torn piece's place; the others follow the last piece.
     const std::size_t firstNew = pieces_.size();
     for (int hand = 0; hand < kHands; ++hand)
@@ -291,8 +297,23 @@ bool Simulation::tearPieces() {
     touchingFor_.clear();
     selfContact_.forget();  // its contacts name the pieces' old vertices
     saveGoodState();  // the guard never rolls back across a tear
-    lastTopologyMilliseconds_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
+    // The dearer of the tear's two steps.
+    lastTopologyMilliseconds_ = std::max(
+        pending.milliseconds, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count());
     return true;
+  }
+  for (std::size_t p = 0; p < pieces_.size(); ++p) {
+    auto* bulk = dynamic_cast<BulkPiece*>(pieces_[p].get());
+    if (bulk == nullptr) continue;
+    const auto begin = std::chrono::steady_clock::now();
+    const TearPlan plan = planTear(bulk->body(), settings_.slime.tearStretch, settings_.slime.smallestPiece * slimeRestVolume_);
+    if (plan.parts < 2) continue;
+    if (pieces_.size() - 1 + plan.parts > static_cast<std::size_t>(settings_.slime.maxPieces)) continue;
+    BulkPiece::SplitSurfaces surfaces = bulk->splitSurfaces(plan, drawnSpacing_);
+    if (surfaces.surfaces.empty()) continue;
+    pendingTear_ = PendingTear{p, std::move(surfaces), stepCount_ + kTearStageSteps,
+                               std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count()};
+    return false;  // torn at the second half
   }
   return false;
 }
@@ -327,6 +348,7 @@ void Simulation::rollBack(const std::string& what) {
                std::to_string(substepsPerStep()) + " substeps per step";
   divergences_.push_back(event);
   for (const std::unique_ptr<Piece>& piece : pieces_) piece->rollBack();
+  pendingTear_.reset();  // planned on a state the guard rejected
   selfContact_.forget();  // its last positions and contacts are not the good state's
   time_ = goodTime_;
   stepCount_ = goodStep_;

@@ -31,6 +31,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -134,7 +135,9 @@ class Simulation {
   // The piece hand `hand` acts on: the one it grabbed (after a tear, the part that kept its nodes).
   Piece& handPiece(int hand) { return *pieces_[handPiece_[checkedHand(hand)]]; }
   const Piece& handPiece(int hand) const { return *pieces_[handPiece_[checkedHand(hand)]]; }
-  bool tearPieces();  // at most one tear per call; true if a piece tore
+  // At most one tear per call; true if a piece tore. A tear takes two calls kTearStageSteps apart (its
+  // drawn surfaces at the first, the pieces at the second: pendingTear_), so that no one step does it all.
+  bool tearPieces();
   bool mergePieces();  // at most one merge per call; true if two pieces fused
   void saveGoodState();
   void rollBack(const std::string& what);
@@ -162,6 +165,13 @@ class Simulation {
   double drawnSpacing_ = 0.0;     // the grid of a drawn surface made afresh, m
   int tears_ = 0, merges_ = 0;
   std::vector<double> touchingFor_;  // per pair (i < j, row after row) of pieces, s touching without a break
+  struct PendingTear {
+    std::size_t piece = 0;               // the piece that tears
+    BulkPiece::SplitSurfaces surfaces;   // its parts' drawn surfaces, made at the tear's first step
+    std::int64_t dueStep = 0;            // when the pieces are made
+    double milliseconds = 0.0;           // the first step's cost
+  };
+  std::optional<PendingTear> pendingTear_;  // a tear half done (merges wait; a rollback drops it)
   double lastTopologyMilliseconds_ = 0.0;
   bool handHeld_[kHands] = {false, false};  // the hand held at the last step
   glm::dvec3 handTarget_[kHands] = {};      // ... with this target
