@@ -57,6 +57,25 @@ Corners corners(const ContactBody& body, std::uint32_t triangle, std::span<const
   return {place(body, t.x, nodes), place(body, t.y, nodes), place(body, t.z, nodes)};
 }
 
+// How far a drawn patch may stand off its outer triangle's plane, in mean rest outer edges (the broad
+// phase's back-to-back test allows this much).
+constexpr double kSelfContactBulge = 0.25;
+
+// Whether two outer triangles lie each wholly behind the other's plane by more than `margin` (the
+// drawn patch's bulge off its triangle, the band, and what both may travel before the next broad
+// phase): then no drawn vertex over one can come to the other from its front. On a slime that is not
+// folded every pair is so (a convex surface lies behind each of its tangent planes), and so are the
+// top and bottom of a pancake, whose balls meet.
+bool backToBack(const ContactBody& first, std::uint32_t s, const ContactBody& second, std::uint32_t t, double margin) {
+  const std::vector<glm::dvec3>&x = first.state->positions, &y = second.state->positions;
+  const Triangle &p = first.surface[s], &q = second.surface[t];
+  const glm::dvec3 np = unitNormal(x[p.x], x[p.y], x[p.z]), nq = unitNormal(y[q.x], y[q.y], y[q.z]);
+  const double qInFront = std::max({glm::dot(y[q.x] - x[p.x], np), glm::dot(y[q.y] - x[p.x], np), glm::dot(y[q.z] - x[p.x], np)});
+  if (qInFront > -margin) return false;
+  const double pInFront = std::max({glm::dot(x[p.x] - y[q.x], nq), glm::dot(x[p.y] - y[q.x], nq), glm::dot(x[p.z] - y[q.x], nq)});
+  return pInFront < -margin;
+}
+
 }  // namespace
 
 void SelfContact::forget() {
@@ -171,25 +190,46 @@ void SelfContact::broadPhase(std::span<const ContactBody> bodies, const SelfCont
     double radius;
     std::uint32_t body, triangle;
   };
+  // Only motion relative to each other matters: a body that falls or is carried whole keeps its pairs.
+  // Each body's nodes are measured from their mean (its velocity, its shift since the last broad
+  // phase); the pairs between bodies add how fast and far those means part.
+  const auto mean = [](const std::vector<glm::dvec3>& values) {
+    glm::dvec3 sum(0.0);
+    for (const glm::dvec3& value : values) sum += value;
+    return values.empty() ? sum : sum / static_cast<double>(values.size());
+  };
   // The next broad phase comes before the fastest node has travelled kSelfContactTravel edges.
-  double fastest = 0.0, shortestEdge = std::numeric_limits<double>::infinity();
+  double fastest = 0.0, parting = 0.0, shortestEdge = std::numeric_limits<double>::infinity();
+  std::vector<glm::dvec3> bodyVelocity(bodies.size());
   for (std::size_t b = 0; b < bodies.size(); ++b) {
-    for (const glm::dvec3& v : bodies[b].state->velocities) fastest = std::max(fastest, glm::dot(v, v));
+    bodyVelocity[b] = mean(bodies[b].state->velocities);
+    for (const glm::dvec3& v : bodies[b].state->velocities) fastest = std::max(fastest, glm::dot(v - bodyVelocity[b], v - bodyVelocity[b]));
+    for (std::size_t c = 0; c < b; ++c) parting = std::max(parting, glm::length(bodyVelocity[b] - bodyVelocity[c]));
     shortestEdge = std::min(shortestEdge, bodies_[b].meanEdge);
   }
   const double travel = kSelfContactTravel * shortestEdge;
   // Steps until the next one, counting the step from the last positions, which the crossing test reads.
-  const double steps = travel / (std::sqrt(fastest) * options.dt) - 1.0;
+  const double steps = travel / ((std::sqrt(fastest) + parting) * options.dt) - 1.0;
   stepsToBroad_ = steps >= kSelfContactBroadInterval ? kSelfContactBroadInterval : std::max(1, static_cast<int>(steps));
-  // A body still where the last broad phase saw it (no node moved by half the travel allowance, which
-  // the balls below carry besides) has the same pairs: a slime at rest pays this scan only.
+  // Bodies still where the last broad phase saw them (no node moved by half the travel allowance
+  // relative to its body, nor a body by as much relative to another; the balls below carry that besides)
+  // have the same pairs: a slime at rest, or falling whole, pays this scan only.
   const double slack = 0.5 * travel;
+  const double nodeSlack = bodies.size() > 1 ? 0.5 * slack : slack;
   bool moved = false;
+  glm::dvec3 firstShift(0.0);
   for (std::size_t b = 0; b < bodies.size() && !moved; ++b) {
     const std::vector<glm::dvec3>& x = bodies[b].state->positions;
     const std::vector<glm::dvec3>& then = bodies_[b].atBroad;
     moved = then.size() != x.size();
-    for (std::size_t i = 0; i < x.size() && !moved; ++i) moved = glm::dot(x[i] - then[i], x[i] - then[i]) > slack * slack;
+    if (moved) break;
+    const glm::dvec3 shift = mean(x) - mean(then);
+    if (b == 0) firstShift = shift;
+    moved = glm::length(shift - firstShift) > slack;
+    for (std::size_t i = 0; i < x.size() && !moved; ++i) {
+      const glm::dvec3 own = x[i] - then[i] - shift;
+      moved = glm::dot(own, own) > nodeSlack * nodeSlack;
+    }
   }
   if (!moved) return;
   for (std::size_t b = 0; b < bodies.size(); ++b)
@@ -199,10 +239,11 @@ void SelfContact::broadPhase(std::span<const ContactBody> bodies, const SelfCont
   // before the next broad phase. (Balls, not boxes: on the convex rest of a slime, axis-aligned boxes
   // of triangles farther apart than the exclusion met.)
   std::vector<Ball> balls;
+  double margin = 0.0;
   for (std::uint32_t b = 0; b < bodies.size(); ++b) {
     const BodyCache& cache = bodies_[b];
     const ContactBody& body = bodies[b];
-    const double margin = 0.5 * (kSelfContactBand * cache.meanEdge + kSelfContactSkin) + travel + slack;
+    margin = std::max(margin, 0.5 * (kSelfContactBand * cache.meanEdge + kSelfContactSkin) + travel + slack);
     const std::vector<glm::dvec3>& x = body.state->positions;
     for (std::uint32_t s = 0; s < cache.surfaceCount; ++s) {
       if (cache.ownedStart[s] == cache.ownedStart[s + 1]) continue;
@@ -212,7 +253,7 @@ void SelfContact::broadPhase(std::span<const ContactBody> bodies, const SelfCont
                                       glm::dot(x[outer.y] - ball.centre, x[outer.y] - ball.centre),
                                       glm::dot(x[outer.z] - ball.centre, x[outer.z] - ball.centre)});
       ball.radius = std::sqrt(corner) * cache.patchScale[s];
-      ball.radius += margin;
+      ball.radius += 0.5 * (kSelfContactBand * cache.meanEdge + kSelfContactSkin) + travel + slack;
       balls.push_back(ball);
     }
   }
@@ -234,6 +275,7 @@ void SelfContact::broadPhase(std::span<const ContactBody> bodies, const SelfCont
         const glm::dvec3 apart = cache.restCentroids[p.triangle] - cache.restCentroids[q.triangle];
         if (glm::dot(apart, apart) < exclusion * exclusion) continue;
       }
+      if (backToBack(bodies[p.body], p.triangle, bodies[q.body], q.triangle, kSelfContactBulge * shortestEdge + 2.0 * margin)) continue;
       pairs_.push_back({p.body, p.triangle, q.body, q.triangle});
     }
   // The sweep's order follows positions; the contacts are resolved in the bodies' own order.

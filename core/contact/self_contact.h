@@ -18,9 +18,11 @@
 // nearer than kSelfContactExclusion rest edges are skipped (a crease bends them towards each other).
 //
 // Cost: a broad phase every kSelfContactBroadInterval steps on the bodies' outer triangles (a few
-// hundred), boxes grown by what the fastest node can travel meanwhile, sorted and swept along x; the
-// drawn vertices are tested only against the drawn triangles of the outer triangles whose boxes met.
-// A slime that touches nothing costs one broad phase per interval. Serial, in a fixed order: the same
+// hundred), balls grown by what the fastest node can travel meanwhile relative to its body's mean
+// (a body falling or carried whole keeps its pairs), sorted and swept along x; pairs that lie each
+// wholly behind the other's plane are dropped (every pair of an unfolded, convex slime, and a
+// pancake's top and bottom); the drawn vertices are tested only against the drawn triangles of the
+// outer triangles whose balls met. A slime that touches nothing costs one broad phase per interval. Serial, in a fixed order: the same
 // result whatever the thread count.
 //
 // Cling (slime.cling, Pa): a vertex pushed out sticks to its triangle. Stuck, it is held there against

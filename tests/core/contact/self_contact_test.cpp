@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -62,6 +63,8 @@ TEST(SelfContact, AFoldDoesNotPassThroughItself) {
   const FoldResult off = fold(false);
   EXPECT_GT(off.mostInsideTwice, 50u) << "without self-contact the fold should pass through itself";
   const FoldResult on = fold(true);
+  std::printf("fold: vertices 0.5 mm inside two sheets, off %zu, on %zu (deepest %.2f mm)\n", off.mostInsideTwice,
+              on.mostInsideTwice, 1e3 * on.deepest);
   EXPECT_LT(static_cast<double>(on.mostInsideTwice), 0.65 * static_cast<double>(off.mostInsideTwice))
       << "off " << off.mostInsideTwice << ", on " << on.mostInsideTwice;
   EXPECT_EQ(on.rollbacks, 0u);
