@@ -95,7 +95,10 @@ BulkBody buildBulkBody(const SlimeSettings& slime) {
   body.edgeColours = colourEdges(body.edges, mesh.positions.size());
   body.drawn = makeIcosphere(slime.level, slime.radius, slime.position);
   const int floorLevel = floorContactLevel(mesh.shellLevel);
-  if (slime.level != floorLevel)
+  // A drawn sphere coarser than the shells is the body's own nodes (below), and the floor holds those up:
+  // level-4 points, on the sphere, bulge about 0.5 mm past the faces between them, and a level-1 slime
+  // rested that far above the floor, a gap the contact's rays showed as dark specks (ContactLong).
+  if (slime.level != floorLevel && slime.level >= mesh.shellLevel)
     body.floorPoints = embedByElements(mesh, makeIcosphere(floorLevel, slime.radius, slime.position), floorLevel);
   if (slime.level >= mesh.shellLevel) {
     body.embedding = embedSurface(mesh, body.drawn, slime.level);

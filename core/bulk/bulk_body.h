@@ -85,9 +85,10 @@ struct BulkBody {
   TriangleMesh drawn;                     // the drawn icosphere at rest
   SurfaceEmbedding embedding;             // how it rides on the body
   // The points the floor holds up (resolveDrawnFloorContact, drawnFloorHeights): the element map of the
-  // icosphere of level floorContactLevel(mesh.shellLevel), whatever slime.level draws. Empty where they
-  // are the drawn vertices themselves: the drawn level is that level, or a piece made afresh by a tear
-  // or a merge (its drawn surface is on a grid of a spacing that the drawn level barely changes).
+  // icosphere of level floorContactLevel(mesh.shellLevel), whatever finer slime.level draws. Empty where
+  // they are the drawn vertices themselves: the drawn level is that level, or coarser than the shells (the
+  // drawn vertices are nodes), or a piece made afresh by a tear or a merge (its drawn surface is on a grid
+  // of a spacing that the drawn level barely changes).
   SurfaceEmbedding floorPoints;
 };
 
