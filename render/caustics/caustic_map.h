@@ -3,6 +3,7 @@
 #pragma once
 
 #include "render/caustics/photon_tracer.h"
+#include "render/caustics/wavefront.h"
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -44,6 +45,21 @@ class CausticMap {
   // (n = 1) gives g = 1 exactly: the arrived photons are the straight ones, cell for cell.
   void build(const std::vector<PhotonLanding>& landings, double emitted, double solidAngle, const FloorRegion& region,
              const std::vector<PhotonLanding>* straight = nullptr);
+  // The wavefront's map (wavefront.h): the triangles of `grid` at `level` (its grid of side
+  // grid.side() / 2^(levels − 1 − level)), `vertices` the traced ones in the grid's order, each light
+  // triangle carrying Ω / (2 side²) of the intensity. A triangle whose three vertices took the same
+  // paths (the same branches through the same pieces, or all three past the slime) spreads its power
+  // times each branch's mean weight evenly over the floor triangle that branch's three landings make,
+  // by exact area on a grid of cells of the floor (a landed sliver: a sharp focus). Where they took
+  // different paths (the slime's outline, the edge of total internal reflection) each vertex's branch
+  // spreads a third of the power over a square as wide as the triangle's straight landing. The ratio
+  // g of build() is then, cell by cell, [through + direct] / [straight + direct], the same triangles'
+  // straight landings (with the same rule) as its reference, where the cone's rim falls short of the
+  // unblocked light the untraced directions beyond it filling in (caustic_map.cpp): a slime of index 1
+  // that absorbs nothing gives g = 1 exactly. No smoothing: the cells are smaller than the grid's
+  // triangles on the floor.
+  void buildWavefront(const WavefrontGrid& grid, int level, const std::vector<WavefrontVertex>& vertices, const PhotonCone& cone,
+                      const FloorRegion& region);
   void clear() {
     nodes_.clear();
     ratios_.clear();

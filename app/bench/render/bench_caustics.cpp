@@ -25,23 +25,25 @@ struct LensScene {
   FloorRegion region;
 };
 
-// The photons [0, n) traced on all threads (chunks in order, as the renderer) and gathered.
+// The wavefront map (render/caustics/wavefront.h) of a grid of at most n vertices (side ⌊√n⌋ − 1),
+// traced on all threads (chunks in order, as the renderer) and gathered.
 CausticMap mapOf(const LensScene& scene, int photons, double& ms) {
   const auto start = std::chrono::steady_clock::now();
   const PhotonTracer tracer(scene.geometry, scene.embree, scene.parameters);
-  constexpr int kChunk = 1024;
-  const int chunks = (photons + kChunk - 1) / kChunk;
-  std::vector<std::vector<PhotonLanding>> found(static_cast<std::size_t>(chunks));
-  std::vector<PhotonTally> tallies(static_cast<std::size_t>(chunks));
-  tbb::parallel_for(0, chunks, [&](int c) {
-    const int begin = c * kChunk;
-    tracer.trace(scene.cone, static_cast<std::uint64_t>(begin), static_cast<std::uint64_t>(std::min(kChunk, photons - begin)),
-                 found[static_cast<std::size_t>(c)], tallies[static_cast<std::size_t>(c)]);
+  const WavefrontGrid grid(std::max(2, static_cast<int>(std::sqrt(static_cast<double>(photons))) - 1), 1);
+  constexpr std::uint64_t kChunk = 1024;
+  const std::uint64_t vertices = grid.vertices(), chunks = (vertices + kChunk - 1) / kChunk;
+  std::vector<std::vector<WavefrontVertex>> found(chunks);
+  std::vector<PhotonTally> tallies(chunks);
+  tbb::parallel_for(std::uint64_t{0}, chunks, [&](std::uint64_t c) {
+    const std::uint64_t begin = c * kChunk;
+    traceWavefront(tracer, scene.cone, grid, begin, std::min(kChunk, vertices - begin), found[c], tallies[c]);
   });
-  std::vector<PhotonLanding> landings;
-  for (const auto& f : found) landings.insert(landings.end(), f.begin(), f.end());
+  std::vector<WavefrontVertex> traced;
+  traced.reserve(vertices);
+  for (const auto& f : found) traced.insert(traced.end(), f.begin(), f.end());
   CausticMap map;
-  map.build(landings, photons, scene.cone.solidAngle, scene.region);
+  map.buildWavefront(grid, 0, traced, scene.cone, scene.region);
   ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return map;
 }
