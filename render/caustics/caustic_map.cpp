@@ -1,7 +1,10 @@
-// The floor-space density estimate of the photons' landings (caustic_map.h).
+// The light's wavefront spread over the floor (caustic_map.h).
 #include "render/caustics/caustic_map.h"
 
+#include "render/trace/tsan_handoff.h"
+
 #include <glm/geometric.hpp>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -10,10 +13,9 @@ namespace slime {
 namespace {
 
 constexpr int kMaxNodesPerSide = 1024;
-constexpr int kMargin = 3;  // nodes beyond the landings' box: the splat and the smoothing stay inside
-// The widest box a node grows to, in cells either side (an average density needs h ≈ 2): wider, the
-// estimate would spill far out of a lit patch (a balloon estimate does not keep the total power).
-constexpr int kMaxHalfWidth = 6;
+constexpr int kMargin = 3;  // cells beyond the region: the bilinear read stays inside
+// The wavefront map's light rows in this many bands, each summed on its own (buildWavefront).
+constexpr int kBands = 4;
 
 }  // namespace
 
@@ -45,132 +47,6 @@ FloorRegion shadowRegion(const PhotonCone& cone, const glm::vec3& center, float 
   return region;
 }
 
-void CausticMap::build(const std::vector<PhotonLanding>& landings, double emitted, double solidAngle, const FloorRegion& region,
-                       const std::vector<PhotonLanding>* straight) {
-  nodes_.clear();
-  ratios_.clear();
-  if (landings.empty() || !(emitted > 0.0)) return;
-  const glm::vec2 low = region.low, high = region.high;
-  std::size_t inside = 0;
-  for (const PhotonLanding& l : landings) inside += l.x >= low.x && l.x <= high.x && l.y >= low.y && l.y <= high.y;
-  if (inside == 0) return;
-  const double n = static_cast<double>(inside);
-  // The grid: fine cells, a quarter of the width s = √(A K / n) an average box of K photons has.
-  const double photonsPerBox = std::max(8.0, 16.0 * std::cbrt(n / 1e4));
-  const glm::vec2 extent = glm::max(high - low, glm::vec2(1e-6f));
-  double cell = 0.25 * std::sqrt(static_cast<double>(extent.x) * extent.y * photonsPerBox / n);
-  cell = std::max({cell, static_cast<double>(extent.x) / (kMaxNodesPerSide - 2 * kMargin),
-                   static_cast<double>(extent.y) / (kMaxNodesPerSide - 2 * kMargin), 1e-6});
-  cell_ = static_cast<float>(cell);
-  columns_ = static_cast<int>(std::ceil(extent.x / cell)) + 1 + 2 * kMargin;
-  rows_ = static_cast<int>(std::ceil(extent.y / cell)) + 1 + 2 * kMargin;
-  origin_ = low - static_cast<float>(kMargin) * cell_;
-  const std::size_t size = static_cast<std::size_t>(columns_) * rows_;
-  // Summed-area tables of the photons' weights and counts, each photon in its nearest node's cell.
-  const int w = columns_ + 1;
-  const std::size_t tableSize = static_cast<std::size_t>(w) * (rows_ + 1);
-  const auto cellOf = [&](const PhotonLanding& l) {
-    const int x = std::clamp(static_cast<int>(std::lround((l.x - origin_.x) / cell_)), 0, columns_ - 1);
-    const int y = std::clamp(static_cast<int>(std::lround((l.y - origin_.y) / cell_)), 0, rows_ - 1);
-    return static_cast<std::size_t>(y + 1) * w + (x + 1);
-  };
-  const auto insideRegion = [&](const PhotonLanding& l) { return l.x >= low.x && l.x <= high.x && l.y >= low.y && l.y <= high.y; };
-  const auto add = [&](const std::vector<PhotonLanding>& photons, bool directOnly, std::vector<glm::dvec3>& weights,
-                       std::vector<double>& counts) {
-    for (const PhotonLanding& l : photons) {
-      if (!insideRegion(l) || (directOnly && l.weight.x <= 0.0f)) continue;
-      const std::size_t i = cellOf(l);
-      weights[i] += glm::dvec3(l.weight);
-      counts[i] += 1.0;
-    }
-  };
-  const auto integrate = [&](std::vector<glm::dvec3>& weights, std::vector<double>& counts) {
-    for (int y = 1; y <= rows_; ++y)
-      for (int x = 1; x <= columns_; ++x) {
-        const std::size_t i = static_cast<std::size_t>(y) * w + x;
-        weights[i] += weights[i - 1] + weights[i - w] - weights[i - w - 1];
-        counts[i] += counts[i - 1] + counts[i - w] - counts[i - w - 1];
-      }
-  };
-  std::vector<glm::dvec3> weights(tableSize, glm::dvec3(0.0));
-  std::vector<double> counts(tableSize, 0.0);
-  add(landings, false, weights, counts);
-  // The ratio's "arrived" tables start from the same photons through the slime (see below).
-  std::vector<glm::dvec3> arrived;
-  std::vector<double> arrivedCounts;
-  if (straight) arrived = weights, arrivedCounts = counts;
-  integrate(weights, counts);
-  const auto box = [&](const auto& table, int x0, int y0, int x1, int y1) {  // nodes [x0, x1] × [y0, y1]
-    x0 = std::max(x0, 0), y0 = std::max(y0, 0), x1 = std::min(x1, columns_ - 1), y1 = std::min(y1, rows_ - 1);
-    const std::size_t a = static_cast<std::size_t>(y0) * w + x0, b = static_cast<std::size_t>(y0) * w + x1 + 1,
-                      c = static_cast<std::size_t>(y1 + 1) * w + x0, d = static_cast<std::size_t>(y1 + 1) * w + x1 + 1;
-    return table[d] - table[b] - table[c] + table[a];
-  };
-  // Each node: the smallest square of (2h + 1)² cells about it that holds K photons (h ≤ kMaxHalfWidth): a
-  // balloon estimate, narrow where photons crowd (the focus), wide where they are sparse.
-  std::vector<glm::vec3> estimate(size, glm::vec3(0.0f));
-  const double scale = solidAngle / emitted / (cell * cell);  // each photon: Ω/N of the intensity
-  for (int y = 0; y < rows_; ++y)
-    for (int x = 0; x < columns_; ++x) {
-      // No photon in the 3 × 3 cells about it: outside the light (the box would reach in and spill it out).
-      if (box(counts, x - 1, y - 1, x + 1, y + 1) == 0.0) continue;
-      int h = 0;
-      while (h < kMaxHalfWidth && box(counts, x - h, y - h, x + h, y + h) < photonsPerBox) ++h;
-      const double area = (2.0 * h + 1.0) * (2.0 * h + 1.0);
-      estimate[static_cast<std::size_t>(y) * columns_ + x] = glm::vec3(box(weights, x - h, y - h, x + h, y + h) * (scale / area));
-    }
-  // A balloon estimate does not integrate to the power it was given (its box stops growing where the
-  // count first reaches K, an upward fluctuation more often than not; at a patch's edge it spills):
-  // scaled so that it does, the power the photons brought is kept (the smoothing keeps it too).
-  glm::dvec3 given(0.0), estimated(0.0);
-  given = box(weights, 0, 0, columns_ - 1, rows_ - 1) * scale;
-  for (const glm::vec3& e : estimate) estimated += glm::dvec3(e);
-  for (int c = 0; c < 3; ++c) {
-    const float ratio = estimated[c] > 0.0 ? static_cast<float>(given[c] / estimated[c]) : 0.0f;
-    for (glm::vec3& e : estimate) e[c] *= ratio;
-  }
-  // Then [1 2 1]/4 along each axis, against the steps where h changes.
-  const auto at = [&](std::vector<glm::vec3>& grid, int x, int y) -> glm::vec3& {
-    return grid[static_cast<std::size_t>(std::clamp(y, 0, rows_ - 1)) * columns_ + std::clamp(x, 0, columns_ - 1)];
-  };
-  std::vector<glm::vec3> smoothed(size);
-  const auto smooth = [&](std::vector<glm::vec3>& grid, std::vector<glm::vec3>& result) {
-    for (int y = 0; y < rows_; ++y)
-      for (int x = 0; x < columns_; ++x)
-        at(smoothed, x, y) = 0.25f * at(grid, x - 1, y) + 0.5f * at(grid, x, y) + 0.25f * at(grid, x + 1, y);
-    result.assign(size, glm::vec3(0.0f));
-    for (int y = 0; y < rows_; ++y)
-      for (int x = 0; x < columns_; ++x)
-        at(result, x, y) = 0.25f * at(smoothed, x, y - 1) + 0.5f * at(smoothed, x, y) + 0.25f * at(smoothed, x, y + 1);
-  };
-  smooth(estimate, nodes_);
-  if (!straight) return;
-  // The ratio (see the header): the arrived photons (through the slime, and the direct ones) against
-  // the straight ones, each in the smallest box holding K of its own.
-  std::vector<glm::dvec3> reference(tableSize, glm::dvec3(0.0));
-  std::vector<double> referenceCounts(tableSize, 0.0);
-  add(*straight, true, arrived, arrivedCounts);
-  add(*straight, false, reference, referenceCounts);
-  integrate(arrived, arrivedCounts);
-  integrate(reference, referenceCounts);
-  const auto halfWidth = [&](const std::vector<double>& table, int x, int y) {
-    int h = 0;
-    while (h < kMaxHalfWidth && box(table, x - h, y - h, x + h, y + h) < photonsPerBox) ++h;
-    return h;
-  };
-  std::vector<glm::vec3> ratio(size, glm::vec3(0.0f));
-  for (int y = 0; y < rows_; ++y)
-    for (int x = 0; x < columns_; ++x) {
-      const int big = halfWidth(referenceCounts, x, y);
-      const double expected = box(referenceCounts, x - big, y - big, x + big, y + big);
-      if (expected == 0.0) continue;  // beyond the cone's photons: no shadow of the slime reaches here
-      const int h = halfWidth(arrivedCounts, x, y);
-      const double areas = (2.0 * big + 1.0) * (2.0 * big + 1.0) / ((2.0 * h + 1.0) * (2.0 * h + 1.0));
-      ratio[static_cast<std::size_t>(y) * columns_ + x] = glm::vec3(box(arrived, x - h, y - h, x + h, y + h) * (areas / expected));
-    }
-  smooth(ratio, ratios_);
-}
-
 glm::vec3 CausticMap::irradiance(float x, float y) const { return bilinear(nodes_, x, y); }
 
 glm::vec3 CausticMap::bilinear(const std::vector<glm::vec3>& grid, float x, float y) const {
@@ -185,14 +61,7 @@ glm::vec3 CausticMap::bilinear(const std::vector<glm::vec3>& grid, float x, floa
          fy * ((1.0f - fx) * grid[i + columns_] + fx * grid[i + columns_ + 1]);
 }
 
-glm::vec3 CausticMap::gain(const glm::vec3& point, const glm::vec3& light) const {
-  if (!ratios_.empty()) return bilinear(ratios_, point.x, point.y);
-  const glm::vec3 toLight = light - point;
-  if (!(toLight.z > 0.0f)) return glm::vec3(0.0f);
-  const float r2 = glm::dot(toLight, toLight);
-  const float cosTheta = toLight.z / std::sqrt(r2);
-  return irradiance(point.x, point.y) * (r2 / cosTheta);
-}
+glm::vec3 CausticMap::gain(const glm::vec3& point, const glm::vec3&) const { return bilinear(ratios_, point.x, point.y); }
 
 namespace {
 
@@ -274,7 +143,7 @@ void coverTriangle(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c
 }  // namespace
 
 void CausticMap::buildWavefront(const WavefrontGrid& grid, int level, const std::vector<WavefrontVertex>& vertices,
-                                const PhotonCone& cone, const FloorRegion& region) {
+                                const PhotonCone& cone, const FloorRegion& region, tbb::task_arena* arena) {
   const double solidAngle = cone.solidAngle;
   nodes_.clear();
   ratios_.clear();
@@ -296,27 +165,30 @@ void CausticMap::buildWavefront(const WavefrontGrid& grid, int level, const std:
   rows_ = cells.rows;
   origin_ = glm::vec2(cells.low + 0.5 * cell);  // node (i, j): the centre of cell (i, j)
   const std::size_t size = static_cast<std::size_t>(columns_) * rows_;
-  std::vector<glm::vec3> through(size, glm::vec3(0.0f));
-  std::vector<float> direct(size, 0.0f), straight(size, 0.0f);
+  // The power arrived through the slime, arrived past it, and the straight reference's, per cell.
+  struct Sums {
+    std::vector<glm::vec3> through;
+    std::vector<float> direct, straight;
+  };
   const auto vertexAt = [&](int column, int row) -> const WavefrontVertex& {
     return vertices[grid.rank(column * step, row * step)];
   };
-  const auto depositBranch = [&](const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c, bool isDirect,
+  const auto depositBranch = [&](Sums& sums, const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c, bool isDirect,
                                  const glm::vec3& power) {
-    if (isDirect) coverTriangle(a, b, c, cells, [&](std::size_t i, double f) { direct[i] += static_cast<float>(f) * power.x; });
-    else coverTriangle(a, b, c, cells, [&](std::size_t i, double f) { through[i] += static_cast<float>(f) * power; });
+    if (isDirect) coverTriangle(a, b, c, cells, [&](std::size_t i, double f) { sums.direct[i] += static_cast<float>(f) * power.x; });
+    else coverTriangle(a, b, c, cells, [&](std::size_t i, double f) { sums.through[i] += static_cast<float>(f) * power; });
   };
-  const auto square = [&](const glm::dvec2& centre, double half, bool isDirect, bool isStraight, const glm::vec3& power) {
+  const auto square = [&](Sums& sums, const glm::dvec2& centre, double half, bool isDirect, bool isStraight, const glm::vec3& power) {
     const glm::dvec2 p0 = centre - half, p1(centre.x + half, centre.y - half), p2 = centre + half, p3(centre.x - half, centre.y + half);
     const glm::vec3 halfPower = 0.5f * power;
     if (isStraight) {
-      const auto add = [&](std::size_t i, double f) { straight[i] += static_cast<float>(f) * halfPower.x; };
+      const auto add = [&](std::size_t i, double f) { sums.straight[i] += static_cast<float>(f) * halfPower.x; };
       coverTriangle(p0, p1, p2, cells, add), coverTriangle(p0, p2, p3, cells, add);
     } else {
-      depositBranch(p0, p1, p2, isDirect, halfPower), depositBranch(p0, p2, p3, isDirect, halfPower);
+      depositBranch(sums, p0, p1, p2, isDirect, halfPower), depositBranch(sums, p0, p2, p3, isDirect, halfPower);
     }
   };
-  const auto triangle = [&](const WavefrontVertex& a, const WavefrontVertex& b, const WavefrontVertex& c) {
+  const auto triangle = [&](Sums& sums, const WavefrontVertex& a, const WavefrontVertex& b, const WavefrontVertex& c) {
     const WavefrontVertex* corner[3] = {&a, &b, &c};
     // Which path reaches each corner's branches at all three corners (the index there, else −1).
     const auto find = [](const WavefrontVertex& v, std::uint64_t path) {
@@ -334,11 +206,11 @@ void CausticMap::buildWavefront(const WavefrontGrid& grid, int level, const std:
       if (mb < 0 || mc < 0) continue;
       const WavefrontBranch &bb = b.branches[mb], &bc = c.branches[mc];
       const glm::vec3 power = fluxF * ((ba.weight + bb.weight + bc.weight) / 3.0f);
-      depositBranch({ba.x, ba.y}, {bb.x, bb.y}, {bc.x, bc.y}, ba.path == kDirectPath, power);
+      depositBranch(sums, {ba.x, ba.y}, {bb.x, bb.y}, {bc.x, bc.y}, ba.path == kDirectPath, power);
     }
     const int directCorners = isDirect(a) + isDirect(b) + isDirect(c);
     if (directCorners == 0 && straightLands)  // all three met the slime: the light it blocks, as a triangle
-      coverTriangle(sa, sb, sc, cells, [&](std::size_t i, double f) { straight[i] += static_cast<float>(f) * fluxF; });
+      coverTriangle(sa, sb, sc, cells, [&](std::size_t i, double f) { sums.straight[i] += static_cast<float>(f) * fluxF; });
     // A path at one or two corners only (the slime's outline, the edge of total internal reflection,
     // a branch cut off at one corner): a third of the power for each of its landings, over a square
     // as wide as the straight landing's triangle (at least a cell); where the triangle straddles the
@@ -352,17 +224,48 @@ void CausticMap::buildWavefront(const WavefrontGrid& grid, int level, const std:
         const WavefrontBranch& branch = x.branches[k];
         bool shared = true;
         for (int o = 1; o < 3; ++o) shared = shared && find(*corner[(v + o) % 3], branch.path) >= 0;
-        if (!shared) square({branch.x, branch.y}, half, branch.path == kDirectPath, false, third * branch.weight);
+        if (!shared) square(sums, {branch.x, branch.y}, half, branch.path == kDirectPath, false, third * branch.weight);
       }
-      if (directCorners > 0 && directCorners < 3 && !isDirect(x) && x.straight) square({x.sx, x.sy}, half, false, true, glm::vec3(third));
+      if (directCorners > 0 && directCorners < 3 && !isDirect(x) && x.straight) square(sums, {x.sx, x.sy}, half, false, true, glm::vec3(third));
     }
   };
-  for (int row = 0; row < side; ++row)
-    for (int column = 0; column < side; ++column) {
-      const WavefrontVertex &v00 = vertexAt(column, row), &v10 = vertexAt(column + 1, row), &v11 = vertexAt(column + 1, row + 1),
-                            &v01 = vertexAt(column, row + 1);
-      triangle(v00, v10, v11);
-      triangle(v00, v11, v01);
+  // The light grid's rows in kBands bands, each into its own sums on the arena's threads, added in
+  // order: the same map whatever the threads.
+  std::vector<Sums> bands(static_cast<std::size_t>(std::min(kBands, side)));
+  const auto band = [&](std::size_t b) {
+    Sums& sums = bands[b];
+    sums.through.assign(size, glm::vec3(0.0f));
+    sums.direct.assign(size, 0.0f);
+    sums.straight.assign(size, 0.0f);
+    const int first = static_cast<int>(b * side / bands.size()), last = static_cast<int>((b + 1) * side / bands.size());
+    for (int row = first; row < last; ++row)
+      for (int column = 0; column < side; ++column) {
+        const WavefrontVertex &v00 = vertexAt(column, row), &v10 = vertexAt(column + 1, row), &v11 = vertexAt(column + 1, row + 1),
+                              &v01 = vertexAt(column, row + 1);
+        triangle(sums, v00, v10, v11);
+        triangle(sums, v00, v11, v01);
+      }
+  };
+  if (arena) {
+    handOff(this);  // the vertices, to the workers (tsan_handoff.h)
+    arena->execute([&] {
+      tbb::parallel_for(std::size_t{0}, bands.size(), [&](std::size_t b) {
+        takeOver(this);
+        band(b);
+        handOff(this);  // the band's sums, back
+      });
+    });
+    takeOver(this);
+  } else {
+    for (std::size_t b = 0; b < bands.size(); ++b) band(b);
+  }
+  std::vector<glm::vec3>& through = bands[0].through;
+  std::vector<float>&direct = bands[0].direct, &straight = bands[0].straight;
+  for (std::size_t b = 1; b < bands.size(); ++b)
+    for (std::size_t i = 0; i < size; ++i) {
+      through[i] += bands[b].through[i];
+      direct[i] += bands[b].direct[i];
+      straight[i] += bands[b].straight[i];
     }
   // E / I of the light through the slime, and g, cell by cell.
   const float perArea = static_cast<float>(1.0 / (cell * cell));

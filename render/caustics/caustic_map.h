@@ -1,5 +1,5 @@
-// Caustics, step two: the photons' landings gathered on the floor in a grid, a density estimate of
-// the light that came through the slime, read as a gain on the unblocked direct light.
+// Caustics, step two: the light's wavefront spread over the floor in a grid of cells, the light that
+// came through the slime read as a gain on the unblocked direct light.
 #pragma once
 
 #include "render/caustics/photon_tracer.h"
@@ -7,6 +7,7 @@
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <tbb/task_arena.h>
 
 #include <vector>
 
@@ -25,26 +26,6 @@ FloorRegion shadowRegion(const PhotonCone& cone, const glm::vec3& center, float 
 
 class CausticMap {
  public:
-  // The irradiance of the landings, per unit intensity of the light: each photon carries Ω/N of it
-  // (N = `emitted`, Ω the cone's solid angle), over `region` (photons landing outside it are left
-  // out). The kernel adapts to the photon count, globally and locally: on a grid of cells s,
-  //   s = ¼ √(A K / n),  K = 16 (n / 10⁴)^(1/3) (at least 8),
-  // (A the region's area, n the photons landed in it), each node's estimate is the power in the
-  // smallest square of (2h + 1)² cells about it holding K photons, over its area (a balloon
-  // estimator, a k-nearest-neighbour density: narrow at a focus, wide where photons are sparse), then
-  // smoothed by the binomial [1 2 1]/4 along each axis and read bilinearly. More photons: a finer
-  // grid (s ∝ n^(−1/3)) and more of them per estimate (K ∝ n^(1/3)), so bias and noise both fall.
-  //
-  // With `straight` (PhotonTracer::trace's: each photon's straight landing, weight 1 where it missed
-  // the slime), the map also holds the ratio that gain() reads: at each node,
-  //   g = [Σ_box(h) w_through + Σ_box(h) w_direct] / area(h)  ÷  [N_straight in box(H)] / area(H),
-  // all the light that arrived (through the slime or past it) over the light that would have arrived
-  // with nothing in the way, each a balloon estimate over its own photons (h: the smallest box holding
-  // K arrived photons, H: K straight ones), then [1 2 1]/4 along each axis. Where the kernel reaches
-  // past the shadow's outline the direct photons fill it, so a slime that bends and absorbs nothing
-  // (n = 1) gives g = 1 exactly: the arrived photons are the straight ones, cell for cell.
-  void build(const std::vector<PhotonLanding>& landings, double emitted, double solidAngle, const FloorRegion& region,
-             const std::vector<PhotonLanding>* straight = nullptr);
   // The wavefront's map (wavefront.h): the triangles of `grid` at `level` (its grid of side
   // grid.side() / 2^(levels − 1 − level)), `vertices` the traced ones in the grid's order, each light
   // triangle carrying Ω / (2 side²) of the intensity. A triangle whose three vertices took the same
@@ -52,26 +33,26 @@ class CausticMap {
   // times each branch's mean weight evenly over the floor triangle that branch's three landings make,
   // by exact area on a grid of cells of the floor (a landed sliver: a sharp focus). Where they took
   // different paths (the slime's outline, the edge of total internal reflection) each vertex's branch
-  // spreads a third of the power over a square as wide as the triangle's straight landing. The ratio
-  // g of build() is then, cell by cell, [through + direct] / [straight + direct], the same triangles'
-  // straight landings (with the same rule) as its reference, where the cone's rim falls short of the
+  // spreads a third of the power over a square as wide as the triangle's straight landing. The gain
+  // is then, cell by cell, all the light that arrived (through the slime, and past it) over the same
+  // triangles' straight landings spread by the same rule, where the cone's rim falls short of the
   // unblocked light the untraced directions beyond it filling in (caustic_map.cpp): a slime of index 1
-  // that absorbs nothing gives g = 1 exactly. No smoothing: the cells are smaller than the grid's
-  // triangles on the floor.
+  // that absorbs nothing gives g = 1 exactly. No smoothing: the cells are half as wide as a light
+  // triangle's straight landing.
+  // `arena`: the triangles spread in its threads (null: on this one; the map is the same).
   void buildWavefront(const WavefrontGrid& grid, int level, const std::vector<WavefrontVertex>& vertices, const PhotonCone& cone,
-                      const FloorRegion& region);
+                      const FloorRegion& region, tbb::task_arena* arena = nullptr);
   void clear() {
     nodes_.clear();
     ratios_.clear();
   }
   bool empty() const { return nodes_.empty(); }
 
-  // E(x) / I in 1/m² (per channel) at floor point (x, y): zero outside the grid.
+  // E(x) / I in 1/m² (per channel) of the light through the slime at floor point (x, y): zero outside the grid.
   glm::vec3 irradiance(float x, float y) const;
   // The light that reaches floor point `point` (its shadow ray blocked by the slime), as a multiple of
-  // the direct light it would get from `light` unblocked (litFloor: I cos θ, the seed's light without
-  // fall-off): the ratio g above, read bilinearly; built without `straight`, the irradiance's
-  //   g = (E / I) · r² / cos θ,  r = |light − point|, cos θ = (light − point)_z / r.
+  // the direct light it would get from the light unblocked (litFloor: I cos θ, the seed's light
+  // without fall-off): the ratio g above, read bilinearly between the cells' centres.
   glm::vec3 gain(const glm::vec3& point, const glm::vec3& light) const;
 
   float cellSize() const { return cell_; }

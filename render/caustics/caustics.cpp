@@ -123,7 +123,7 @@ const CausticMap* Caustics::update(const Settings& settings, const ShadingParame
   }
   const PhotonTracer tracer(geometry, intersector, parameters);
   const auto build = [&](const WavefrontGrid& grid, int level) {
-    map_.buildWavefront(grid, level, vertices_, cone_, shadowRegion(cone_, geometry.boundCenter, geometry.boundRadius));
+    map_.buildWavefront(grid, level, vertices_, cone_, shadowRegion(cone_, geometry.boundCenter, geometry.boundRadius), arena);
     builtLevel_ = level;
     lastMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return map_.empty() ? nullptr : &map_;
