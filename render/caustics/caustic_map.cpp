@@ -143,7 +143,8 @@ void coverTriangle(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c
 }  // namespace
 
 void CausticMap::buildWavefront(const WavefrontGrid& grid, int level, const std::vector<WavefrontVertex>& vertices,
-                                const PhotonCone& cone, const FloorRegion& region, tbb::task_arena* arena) {
+                                const PhotonCone& cone, const FloorRegion& region, tbb::task_arena* arena,
+                                double cellPerTriangle) {
   const double solidAngle = cone.solidAngle;
   nodes_.clear();
   ratios_.clear();
@@ -151,9 +152,9 @@ void CausticMap::buildWavefront(const WavefrontGrid& grid, int level, const std:
   const int step = 1 << (grid.levels() - 1 - level), side = grid.side() / step;
   const double flux = solidAngle / (2.0 * side * side);  // each light triangle's share of the intensity
   const float fluxF = static_cast<float>(flux);
-  // Cells about half as wide as the light triangles' mean landing, at most kMaxNodesPerSide a side.
+  // Cells `cellPerTriangle` as wide as the light triangles' mean landing, at most kMaxNodesPerSide a side.
   const glm::dvec2 extent = glm::max(glm::dvec2(region.high - region.low), glm::dvec2(1e-6));
-  double cell = 0.5 * std::sqrt(extent.x * extent.y / (static_cast<double>(side) * side));
+  double cell = cellPerTriangle * std::sqrt(extent.x * extent.y / (static_cast<double>(side) * side));
   cell = std::max({cell, extent.x / (kMaxNodesPerSide - 2 * kMargin), extent.y / (kMaxNodesPerSide - 2 * kMargin), 1e-6});
   CellGrid cells;
   cells.cell = cell;

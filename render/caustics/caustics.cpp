@@ -122,8 +122,9 @@ const CausticMap* Caustics::update(const Settings& settings, const ShadingParame
     halvesValid_ = false;
   }
   const PhotonTracer tracer(geometry, intersector, parameters);
-  const auto build = [&](const WavefrontGrid& grid, int level) {
-    map_.buildWavefront(grid, level, vertices_, cone_, shadowRegion(cone_, geometry.boundCenter, geometry.boundRadius), arena);
+  const auto build = [&](const WavefrontGrid& grid, int level, double cellPerTriangle = CausticMap::kFineCells) {
+    map_.buildWavefront(grid, level, vertices_, cone_, shadowRegion(cone_, geometry.boundCenter, geometry.boundRadius), arena,
+                        cellPerTriangle);
     builtLevel_ = level;
     lastMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return map_.empty() ? nullptr : &map_;
@@ -163,7 +164,7 @@ const CausticMap* Caustics::update(const Settings& settings, const ShadingParame
       halvesValid_ = true;
       for (const Vertices& h : halves_) append(h);  // in the grid's order: [0, M/2) then [M/2, M)
       traced_ = moving;
-      return build(movingGrid_, 0);
+      return build(movingGrid_, 0, CausticMap::kCoarseCells);
     }
   } else if (converged() && onStillGrid_) {
     return map_.empty() ? nullptr : &map_;

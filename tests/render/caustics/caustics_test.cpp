@@ -514,7 +514,8 @@ TEST(Caustics, MovingFramesTraceHalfThePhotonsAndKeepTheOtherHalf) {
     for (const auto& part : parts) all.insert(all.end(), part.begin(), part.end());
     const PhotonCone cone = photonCone(ball.geometry, ball.parameters.lightPosition);
     CausticMap map;
-    map.buildWavefront(movingGrid, 0, all, cone, shadowRegion(cone, ball.geometry.boundCenter, ball.geometry.boundRadius));
+    map.buildWavefront(movingGrid, 0, all, cone, shadowRegion(cone, ball.geometry.boundCenter, ball.geometry.boundRadius), nullptr,
+                       CausticMap::kCoarseCells);
     return map;
   };
   // The gain over a grid of floor points about the shadows: equal maps give equal gains everywhere.
