@@ -77,12 +77,6 @@ int clipPolygon(const glm::dvec2* in, int n, int axis, double value, bool below,
   return m;
 }
 
-double polygonArea(const glm::dvec2* p, int n) {
-  double twice = 0.0;
-  for (int i = 0; i < n; ++i) twice += p[i].x * p[(i + 1) % n].y - p[(i + 1) % n].x * p[i].y;
-  return 0.5 * std::abs(twice);
-}
-
 // A grid of floor cells: columns × rows of side `cell`, cell (0, 0)'s low corner at `low`.
 struct CellGrid {
   glm::dvec2 low{0.0};
@@ -92,51 +86,91 @@ struct CellGrid {
   int row(double y) const { return static_cast<int>(std::floor((y - low.y) / cell)); }
 };
 
-// Calls add(cell index, fraction) for each cell of `grid` that triangle (a, b, c) covers, with the
-// fraction of the triangle's area inside it (exact: the triangle clipped to each row, then to each
-// column); cells outside the grid get nothing. A triangle of no area puts a third in each corner's cell.
-template <class Add>
-void coverTriangle(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c, const CellGrid& grid, Add&& add) {
-  const double area = 0.5 * std::abs((b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y));
-  const auto inCell = [&](const glm::dvec2& p, double fraction) {
-    const int x = grid.column(p.x), y = grid.row(p.y);
-    if (x >= 0 && y >= 0 && x < grid.columns && y < grid.rows) add(static_cast<std::size_t>(y) * grid.columns + x, fraction);
+// Spreads `value` over the cells of `grid` that triangle (a, b, c) covers, each getting the fraction
+// of the triangle's area inside it, exactly (cells outside the grid get nothing), as a vector
+// rasteriser does (the signed area each edge leaves to its right, row by row, as in font-rs, Levien
+// 2016): into `deltas`, rows of grid.columns + 2, whose running sums along a row (summedRows) are
+// the cells' shares. Its cost is the edges' length in cells, not the cells covered. A triangle of
+// no area puts a third in each corner's cell.
+template <class T>
+void spreadTriangle(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c, const CellGrid& grid, const T& value,
+                    std::vector<T>& deltas) {
+  const std::size_t stride = static_cast<std::size_t>(grid.columns) + 2;
+  const double columns = grid.columns;
+  glm::dvec2 p[8] = {(a - grid.low) / grid.cell, (b - grid.low) / grid.cell, (c - grid.low) / grid.cell};
+  const auto inCell = [&](const glm::dvec2& q, const T& v) {
+    const double x = std::floor(q.x), y = std::floor(q.y);
+    if (!(x >= 0.0 && y >= 0.0 && x < columns && y < grid.rows)) return;
+    const std::size_t i = static_cast<std::size_t>(y) * stride + static_cast<std::size_t>(x);
+    deltas[i] += v, deltas[i + 1] -= v;
   };
-  if (!(area > 1e-9 * grid.cell * grid.cell)) {
-    if (std::isfinite(area)) inCell(a, 1.0 / 3.0), inCell(b, 1.0 / 3.0), inCell(c, 1.0 / 3.0);
+  const double twice = (p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[2].x - p[0].x) * (p[1].y - p[0].y);
+  if (!(std::abs(twice) > 2e-9)) {
+    if (std::isfinite(twice)) {
+      const T third = value * (1.0f / 3.0f);
+      inCell(p[0], third), inCell(p[1], third), inCell(p[2], third);
+    }
     return;
   }
-  const int r0 = std::max(0, grid.row(std::min({a.y, b.y, c.y}))), r1 = std::min(grid.rows - 1, grid.row(std::max({a.y, b.y, c.y})));
-  const int c0 = std::max(0, grid.column(std::min({a.x, b.x, c.x}))),
-            c1 = std::min(grid.columns - 1, grid.column(std::max({a.x, b.x, c.x})));
-  if (r0 > r1 || c0 > c1) return;
-  if (r0 == r1 && c0 == c1) return add(static_cast<std::size_t>(r0) * grid.columns + c0, 1.0);
-  const glm::dvec2 corners[3] = {a, b, c};
-  glm::dvec2 upper[8], strip[8], left[8];
-  for (int r = r0; r <= r1; ++r) {
-    const double y0 = grid.low.y + r * grid.cell;
-    const int nu = clipPolygon(corners, 3, 1, y0, false, upper);
-    const int ns = clipPolygon(upper, nu, 1, y0 + grid.cell, true, strip);
-    if (ns < 3) continue;
-    double xMin = strip[0].x, xMax = strip[0].x;
-    for (int i = 1; i < ns; ++i) xMin = std::min(xMin, strip[i].x), xMax = std::max(xMax, strip[i].x);
-    const int first = std::max(c0, grid.column(xMin)), last = std::min(c1, grid.column(xMax));
-    double before = 0.0;  // the strip's area left of the first column's low edge (outside the grid or not)
-    if (first > 0 || xMin < grid.low.x) {
-      const int nl = clipPolygon(strip, ns, 0, grid.low.x + first * grid.cell, true, left);
-      before = nl >= 3 ? polygonArea(left, nl) : 0.0;
-    }
-    for (int x = first; x <= last; ++x) {
-      double upTo;
-      if (x == last && grid.low.x + (x + 1) * grid.cell >= xMax) {
-        upTo = polygonArea(strip, ns);
-      } else {
-        const int nl = clipPolygon(strip, ns, 0, grid.low.x + (x + 1) * grid.cell, true, left);
-        upTo = nl >= 3 ? polygonArea(left, nl) : 0.0;
+  const double xMin = std::min({p[0].x, p[1].x, p[2].x}), xMax = std::max({p[0].x, p[1].x, p[2].x});
+  const double yMin = std::min({p[0].y, p[1].y, p[2].y}), yMax = std::max({p[0].y, p[1].y, p[2].y});
+  if (!(xMax > 0.0 && yMax > 0.0 && xMin < columns && yMin < grid.rows)) return;
+  if (std::floor(xMin) == std::floor(xMax) && std::floor(yMin) == std::floor(yMax)) return inCell(p[0], value);
+  // Inside, left of an edge going down and right of one going up: −1 for a counter-clockwise triangle.
+  const float scale = static_cast<float>((twice > 0.0 ? -2.0 : 2.0) / std::abs(twice));
+  int n = 3;
+  if (xMin < 0.0 || xMax > columns) {  // the parts beyond the grid's sides cut off
+    glm::dvec2 kept[8];
+    n = clipPolygon(p, n, 0, 0.0, false, kept);
+    n = clipPolygon(kept, n, 0, columns, true, p);
+    if (n < 3) return;
+  }
+  for (int e = 0; e < n; ++e) {
+    glm::dvec2 p0 = p[e], p1 = p[(e + 1) % n];
+    if (p0.y == p1.y) continue;
+    float direction = scale;
+    if (p0.y > p1.y) std::swap(p0, p1), direction = -scale;
+    const T d = value * direction;
+    const double dxdy = (p1.x - p0.x) / (p1.y - p0.y);
+    const int first = std::max(0, static_cast<int>(std::floor(p0.y))), end = std::min(grid.rows, static_cast<int>(std::ceil(p1.y)));
+    for (int y = first; y < end; ++y) {
+      const double top = std::max(static_cast<double>(y), p0.y), bottom = std::min(y + 1.0, p1.y), dy = bottom - top;
+      if (!(dy > 0.0)) continue;
+      const double xa = std::clamp(p0.x + (top - p0.y) * dxdy, 0.0, columns), xb = std::clamp(p0.x + (bottom - p0.y) * dxdy, 0.0, columns);
+      const double x0 = std::min(xa, xb), x1 = std::max(xa, xb);
+      T* row = &deltas[static_cast<std::size_t>(y) * stride];
+      const double x0Floor = std::floor(x0), x1Ceil = std::ceil(x1);
+      const int i0 = static_cast<int>(x0Floor), i1 = static_cast<int>(x1Ceil);
+      if (i1 <= i0 + 1) {  // within one cell: the part right of the edge, and all of the cells beyond
+        const double right = 0.5 * (xa + xb) - x0Floor;
+        row[i0] += d * static_cast<float>(dy * (1.0 - right));
+        row[i0 + 1] += d * static_cast<float>(dy * right);
+        continue;
       }
-      if (upTo > before) add(static_cast<std::size_t>(r) * grid.columns + x, (upTo - before) / area);
-      before = upTo;
+      const double s = 1.0 / (x1 - x0), f0 = x0 - x0Floor, f1 = x1 - x1Ceil + 1.0;
+      const double a0 = 0.5 * s * (1.0 - f0) * (1.0 - f0), am = 0.5 * s * f1 * f1;
+      row[i0] += d * static_cast<float>(dy * a0);
+      if (i1 == i0 + 2) {
+        row[i0 + 1] += d * static_cast<float>(dy * (1.0 - a0 - am));
+      } else {
+        const double a1 = s * (1.5 - f0);
+        row[i0 + 1] += d * static_cast<float>(dy * (a1 - a0));
+        for (int x = i0 + 2; x < i1 - 1; ++x) row[x] += d * static_cast<float>(dy * s);
+        const double a2 = a1 + (i1 - i0 - 3) * s;
+        row[i1 - 1] += d * static_cast<float>(dy * (1.0 - a2 - am));
+      }
+      row[i1] += d * static_cast<float>(dy * am);
     }
+  }
+}
+
+// spreadTriangle's rows summed along: each cell's share.
+template <class T>
+void summedRows(const CellGrid& grid, std::vector<T>& deltas) {
+  const std::size_t stride = static_cast<std::size_t>(grid.columns) + 2;
+  for (int y = 0; y < grid.rows; ++y) {
+    T* row = &deltas[static_cast<std::size_t>(y) * stride];
+    for (int x = 1; x < grid.columns; ++x) row[x] += row[x - 1];
   }
 }
 
@@ -165,8 +199,9 @@ void CausticMap::buildWavefront(const WavefrontGrid& grid, int level, const std:
   columns_ = cells.columns;
   rows_ = cells.rows;
   origin_ = glm::vec2(cells.low + 0.5 * cell);  // node (i, j): the centre of cell (i, j)
-  const std::size_t size = static_cast<std::size_t>(columns_) * rows_;
-  // The power arrived through the slime, arrived past it, and the straight reference's, per cell.
+  const std::size_t size = static_cast<std::size_t>(columns_) * rows_, spread = static_cast<std::size_t>(columns_ + 2) * rows_;
+  // The power arrived through the slime, arrived past it, and the straight reference's, per cell
+  // (as spreadTriangle's rows of differences until summedRows).
   struct Sums {
     std::vector<glm::vec3> through;
     std::vector<float> direct, straight;
@@ -176,15 +211,14 @@ void CausticMap::buildWavefront(const WavefrontGrid& grid, int level, const std:
   };
   const auto depositBranch = [&](Sums& sums, const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c, bool isDirect,
                                  const glm::vec3& power) {
-    if (isDirect) coverTriangle(a, b, c, cells, [&](std::size_t i, double f) { sums.direct[i] += static_cast<float>(f) * power.x; });
-    else coverTriangle(a, b, c, cells, [&](std::size_t i, double f) { sums.through[i] += static_cast<float>(f) * power; });
+    if (isDirect) spreadTriangle(a, b, c, cells, power.x, sums.direct);
+    else spreadTriangle(a, b, c, cells, power, sums.through);
   };
   const auto square = [&](Sums& sums, const glm::dvec2& centre, double half, bool isDirect, bool isStraight, const glm::vec3& power) {
     const glm::dvec2 p0 = centre - half, p1(centre.x + half, centre.y - half), p2 = centre + half, p3(centre.x - half, centre.y + half);
     const glm::vec3 halfPower = 0.5f * power;
     if (isStraight) {
-      const auto add = [&](std::size_t i, double f) { sums.straight[i] += static_cast<float>(f) * halfPower.x; };
-      coverTriangle(p0, p1, p2, cells, add), coverTriangle(p0, p2, p3, cells, add);
+      spreadTriangle(p0, p1, p2, cells, halfPower.x, sums.straight), spreadTriangle(p0, p2, p3, cells, halfPower.x, sums.straight);
     } else {
       depositBranch(sums, p0, p1, p2, isDirect, halfPower), depositBranch(sums, p0, p2, p3, isDirect, halfPower);
     }
@@ -211,7 +245,7 @@ void CausticMap::buildWavefront(const WavefrontGrid& grid, int level, const std:
     }
     const int directCorners = isDirect(a) + isDirect(b) + isDirect(c);
     if (directCorners == 0 && straightLands)  // all three met the slime: the light it blocks, as a triangle
-      coverTriangle(sa, sb, sc, cells, [&](std::size_t i, double f) { sums.straight[i] += static_cast<float>(f) * fluxF; });
+      spreadTriangle(sa, sb, sc, cells, fluxF, sums.straight);
     // A path at one or two corners only (the slime's outline, the edge of total internal reflection,
     // a branch cut off at one corner): a third of the power for each of its landings, over a square
     // as wide as the straight landing's triangle (at least a cell); where the triangle straddles the
@@ -235,9 +269,9 @@ void CausticMap::buildWavefront(const WavefrontGrid& grid, int level, const std:
   std::vector<Sums> bands(static_cast<std::size_t>(std::min(kBands, side)));
   const auto band = [&](std::size_t b) {
     Sums& sums = bands[b];
-    sums.through.assign(size, glm::vec3(0.0f));
-    sums.direct.assign(size, 0.0f);
-    sums.straight.assign(size, 0.0f);
+    sums.through.assign(spread, glm::vec3(0.0f));
+    sums.direct.assign(spread, 0.0f);
+    sums.straight.assign(spread, 0.0f);
     const int first = static_cast<int>(b * side / bands.size()), last = static_cast<int>((b + 1) * side / bands.size());
     for (int row = first; row < last; ++row)
       for (int column = 0; column < side; ++column) {
@@ -263,19 +297,23 @@ void CausticMap::buildWavefront(const WavefrontGrid& grid, int level, const std:
   std::vector<glm::vec3>& through = bands[0].through;
   std::vector<float>&direct = bands[0].direct, &straight = bands[0].straight;
   for (std::size_t b = 1; b < bands.size(); ++b)
-    for (std::size_t i = 0; i < size; ++i) {
+    for (std::size_t i = 0; i < spread; ++i) {
       through[i] += bands[b].through[i];
       direct[i] += bands[b].direct[i];
       straight[i] += bands[b].straight[i];
     }
+  summedRows(cells, through), summedRows(cells, direct), summedRows(cells, straight);
   // E / I of the light through the slime, and g, cell by cell.
   const float perArea = static_cast<float>(1.0 / (cell * cell));
   nodes_.resize(size);
   ratios_.assign(size, glm::vec3(0.0f));
   for (int y = 0; y < rows_; ++y)
     for (int x = 0; x < columns_; ++x) {
-      const std::size_t i = static_cast<std::size_t>(y) * columns_ + x;
-      nodes_[i] = through[i] * perArea;
+      const std::size_t i = static_cast<std::size_t>(y) * columns_ + x, k = static_cast<std::size_t>(y) * (columns_ + 2) + x;
+      // (A row's running sum leaves a rounding's residue where its triangles end: never below zero.)
+      const glm::vec3 arrived = glm::max(through[k], glm::vec3(0.0f));
+      const float past = std::max(direct[k], 0.0f), expected = std::max(straight[k], 0.0f) + past;
+      nodes_[i] = arrived * perArea;
       // The light of the directions outside the cone, which are not traced, reaches the cells where
       // the cone's straight light falls short of the unblocked light's I cos θ / r² (at the cone's rim):
       //   g = [through + direct + max(0, U − S)] / max(U, S),  S = straight + direct,
@@ -284,9 +322,8 @@ void CausticMap::buildWavefront(const WavefrontGrid& grid, int level, const std:
       const glm::dvec3 toCell = glm::dvec3(cells.low.x + (x + 0.5) * cell, cells.low.y + (y + 0.5) * cell, 0.0) - glm::dvec3(cone.apex);
       const double r = glm::length(toCell);
       const float unblocked = r > 0.0 ? static_cast<float>(static_cast<double>(cone.apex.z) / (r * r * r) * cell * cell) : 0.0f;
-      const float expected = straight[i] + direct[i];
       const float reference = std::max(unblocked, expected);
-      if (reference > 0.0f) ratios_[i] = (through[i] + glm::vec3(direct[i] + std::max(0.0f, unblocked - expected))) / reference;
+      if (reference > 0.0f) ratios_[i] = (arrived + glm::vec3(past + std::max(0.0f, unblocked - expected))) / reference;
     }
 }
 
