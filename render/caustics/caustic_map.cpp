@@ -89,8 +89,8 @@ struct CellGrid {
 // Spreads `value` over the cells of `grid` that triangle (a, b, c) covers, each getting the fraction
 // of the triangle's area inside it, exactly (cells outside the grid get nothing), as a vector
 // rasteriser does (the signed area each edge leaves to its right, row by row, as in font-rs, Levien
-// 2016): into `deltas`, rows of grid.columns + 2, whose running sums along a row (summedRows) are
-// the cells' shares. Its cost is the edges' length in cells, not the cells covered. A triangle of
+// 2016): into `deltas`, rows of grid.columns + 2, whose running sums along a row (finishWavefront)
+// are the cells' shares. Its cost is the edges' length in cells, not the cells covered. A triangle of
 // no area puts a third in each corner's cell.
 template <class T>
 void spreadTriangle(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c, const CellGrid& grid, const T& value,
@@ -164,55 +164,83 @@ void spreadTriangle(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& 
   }
 }
 
-// spreadTriangle's rows summed along: each cell's share.
-template <class T>
-void summedRows(const CellGrid& grid, std::vector<T>& deltas) {
-  const std::size_t stride = static_cast<std::size_t>(grid.columns) + 2;
-  for (int y = 0; y < grid.rows; ++y) {
-    T* row = &deltas[static_cast<std::size_t>(y) * stride];
-    for (int x = 1; x < grid.columns; ++x) row[x] += row[x - 1];
-  }
-}
-
 }  // namespace
 
 void CausticMap::buildWavefront(const WavefrontGrid& grid, int level, const std::vector<WavefrontVertex>& vertices,
                                 const PhotonCone& cone, const FloorRegion& region, tbb::task_arena* arena,
                                 double cellPerTriangle) {
-  const double solidAngle = cone.solidAngle;
+  beginWavefront(grid, level, vertices, cone, region, cellPerTriangle);
+  if (spreading()) spreadWavefront(arena, kAllSquares);
+}
+
+void CausticMap::clear() {
   nodes_.clear();
   ratios_.clear();
+  spreading_.grid = nullptr;
+  spreading_.vertices = nullptr;
+}
+
+void CausticMap::beginWavefront(const WavefrontGrid& grid, int level, const std::vector<WavefrontVertex>& vertices,
+                                const PhotonCone& cone, const FloorRegion& region, double cellPerTriangle) {
+  clear();
   if (level < 0 || vertices.size() < grid.levelEnd(level)) return;
-  const int step = 1 << (grid.levels() - 1 - level), side = grid.side() / step;
-  const double flux = solidAngle / (2.0 * side * side);  // each light triangle's share of the intensity
-  const float fluxF = static_cast<float>(flux);
+  Spreading& w = spreading_;
+  w.grid = &grid;
+  w.vertices = &vertices;
+  w.apex = cone.apex;
+  w.step = 1 << (grid.levels() - 1 - level);
+  w.side = grid.side() / w.step;
+  const int side = w.side;
+  w.flux = static_cast<float>(cone.solidAngle / (2.0 * side * side));  // each light triangle's share of the intensity
   // Cells `cellPerTriangle` as wide as the light triangles' mean landing, at most kMaxNodesPerSide a side.
   const glm::dvec2 extent = glm::max(glm::dvec2(region.high - region.low), glm::dvec2(1e-6));
   double cell = cellPerTriangle * std::sqrt(extent.x * extent.y / (static_cast<double>(side) * side));
   cell = std::max({cell, extent.x / (kMaxNodesPerSide - 2 * kMargin), extent.y / (kMaxNodesPerSide - 2 * kMargin), 1e-6});
+  w.cell = cell;
+  w.columns = static_cast<int>(std::ceil(extent.x / cell)) + 2 * kMargin;
+  w.rows = static_cast<int>(std::ceil(extent.y / cell)) + 2 * kMargin;
+  w.low = glm::dvec2(region.low) - kMargin * cell;
+  // The light grid's squares in kBands bands, each spread in order into its own sums (on the arena's
+  // threads, over as many calls as it takes), added in order: the same map whatever the threads and
+  // however the calls cut it.
+  const std::size_t spread = static_cast<std::size_t>(w.columns + 2) * w.rows;
+  const std::uint64_t squares = static_cast<std::uint64_t>(side) * side;
+  w.bands.resize(static_cast<std::size_t>(std::min(kBands, side)));
+  for (std::size_t b = 0; b < w.bands.size(); ++b) {
+    Spreading::Band& band = w.bands[b];
+    band.through.assign(spread, glm::vec3(0.0f));
+    band.straight.assign(spread, 0.0f);
+    band.next = b * squares / w.bands.size();
+    band.end = (b + 1) * squares / w.bands.size();
+  }
+}
+
+std::uint64_t CausticMap::squaresLeft() const {
+  std::uint64_t left = 0;
+  for (const Spreading::Band& band : spreading_.bands) left = std::max(left, band.end - band.next);
+  return spreading() ? left : 0;
+}
+
+void CausticMap::spreadBand(Spreading::Band& sums, std::uint64_t count) const {
+  const Spreading& w = spreading_;
+  const WavefrontGrid& grid = *w.grid;
+  const std::vector<WavefrontVertex>& vertices = *w.vertices;
+  const int step = w.step, side = w.side;
+  const float fluxF = w.flux;
+  const double cell = w.cell;
   CellGrid cells;
-  cells.cell = cell;
-  cells.columns = static_cast<int>(std::ceil(extent.x / cell)) + 2 * kMargin;
-  cells.rows = static_cast<int>(std::ceil(extent.y / cell)) + 2 * kMargin;
-  cells.low = glm::dvec2(region.low) - kMargin * cell;
-  cell_ = static_cast<float>(cell);
-  columns_ = cells.columns;
-  rows_ = cells.rows;
-  origin_ = glm::vec2(cells.low + 0.5 * cell);  // node (i, j): the centre of cell (i, j)
-  const std::size_t size = static_cast<std::size_t>(columns_) * rows_, spread = static_cast<std::size_t>(columns_ + 2) * rows_;
-  // The power arrived through the slime, arrived past it, and the straight reference's, per cell
-  // (as spreadTriangle's rows of differences until summedRows).
-  struct Sums {
-    std::vector<glm::vec3> through;
-    std::vector<float> direct, straight;
-  };
+  cells.low = w.low;
+  cells.cell = w.cell;
+  cells.columns = w.columns;
+  cells.rows = w.rows;
+  using Sums = Spreading::Band;
   const auto vertexAt = [&](int column, int row) -> const WavefrontVertex& {
     return vertices[grid.rank(column * step, row * step)];
   };
+  // A branch's landings: the light through the slime spread; the light past it is U − S's (finishWavefront).
   const auto depositBranch = [&](Sums& sums, const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c, bool isDirect,
                                  const glm::vec3& power) {
-    if (isDirect) spreadTriangle(a, b, c, cells, power.x, sums.direct);
-    else spreadTriangle(a, b, c, cells, power, sums.through);
+    if (!isDirect) spreadTriangle(a, b, c, cells, power, sums.through);
   };
   const auto square = [&](Sums& sums, const glm::dvec2& centre, double half, bool isDirect, bool isStraight, const glm::vec3& power) {
     const glm::dvec2 p0 = centre - half, p1(centre.x + half, centre.y - half), p2 = centre + half, p3(centre.x - half, centre.y + half);
@@ -232,6 +260,8 @@ void CausticMap::buildWavefront(const WavefrontGrid& grid, int level, const std:
       return -1;
     };
     const auto isDirect = [](const WavefrontVertex& v) { return v.count == 1 && v.branches[0].path == kDirectPath; };
+    const int directCorners = isDirect(a) + isDirect(b) + isDirect(c);
+    if (directCorners == 3) return;  // all past the slime: U − S has its light
     const bool straightLands = a.straight && b.straight && c.straight;
     const glm::dvec2 sa(a.sx, a.sy), sb(b.sx, b.sy), sc(c.sx, c.sy);
     // Each path the three corners share spreads over the floor triangle of its landings.
@@ -243,7 +273,6 @@ void CausticMap::buildWavefront(const WavefrontGrid& grid, int level, const std:
       const glm::vec3 power = fluxF * ((ba.weight + bb.weight + bc.weight) / 3.0f);
       depositBranch(sums, {ba.x, ba.y}, {bb.x, bb.y}, {bc.x, bc.y}, ba.path == kDirectPath, power);
     }
-    const int directCorners = isDirect(a) + isDirect(b) + isDirect(c);
     if (directCorners == 0 && straightLands)  // all three met the slime: the light it blocks, as a triangle
       spreadTriangle(sa, sb, sc, cells, fluxF, sums.straight);
     // A path at one or two corners only (the slime's outline, the edge of total internal reflection,
@@ -264,67 +293,108 @@ void CausticMap::buildWavefront(const WavefrontGrid& grid, int level, const std:
       if (directCorners > 0 && directCorners < 3 && !isDirect(x) && x.straight) square(sums, {x.sx, x.sy}, half, false, true, glm::vec3(third));
     }
   };
-  // The light grid's rows in kBands bands, each into its own sums on the arena's threads, added in
-  // order: the same map whatever the threads.
-  std::vector<Sums> bands(static_cast<std::size_t>(std::min(kBands, side)));
-  const auto band = [&](std::size_t b) {
-    Sums& sums = bands[b];
-    sums.through.assign(spread, glm::vec3(0.0f));
-    sums.direct.assign(spread, 0.0f);
-    sums.straight.assign(spread, 0.0f);
-    const int first = static_cast<int>(b * side / bands.size()), last = static_cast<int>((b + 1) * side / bands.size());
-    for (int row = first; row < last; ++row)
-      for (int column = 0; column < side; ++column) {
-        const WavefrontVertex &v00 = vertexAt(column, row), &v10 = vertexAt(column + 1, row), &v11 = vertexAt(column + 1, row + 1),
-                              &v01 = vertexAt(column, row + 1);
-        triangle(sums, v00, v10, v11);
-        triangle(sums, v00, v11, v01);
+  const std::uint64_t last = sums.next + std::min(count, sums.end - sums.next);
+  for (std::uint64_t q = sums.next; q < last; ++q) {
+    const int row = static_cast<int>(q / static_cast<std::uint64_t>(side)), column = static_cast<int>(q % static_cast<std::uint64_t>(side));
+    const WavefrontVertex &v00 = vertexAt(column, row), &v10 = vertexAt(column + 1, row), &v11 = vertexAt(column + 1, row + 1),
+                          &v01 = vertexAt(column, row + 1);
+    triangle(sums, v00, v10, v11);
+    triangle(sums, v00, v11, v01);
+  }
+  sums.next = last;
+}
+
+bool CausticMap::spreadWavefront(tbb::task_arena* arena, std::uint64_t squares) {
+  if (!spreading()) return false;
+  Spreading& w = spreading_;
+  const std::uint64_t left = squaresLeft();
+  if (left > 0) {
+    if (arena) {
+      handOff(this);  // the vertices, to the workers (tsan_handoff.h)
+      arena->execute([&] {
+        tbb::parallel_for(std::size_t{0}, w.bands.size(), [&](std::size_t b) {
+          takeOver(this);
+          spreadBand(w.bands[b], squares);
+          handOff(this);  // the band's sums, back
+        });
+      });
+      takeOver(this);
+    } else {
+      for (Spreading::Band& band : w.bands) spreadBand(band, squares);
+    }
+    // With a limit, the sums are made in a call of their own.
+    if (squares != kAllSquares || squaresLeft() > 0) return false;
+  }
+  finishWavefront(arena);
+  return true;
+}
+
+void CausticMap::finishWavefront(tbb::task_arena* arena) {
+  Spreading& w = spreading_;
+  CellGrid cells;
+  cells.low = w.low;
+  cells.cell = w.cell;
+  cells.columns = w.columns;
+  cells.rows = w.rows;
+  const double cell = w.cell;
+  const glm::vec3 apex = w.apex;
+  cell_ = static_cast<float>(cell);
+  columns_ = cells.columns;
+  rows_ = cells.rows;
+  origin_ = glm::vec2(cells.low + 0.5 * cell);  // node (i, j): the centre of cell (i, j)
+  const std::size_t size = static_cast<std::size_t>(columns_) * rows_, stride = static_cast<std::size_t>(columns_) + 2;
+  std::vector<glm::vec3>& through = w.bands[0].through;
+  std::vector<float>& straight = w.bands[0].straight;
+  nodes_.resize(size);
+  ratios_.assign(size, glm::vec3(0.0f));
+  const float perArea = static_cast<float>(1.0 / (cell * cell));
+  // Row by row (each on its own: the same on any threads): the bands added in order, the running sums, E / I and g.
+  const auto floorRow = [&](int y) {
+    const std::size_t from = static_cast<std::size_t>(y) * stride, to = from + stride;
+    for (std::size_t b = 1; b < w.bands.size(); ++b)
+      for (std::size_t i = from; i < to; ++i) {
+        through[i] += w.bands[b].through[i];
+        straight[i] += w.bands[b].straight[i];
       }
+    for (std::size_t i = from + 1; i < from + static_cast<std::size_t>(columns_); ++i) {
+      through[i] += through[i - 1];
+      straight[i] += straight[i - 1];
+    }
+    for (int x = 0; x < columns_; ++x) {
+        const std::size_t i = static_cast<std::size_t>(y) * columns_ + x, k = static_cast<std::size_t>(y) * (columns_ + 2) + x;
+        // (A row's running sum leaves a rounding's residue where its triangles end: never below zero.)
+        const glm::vec3 arrived = glm::max(through[k], glm::vec3(0.0f));
+        const float expected = std::max(straight[k], 0.0f);
+        nodes_[i] = arrived * perArea;
+        // The light that passed the slime (its triangles are not spread) and that of the directions
+        // outside the cone, which are not traced, reach what the straight light the slime blocks
+        // leaves of the unblocked light's I cos θ / r²:
+        //   g = [through + max(0, U − S)] / max(U, S),
+        // S the straight light the slime blocks, U the unblocked light over the cell (at its centre);
+        // with a slime of index 1, through = S and g = 1 still.
+        const glm::dvec3 toCell = glm::dvec3(cells.low.x + (x + 0.5) * cell, cells.low.y + (y + 0.5) * cell, 0.0) - glm::dvec3(apex);
+        const double r = glm::length(toCell);
+        const float unblocked = r > 0.0 ? static_cast<float>(static_cast<double>(apex.z) / (r * r * r) * cell * cell) : 0.0f;
+        const float reference = std::max(unblocked, expected);
+        if (reference > 0.0f) ratios_[i] = (arrived + glm::vec3(std::max(0.0f, unblocked - expected))) / reference;
+    }
   };
   if (arena) {
-    handOff(this);  // the vertices, to the workers (tsan_handoff.h)
+    handOff(this);
     arena->execute([&] {
-      tbb::parallel_for(std::size_t{0}, bands.size(), [&](std::size_t b) {
+      tbb::parallel_for(0, rows_, [&](int y) {
         takeOver(this);
-        band(b);
-        handOff(this);  // the band's sums, back
+        floorRow(y);
+        handOff(this);
       });
     });
     takeOver(this);
   } else {
-    for (std::size_t b = 0; b < bands.size(); ++b) band(b);
+    for (int y = 0; y < rows_; ++y) floorRow(y);
   }
-  std::vector<glm::vec3>& through = bands[0].through;
-  std::vector<float>&direct = bands[0].direct, &straight = bands[0].straight;
-  for (std::size_t b = 1; b < bands.size(); ++b)
-    for (std::size_t i = 0; i < spread; ++i) {
-      through[i] += bands[b].through[i];
-      direct[i] += bands[b].direct[i];
-      straight[i] += bands[b].straight[i];
-    }
-  summedRows(cells, through), summedRows(cells, direct), summedRows(cells, straight);
-  // E / I of the light through the slime, and g, cell by cell.
-  const float perArea = static_cast<float>(1.0 / (cell * cell));
-  nodes_.resize(size);
-  ratios_.assign(size, glm::vec3(0.0f));
-  for (int y = 0; y < rows_; ++y)
-    for (int x = 0; x < columns_; ++x) {
-      const std::size_t i = static_cast<std::size_t>(y) * columns_ + x, k = static_cast<std::size_t>(y) * (columns_ + 2) + x;
-      // (A row's running sum leaves a rounding's residue where its triangles end: never below zero.)
-      const glm::vec3 arrived = glm::max(through[k], glm::vec3(0.0f));
-      const float past = std::max(direct[k], 0.0f), expected = std::max(straight[k], 0.0f) + past;
-      nodes_[i] = arrived * perArea;
-      // The light of the directions outside the cone, which are not traced, reaches the cells where
-      // the cone's straight light falls short of the unblocked light's I cos θ / r² (at the cone's rim):
-      //   g = [through + direct + max(0, U − S)] / max(U, S),  S = straight + direct,
-      // U the unblocked light over the cell (at its centre); with a slime of index 1, through = straight
-      // and g = 1 still.
-      const glm::dvec3 toCell = glm::dvec3(cells.low.x + (x + 0.5) * cell, cells.low.y + (y + 0.5) * cell, 0.0) - glm::dvec3(cone.apex);
-      const double r = glm::length(toCell);
-      const float unblocked = r > 0.0 ? static_cast<float>(static_cast<double>(cone.apex.z) / (r * r * r) * cell * cell) : 0.0f;
-      const float reference = std::max(unblocked, expected);
-      if (reference > 0.0f) ratios_[i] = (arrived + glm::vec3(past + std::max(0.0f, unblocked - expected))) / reference;
-    }
+  w.grid = nullptr;
+  w.vertices = nullptr;
+  w.bands.clear();  // their memory too (tens of MB for the finished map)
 }
 
 }  // namespace slime

@@ -9,6 +9,7 @@
 #include <glm/vec3.hpp>
 #include <tbb/task_arena.h>
 
+#include <cstdint>
 #include <vector>
 
 namespace slime {
@@ -45,11 +46,21 @@ class CausticMap {
   static constexpr double kFineCells = 0.5, kCoarseCells = 1.0;
   void buildWavefront(const WavefrontGrid& grid, int level, const std::vector<WavefrontVertex>& vertices, const PhotonCone& cone,
                       const FloorRegion& region, tbb::task_arena* arena = nullptr, double cellPerTriangle = kFineCells);
-  void clear() {
-    nodes_.clear();
-    ratios_.clear();
-  }
+  void clear();
   bool empty() const { return nodes_.empty(); }
+
+  // buildWavefront over several calls (the viewer's still frames, within their time): begin clears
+  // the map and readies the spreading, without spreading anything; each spread spreads up to
+  // `squares` more light squares of each band on `arena`'s threads, or, once all are spread, makes
+  // the map from the sums (a call of its own, unless `squares` is kAllSquares) and returns true. The
+  // map is the same however the calls cut it. `grid` and `vertices` must outlive the spreading and
+  // stay as they are.
+  static constexpr std::uint64_t kAllSquares = ~std::uint64_t{0};
+  void beginWavefront(const WavefrontGrid& grid, int level, const std::vector<WavefrontVertex>& vertices, const PhotonCone& cone,
+                      const FloorRegion& region, double cellPerTriangle = kFineCells);
+  bool spreadWavefront(tbb::task_arena* arena, std::uint64_t squares);
+  bool spreading() const { return spreading_.grid != nullptr; }
+  std::uint64_t squaresLeft() const;  // the most light squares a band has left to spread
 
   // E(x) / I in 1/m² (per channel) of the light through the slime at floor point (x, y): zero outside the grid.
   glm::vec3 irradiance(float x, float y) const;
@@ -68,6 +79,26 @@ class CausticMap {
   int columns_ = 0, rows_ = 0;
   std::vector<glm::vec3> nodes_;   // row-major, E / I at each node
   std::vector<glm::vec3> ratios_;  // row-major, g at each node (empty: built without `straight`)
+  // The spreading under way (beginWavefront): the light grid, the floor's cells, and per band of
+  // light squares its sums (spreadTriangle's rows of differences) and the squares it has left.
+  struct Spreading {
+    const WavefrontGrid* grid = nullptr;
+    const std::vector<WavefrontVertex>* vertices = nullptr;
+    glm::vec3 apex{0.0f};
+    int step = 1, side = 0, columns = 0, rows = 0;
+    float flux = 0.0f;
+    glm::dvec2 low{0.0};
+    double cell = 0.0;
+    struct Band {
+      std::vector<glm::vec3> through;  // the power arrived through the slime,
+      std::vector<float> straight;     // and the straight reference's (where the slime blocks it)
+      std::uint64_t next = 0, end = 0;
+    };
+    std::vector<Band> bands;
+  };
+  Spreading spreading_;
+  void spreadBand(Spreading::Band& band, std::uint64_t squares) const;
+  void finishWavefront(tbb::task_arena* arena);
   glm::vec3 bilinear(const std::vector<glm::vec3>& grid, float x, float y) const;
 };
 

@@ -84,6 +84,28 @@ void Caustics::trace(const PhotonTracer& tracer, const WavefrontGrid& grid, std:
   }
 }
 
+const CausticMap* Caustics::spread(tbb::task_arena* arena, bool withinBudget, double spentMs) {
+  // The light squares each band spreads: all, or as many as the frame budget's rest affords at the
+  // rate measured on the last spreads (at least kFewestSquares; kFirstSquares before it is known).
+  std::uint64_t squares = CausticMap::kAllSquares;
+  if (withinBudget && frameBudgetMs_ > 0.0) {
+    squares = kFirstSquares;
+    if (msPerSquare_ > 0.0)
+      squares = static_cast<std::uint64_t>(std::max(static_cast<double>(kFewestSquares), (frameBudgetMs_ - spentMs) / msPerSquare_));
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const std::uint64_t spreading = std::min(squares, next_.squaresLeft());
+  const bool whole = next_.spreadWavefront(arena, squares);
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  if (spreading >= kFewestSquares && !whole) {
+    const double rate = ms / static_cast<double>(spreading);
+    msPerSquare_ = msPerSquare_ > 0.0 ? 0.5 * (msPerSquare_ + rate) : rate;
+  }
+  if (whole) std::swap(map_, next_);
+  lastMs_ = spentMs + ms;
+  return map_.empty() ? nullptr : &map_;
+}
+
 void Caustics::append(const Vertices& traced) {
   vertices_.insert(vertices_.end(), traced.vertices.begin(), traced.vertices.end());
   tally_ += traced.tally;
@@ -99,6 +121,7 @@ const CausticMap* Caustics::update(const Settings& settings, const ShadingParame
   if (!settings.render.caustics || !parameters.shadows || !(parameters.lightPosition.z > 0.0f) || !slime) {
     key_.clear();
     map_.clear();
+    next_.clear();
     traced_ = 0;
     halvesValid_ = stale_ = false;
     return nullptr;
@@ -122,12 +145,14 @@ const CausticMap* Caustics::update(const Settings& settings, const ShadingParame
     halvesValid_ = false;
   }
   const PhotonTracer tracer(geometry, intersector, parameters);
+  const auto elapsed = [&] { return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(); };
+  // The map of `grid`'s `level` built in next_, shown once it is whole: a still frame's within the
+  // frame budget, its rest spread in the frames after (spread).
   const auto build = [&](const WavefrontGrid& grid, int level, double cellPerTriangle = CausticMap::kFineCells) {
-    map_.buildWavefront(grid, level, vertices_, cone_, shadowRegion(cone_, geometry.boundCenter, geometry.boundRadius), arena,
-                        cellPerTriangle);
+    next_.beginWavefront(grid, level, vertices_, cone_, shadowRegion(cone_, geometry.boundCenter, geometry.boundRadius),
+                         cellPerTriangle);
     builtLevel_ = level;
-    lastMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    return map_.empty() ? nullptr : &map_;
+    return spread(arena, progressive && onStillGrid_, elapsed());
   };
   if (key != key_) {
     // Only the slime's shape changed since the last moving frame (its light, optics and budget
@@ -136,6 +161,7 @@ const CausticMap* Caustics::update(const Settings& settings, const ShadingParame
                                    std::equal(key.begin() + static_cast<std::ptrdiff_t>(shapeFloats), key.end(),
                                               key_.begin() + static_cast<std::ptrdiff_t>(shapeFloats));
     key_ = std::move(key);
+    next_.clear();  // a map under way is of the old vertices
     vertices_.clear();
     tally_ = PhotonTally{};
     traced_ = 0;
@@ -166,6 +192,8 @@ const CausticMap* Caustics::update(const Settings& settings, const ShadingParame
       traced_ = moving;
       return build(movingGrid_, 0, CausticMap::kCoarseCells);
     }
+  } else if (next_.spreading()) {
+    return spread(arena, progressive, elapsed());  // a still frame with a map to finish: that only
   } else if (converged() && onStillGrid_) {
     return map_.empty() ? nullptr : &map_;
   }
@@ -195,7 +223,7 @@ const CausticMap* Caustics::update(const Settings& settings, const ShadingParame
   // The map: the finest grid whose vertices are all traced (until the first is, the moving grid's map stays).
   const int level = stillGrid_.completeLevel(traced_);
   if (level < 0 || level == builtLevel_) {
-    lastMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    lastMs_ = elapsed();
     return map_.empty() ? nullptr : &map_;
   }
   return build(stillGrid_, level);
