@@ -24,8 +24,10 @@ class Caustics {
   static constexpr int kStillBudgets = 16;
   // A frame that starts the map again (the slime, the light or the optics moved) traces a grid of
   // about a budget over this: the map a handled slime shows every frame, its cost the caustics' share
-  // of a handled frame (issue 30 item 4: 5,000 by default).
-  static constexpr int kMovingDivisor = 2;
+  // of a handled frame (issue 30 item 4: 5,000 by default). 4: a vertex follows every branch of its
+  // path and its two triangles are spread, several times a photon's cost; a grid of a quarter budget
+  // (1,225 vertices by default) costs a held frame about what the photon map's half budget did.
+  static constexpr int kMovingDivisor = 4;
   // Kept halves: while only the slime moves, frame after frame (held, dragged, falling), a moving frame
   // traces half of its grid's M vertices afresh, in turn [0, M/2) and [M/2, M) of the grid's order, and
   // keeps the other half from the moving frame before (issue 28). Half of them are one frame behind the

@@ -564,19 +564,19 @@ TEST(Caustics, MovingFramesTraceHalfThePhotonsAndKeepTheOtherHalf) {
 // of tracing. With a budget, a progressive update traces kFirstPhotons before it knows the rate and at
 // least kFewestPhotons after, never the whole budget of a large render.photons in one frame, and the
 // still map still ends at the finished map, vertex for vertex. (Without the budget every frame traced
-// its whole share: a moving grid of 5,929 and the next 2/16 of the still grid's 194,481 here.)
+// its whole share: a moving grid of 5,929 and the next 2/16 of the still grid's 385,641 here.)
 TEST(Caustics, AFrameBudgetSpreadsTheMapOverFramesAndItStillEndsAtTheFinishedMap) {
   const glm::dvec3 light{0.1, 0.05, 0.5}, color{0.5, 0.7, 0.9};
   Ball ball({0.0, 0.0, 0.04}, light, color, 20.0, false);
   Settings settings = ball.settings;
-  settings.render.photons = 12000;  // a moving frame's 6,000 over kFirstPhotons
+  settings.render.photons = 24000;  // a moving frame's 6,000 over kFirstPhotons
   Caustics budgeted;
   budgeted.setFrameBudget(1e-9);  // less than any trace: the fewest photons a frame
   const auto update = [&](Caustics& caustics, bool progressive) {
     return caustics.update(settings, ball.parameters, ball.geometry, ball.embree, nullptr, progressive);
   };
   ASSERT_NE(update(budgeted, true), nullptr);
-  EXPECT_EQ(budgeted.lastTraced(), Caustics::movingVertices(2 * Caustics::kFirstPhotons));  // the grid within kFirstPhotons
+  EXPECT_EQ(budgeted.lastTraced(), Caustics::movingVertices(Caustics::kMovingDivisor * Caustics::kFirstPhotons));  // the grid within kFirstPhotons
   EXPECT_LT(budgeted.lastTraced(), Caustics::movingVertices(static_cast<std::uint64_t>(settings.render.photons)));
   std::uint64_t frames = 1, largest = 0;
   while (!budgeted.converged() && frames < 5000) {
