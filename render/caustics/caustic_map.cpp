@@ -170,7 +170,7 @@ void CausticMap::buildWavefront(const WavefrontGrid& grid, int level, const std:
                                 const PhotonCone& cone, const FloorRegion& region, tbb::task_arena* arena,
                                 double cellPerTriangle) {
   beginWavefront(grid, level, vertices, cone, region, cellPerTriangle);
-  if (spreading()) spreadWavefront(arena, kAllSquares);
+  if (spreading()) spreadWavefront(arena, kAllTraced);
 }
 
 void CausticMap::clear() {
@@ -183,8 +183,9 @@ void CausticMap::clear() {
 void CausticMap::beginWavefront(const WavefrontGrid& grid, int level, const std::vector<WavefrontVertex>& vertices,
                                 const PhotonCone& cone, const FloorRegion& region, double cellPerTriangle) {
   clear();
-  if (level < 0 || vertices.size() < grid.levelEnd(level)) return;
+  if (level < 0 || level >= grid.levels()) return;
   Spreading& w = spreading_;
+  w.needed = grid.levelEnd(level);
   w.grid = &grid;
   w.vertices = &vertices;
   w.apex = cone.apex;
@@ -221,7 +222,7 @@ std::uint64_t CausticMap::squaresLeft() const {
   return spreading() ? left : 0;
 }
 
-void CausticMap::spreadBand(Spreading::Band& sums, std::uint64_t count) const {
+void CausticMap::spreadBand(Spreading::Band& sums, std::uint64_t traced) const {
   const Spreading& w = spreading_;
   const WavefrontGrid& grid = *w.grid;
   const std::vector<WavefrontVertex>& vertices = *w.vertices;
@@ -293,20 +294,29 @@ void CausticMap::spreadBand(Spreading::Band& sums, std::uint64_t count) const {
       if (directCorners > 0 && directCorners < 3 && !isDirect(x) && x.straight) square(sums, {x.sx, x.sy}, half, false, true, glm::vec3(third));
     }
   };
-  const std::uint64_t last = sums.next + std::min(count, sums.end - sums.next);
-  for (std::uint64_t q = sums.next; q < last; ++q) {
+  std::uint64_t q = sums.next;
+  for (; q < sums.end; ++q) {
     const int row = static_cast<int>(q / static_cast<std::uint64_t>(side)), column = static_cast<int>(q % static_cast<std::uint64_t>(side));
+    if (traced != kAllTraced &&
+        std::max({grid.rank(column * step, row * step), grid.rank((column + 1) * step, row * step),
+                  grid.rank(column * step, (row + 1) * step), grid.rank((column + 1) * step, (row + 1) * step)}) >= traced)
+      break;  // a corner not traced yet: the band goes on from here
     const WavefrontVertex &v00 = vertexAt(column, row), &v10 = vertexAt(column + 1, row), &v11 = vertexAt(column + 1, row + 1),
                           &v01 = vertexAt(column, row + 1);
     triangle(sums, v00, v10, v11);
     triangle(sums, v00, v11, v01);
   }
-  sums.next = last;
+  sums.next = q;
 }
 
-bool CausticMap::spreadWavefront(tbb::task_arena* arena, std::uint64_t squares) {
+bool CausticMap::spreadWavefront(tbb::task_arena* arena, std::uint64_t traced) {
   if (!spreading()) return false;
   Spreading& w = spreading_;
+  if (traced == kAllTraced && w.vertices->size() < w.needed) {  // vertices missing (an empty cone): no map
+    clear();
+    return false;
+  }
+  traced = std::min<std::uint64_t>(traced, w.vertices->size());
   const std::uint64_t left = squaresLeft();
   if (left > 0) {
     if (arena) {
@@ -314,16 +324,15 @@ bool CausticMap::spreadWavefront(tbb::task_arena* arena, std::uint64_t squares) 
       arena->execute([&] {
         tbb::parallel_for(std::size_t{0}, w.bands.size(), [&](std::size_t b) {
           takeOver(this);
-          spreadBand(w.bands[b], squares);
+          spreadBand(w.bands[b], traced);
           handOff(this);  // the band's sums, back
         });
       });
       takeOver(this);
     } else {
-      for (Spreading::Band& band : w.bands) spreadBand(band, squares);
+      for (Spreading::Band& band : w.bands) spreadBand(band, traced);
     }
-    // With a limit, the sums are made in a call of their own.
-    if (squares != kAllSquares || squaresLeft() > 0) return false;
+    if (squaresLeft() > 0) return false;
   }
   finishWavefront(arena);
   return true;

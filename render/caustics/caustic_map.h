@@ -49,16 +49,17 @@ class CausticMap {
   void clear();
   bool empty() const { return nodes_.empty(); }
 
-  // buildWavefront over several calls (the viewer's still frames, within their time): begin clears
-  // the map and readies the spreading, without spreading anything; each spread spreads up to
-  // `squares` more light squares of each band on `arena`'s threads, or, once all are spread, makes
-  // the map from the sums (a call of its own, unless `squares` is kAllSquares) and returns true. The
-  // map is the same however the calls cut it. `grid` and `vertices` must outlive the spreading and
-  // stay as they are.
-  static constexpr std::uint64_t kAllSquares = ~std::uint64_t{0};
+  // buildWavefront over several calls, as the vertices arrive (the viewer's still frames): begin
+  // clears the map and readies the spreading, without spreading anything; each spread spreads, on
+  // `arena`'s threads, the light squares whose four corners lie within the first `traced` vertices
+  // of the grid's order (kAllTraced: all), each band in its order up to its first square that does
+  // not, and once all are spread makes the map from the sums and returns true. The map is the same
+  // however the calls cut it. `grid` and `vertices` must outlive the spreading, the vertices only
+  // appended to.
+  static constexpr std::uint64_t kAllTraced = ~std::uint64_t{0};
   void beginWavefront(const WavefrontGrid& grid, int level, const std::vector<WavefrontVertex>& vertices, const PhotonCone& cone,
                       const FloorRegion& region, double cellPerTriangle = kFineCells);
-  bool spreadWavefront(tbb::task_arena* arena, std::uint64_t squares);
+  bool spreadWavefront(tbb::task_arena* arena, std::uint64_t traced);
   bool spreading() const { return spreading_.grid != nullptr; }
   std::uint64_t squaresLeft() const;  // the most light squares a band has left to spread
 
@@ -85,6 +86,7 @@ class CausticMap {
     const WavefrontGrid* grid = nullptr;
     const std::vector<WavefrontVertex>* vertices = nullptr;
     glm::vec3 apex{0.0f};
+    std::uint64_t needed = 0;  // the vertices of the grid's order up to the level's
     int step = 1, side = 0, columns = 0, rows = 0;
     float flux = 0.0f;
     glm::dvec2 low{0.0};
@@ -97,7 +99,7 @@ class CausticMap {
     std::vector<Band> bands;
   };
   Spreading spreading_;
-  void spreadBand(Spreading::Band& band, std::uint64_t squares) const;
+  void spreadBand(Spreading::Band& band, std::uint64_t traced) const;
   void finishWavefront(tbb::task_arena* arena);
   glm::vec3 bilinear(const std::vector<glm::vec3>& grid, float x, float y) const;
 };

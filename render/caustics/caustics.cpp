@@ -84,28 +84,6 @@ void Caustics::trace(const PhotonTracer& tracer, const WavefrontGrid& grid, std:
   }
 }
 
-const CausticMap* Caustics::spread(tbb::task_arena* arena, bool withinBudget, double spentMs) {
-  // The light squares each band spreads: all, or as many as the frame budget's rest affords at the
-  // rate measured on the last spreads (at least kFewestSquares; kFirstSquares before it is known).
-  std::uint64_t squares = CausticMap::kAllSquares;
-  if (withinBudget && frameBudgetMs_ > 0.0) {
-    squares = kFirstSquares;
-    if (msPerSquare_ > 0.0)
-      squares = static_cast<std::uint64_t>(std::max(static_cast<double>(kFewestSquares), (frameBudgetMs_ - spentMs) / msPerSquare_));
-  }
-  const auto start = std::chrono::steady_clock::now();
-  const std::uint64_t spreading = std::min(squares, next_.squaresLeft());
-  const bool whole = next_.spreadWavefront(arena, squares);
-  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  if (spreading >= kFewestSquares && !whole) {
-    const double rate = ms / static_cast<double>(spreading);
-    msPerSquare_ = msPerSquare_ > 0.0 ? 0.5 * (msPerSquare_ + rate) : rate;
-  }
-  if (whole) std::swap(map_, next_);
-  lastMs_ = spentMs + ms;
-  return map_.empty() ? nullptr : &map_;
-}
-
 void Caustics::append(const Vertices& traced) {
   vertices_.insert(vertices_.end(), traced.vertices.begin(), traced.vertices.end());
   tally_ += traced.tally;
@@ -146,13 +124,23 @@ const CausticMap* Caustics::update(const Settings& settings, const ShadingParame
   }
   const PhotonTracer tracer(geometry, intersector, parameters);
   const auto elapsed = [&] { return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(); };
-  // The map of `grid`'s `level` built in next_, shown once it is whole: a still frame's within the
-  // frame budget, its rest spread in the frames after (spread).
-  const auto build = [&](const WavefrontGrid& grid, int level, double cellPerTriangle = CausticMap::kFineCells) {
-    next_.beginWavefront(grid, level, vertices_, cone_, shadowRegion(cone_, geometry.boundCenter, geometry.boundRadius),
-                         cellPerTriangle);
-    builtLevel_ = level;
-    return spread(arena, progressive && onStillGrid_, elapsed());
+  // The map of `grid`'s `level` spread in next_ (its squares within the first `traced` vertices),
+  // shown in map_'s place once whole; none where the vertices are missing (the cone empty).
+  const auto build = [&](const WavefrontGrid& grid, int level, std::uint64_t traced, double cellPerTriangle) {
+    if (!next_.spreading() || buildingLevel_ != level) {
+      next_.beginWavefront(grid, level, vertices_, cone_, shadowRegion(cone_, geometry.boundCenter, geometry.boundRadius),
+                           cellPerTriangle);
+      buildingLevel_ = level;
+    }
+    if (next_.spreadWavefront(arena, traced)) {
+      std::swap(map_, next_);
+      builtLevel_ = level;
+    } else if (!next_.spreading()) {
+      map_.clear();
+      builtLevel_ = -1;
+    }
+    lastMs_ = elapsed();
+    return map_.empty() ? nullptr : &map_;
   };
   if (key != key_) {
     // Only the slime's shape changed since the last moving frame (its light, optics and budget
@@ -190,10 +178,9 @@ const CausticMap* Caustics::update(const Settings& settings, const ShadingParame
       halvesValid_ = true;
       for (const Vertices& h : halves_) append(h);  // in the grid's order: [0, M/2) then [M/2, M)
       traced_ = moving;
-      return build(movingGrid_, 0, CausticMap::kCoarseCells);
+      next_.clear();
+      return build(movingGrid_, 0, CausticMap::kAllTraced, CausticMap::kCoarseCells);
     }
-  } else if (next_.spreading()) {
-    return spread(arena, progressive, elapsed());  // a still frame with a map to finish: that only
   } else if (converged() && onStillGrid_) {
     return map_.empty() ? nullptr : &map_;
   }
@@ -201,6 +188,7 @@ const CausticMap* Caustics::update(const Settings& settings, const ShadingParame
   if (!onStillGrid_) {
     // The map holds the moving grid's vertices: the still map starts again on its own grid, in its
     // order, so that it still ends at the finished map.
+    next_.clear();
     vertices_.clear();
     tally_ = PhotonTally{};
     traced_ = 0;
@@ -220,13 +208,18 @@ const CausticMap* Caustics::update(const Settings& settings, const ShadingParame
   trace(tracer, stillGrid_, traced_, target - traced_, arena, added_);
   append(added_);
   traced_ = target;
-  // The map: the finest grid whose vertices are all traced (until the first is, the moving grid's map stays).
-  const int level = stillGrid_.completeLevel(traced_);
-  if (level < 0 || level == builtLevel_) {
+  // The map: the finest grid whose vertices are all traced (until the first is, the moving grid's map
+  // stays). A progressive frame spreads the squares of the level it traces as their corners arrive,
+  // so that the frame that completes the level spreads only its last ones and makes the map.
+  const int complete = stillGrid_.completeLevel(traced_);
+  int level = complete;
+  if (progressive && complete + 1 < stillGrid_.levels() && traced_ > (complete < 0 ? 0 : stillGrid_.levelEnd(complete)))
+    level = complete + 1;
+  if (level < 0 || level <= builtLevel_) {
     lastMs_ = elapsed();
     return map_.empty() ? nullptr : &map_;
   }
-  return build(stillGrid_, level);
+  return build(stillGrid_, level, progressive ? traced_ : CausticMap::kAllTraced, CausticMap::kFineCells);
 }
 
 }  // namespace slime

@@ -56,9 +56,6 @@ class Caustics {
   void setFrameBudget(double milliseconds) { frameBudgetMs_ = milliseconds; }
   static constexpr std::uint64_t kFewestPhotons = 1000;
   static constexpr std::uint64_t kFirstPhotons = 5000;  // before the rate is known: the default's moving frame
-  // The light squares of each band (CausticMap::spreadWavefront) a still frame spreads at least, and
-  // before their rate is known.
-  static constexpr std::uint64_t kFewestSquares = 256, kFirstSquares = 2048;
 
   // The wavefront grids (wavefront.h) of a budget B = render.photons: a moving frame's of about
   // B / kMovingDivisor vertices, and the still map's of about kStillBudgets · B in three levels (sides
@@ -104,13 +101,11 @@ class Caustics {
   std::vector<WavefrontVertex> vertices_;  // the map's, in its grid's order
   PhotonTally tally_;
   CausticMap map_;
-  // The map being built (CausticMap::beginWavefront), shown in map_'s place once whole. A still
-  // frame whose vertices complete a level of the still grid starts it, and with a frame budget
-  // spreads as many of its light squares as the budget's rest affords; the frames after spread the
-  // rest within the budget, tracing nothing, the last makes the map from the sums.
+  // The map being built (CausticMap::beginWavefront), shown in map_'s place once whole: a moving
+  // frame's at once; a progressive still frame's level as its vertices arrive, its squares spread in
+  // the frames that trace their corners.
   CausticMap next_;
-  const CausticMap* spread(tbb::task_arena* arena, bool withinBudget, double spentMs);
-  double msPerSquare_ = 0.0;  // the time per light square of a band, measured on the last spreads
+  int buildingLevel_ = -1;  // next_'s level of the still grid
   PhotonCone cone_;
   std::uint64_t traced_ = 0, budget_ = 0;
   int frames_ = 0;  // progressive updates since the map started again
