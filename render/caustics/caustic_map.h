@@ -30,15 +30,15 @@ class CausticMap {
   // The wavefront's map (wavefront.h): the triangles of `grid` at `level` (its grid of side
   // grid.side() / 2^(levels − 1 − level)), `vertices` the traced ones in the grid's order, each light
   // triangle carrying Ω / (2 side²) of the intensity. A triangle whose three vertices took the same
-  // paths (the same branches through the same pieces, or all three past the slime) spreads its power
-  // times each branch's mean weight evenly over the floor triangle that branch's three landings make,
-  // by exact area on a grid of cells of the floor (a landed sliver: a sharp focus). Where they took
-  // different paths (the slime's outline, the edge of total internal reflection) each vertex's branch
-  // spreads a third of the power over a square as wide as the triangle's straight landing. The gain
-  // is then, cell by cell, all the light that arrived (through the slime, and past it) over the same
-  // triangles' straight landings spread by the same rule, where the cone's rim falls short of the
-  // unblocked light the untraced directions beyond it filling in (caustic_map.cpp): a slime of index 1
-  // that absorbs nothing gives g = 1 exactly. No smoothing.
+  // paths through the slime (the same branches through the same pieces) spreads its power times each
+  // branch's mean weight evenly over the floor triangle that branch's three landings make, by exact
+  // area on a grid of cells of the floor (a landed sliver: a sharp focus); one whose three vertices
+  // all missed the slime spreads nothing. Where they took different paths (the slime's outline, the
+  // edge of total internal reflection) each vertex's branch through the slime spreads a third of the
+  // power over a square as wide as the triangle's straight landing. The gain is then, cell by cell,
+  // the light that arrived through the slime plus what the straight light the slime blocks (the same
+  // triangles' straight landings spread by the same rule) leaves of the unblocked light, over the
+  // larger of the two (caustic_map.cpp): a slime of index 1 that absorbs nothing gives g = 1. No smoothing.
   // `arena`: the triangles spread in its threads (null: on this one; the map is the same).
   // `cellPerTriangle`: the cells' width in light triangles' mean straight landing over the region
   // (kFineCells: half, which keeps the clear slime's peak; as wide, 0.71 of the reference's and 18 mm
