@@ -52,6 +52,23 @@ press_and_move() {
   done
 }
 
+# tear_with_two_hands: opens the tearing scene (slime.tearing; the camera further back than the default,
+# so a 20 cm pull stays in the 480 pixels right of the panel column, about 1 mm a pixel at the slime),
+# takes screenshot 1, holds the slime's left side with the second hand (Ctrl+left-press, kept when the
+# button is let go) and pulls its right side fast to the right (about 0.3 m/s: a slow pull flows before
+# it tears) until a piece tears off. The first hand's button stays down.
+tear_with_two_hands() {
+  start_viewer --size 730x360 --set slime.position=0,0,0.04 --set slime.tearing=true --eye 0 -0.45 0.16 \
+    --look-at 0 0 0.02
+  sleep 3
+  screenshot 1
+  xdotool mousemove --window "$WINDOW" 458 180 keydown ctrl mousedown 1
+  sleep 0.3
+  xdotool mouseup 1 keyup ctrl
+  sleep 0.5
+  press_and_move 518 180 0.03 $(seq -s ' ' -f '%g,180' 533 15 720)
+}
+
 # differing_pixels A B: how many pixels differ by more than 3 % between two PNGs.
 differing_pixels() {
   compare -metric AE -fuzz 3% "$1" "$2" null: 2>&1 | cut -d' ' -f1

@@ -4,15 +4,7 @@
 # screenshot, grabs that piece and drags it back against the rest until the two merge. A press that took
 # the nearest point of the big piece instead would drag the big piece, and the torn one would stay apart.
 source "$(dirname "$0")/viewer_lib.sh"
-start_viewer --size 730x360 --set slime.position=0,0,0.04 --set slime.tearing=true --eye 0 -0.45 0.16 \
-  --look-at 0 0 0.02
-sleep 3
-screenshot 1
-xdotool mousemove --window "$WINDOW" 458 180 keydown ctrl mousedown 1
-sleep 0.3
-xdotool mouseup 1 keyup ctrl
-sleep 0.5
-press_and_move 518 180 0.03 $(seq -s ' ' -f '%g,180' 533 15 720)
+tear_with_two_hands
 sleep 1
 xdotool mouseup 1  # the first hand lets the torn piece go
 sleep 1.5

@@ -3,21 +3,8 @@
 # the slime's left side with the second hand; a left-drag pulls its right side fast to the right until a
 # piece tears off. The first hand keeps the piece it holds: dragged back, it brings that piece back and
 # presses it against the rest until the two merge (slime.mergeTime, 0.3 s).
-# The camera stands further back than the default, so a 20 cm pull stays in the 480 pixels of the image
-# (about 1 mm a pixel at the slime), right of the panel column's 250.
 source "$(dirname "$0")/viewer_lib.sh"
-start_viewer --size 730x360 --set slime.position=0,0,0.04 --set slime.tearing=true --eye 0 -0.45 0.16 \
-  --look-at 0 0 0.02
-sleep 3
-screenshot 1
-# The second hand holds the left side where it is, and keeps holding when the button is let go.
-xdotool mousemove --window "$WINDOW" 458 180 keydown ctrl mousedown 1
-sleep 0.3
-xdotool mouseup 1 keyup ctrl
-sleep 0.5
-# The first hand, on the right side, pulled right fast (about 0.3 m/s): a slow pull flows before it
-# tears, so it is fast on purpose.
-press_and_move 518 180 0.03 $(seq -s ' ' -f '%g,180' 533 15 720)
+tear_with_two_hands  # viewer_lib.sh: screenshot 1, the second hand holds, the first pulls
 sleep 1.5
 screenshot 2
 # ... and back, button still down: the piece it holds is pressed against the rest.
