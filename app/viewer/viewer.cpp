@@ -302,10 +302,16 @@ Viewer::PhysicsOutcome Viewer::stepPhysics(double wallSeconds, const glm::dvec3&
       simulation_.dragTo(from + (target - from) * progress, cursorHand_);
     }
     if (scenario_ && !scenario_->finished()) playScenarioAt(simulation_.time(), outcome);
-    const int changes = simulation_.tears() + simulation_.merges();
+    const int tears = simulation_.tears(), merges = simulation_.merges();
     simulation_.step();
-    if (simulation_.tears() + simulation_.merges() != changes)
+    if (simulation_.tears() != tears || simulation_.merges() != merges) {
       outcome.topologyMs += simulation_.lastTopologyMilliseconds();
+      // Said as it happens, so that a script driving the window can wait for it (tests/scripts).
+      std::printf("slime view: %s %d at %.3f s simulated, %zu pieces\n", simulation_.tears() != tears ? "tear" : "merge",
+                  simulation_.tears() != tears ? simulation_.tears() : simulation_.merges(), simulation_.time(),
+                  simulation_.pieceCount());
+      std::fflush(stdout);
+    }
     if (physicsTime.milliseconds() > kPhysicsBudgetMs && done + 1 < steps) {  // out of time: the rest waits
       if (!settings_.sim.paused) clock_.giveBack(steps - done - 1, settings_.sim.dt);
       ++done;

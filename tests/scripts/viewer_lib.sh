@@ -31,6 +31,21 @@ screenshot() {
   fail "F12 did not write $OUT/shot-$1.png"
 }
 
+# said LINE: whether the viewer has printed a line containing LINE (it says "tear N" and "merge N" as
+# they happen).
+said() {
+  grep -q -- "$1" "$OUT/stdout.txt"
+}
+
+# wait_until_said LINE SECONDS: waits until the viewer has said LINE, or fails after SECONDS.
+wait_until_said() {
+  for _ in $(seq 1 $(($2 * 10))); do
+    said "$1" && return 0
+    sleep 0.1
+  done
+  fail "the viewer did not say '$1' within $2 s; it said: $(grep 'slime view:' "$OUT/stdout.txt" | tr '\n' ' ')"
+}
+
 # click_at X Y: a left click at window point (X, Y), the button held for a moment: Dear ImGui 1.86
 # loses a press and release that arrive within one frame, and a loaded machine makes frames long.
 click_at() {
@@ -67,6 +82,7 @@ tear_with_two_hands() {
   xdotool mouseup 1 keyup ctrl
   sleep 0.5
   press_and_move 518 180 0.03 $(seq -s ' ' -f '%g,180' 533 15 720)
+  wait_until_said "tear 1 " 10
 }
 
 # differing_pixels A B: how many pixels differ by more than 3 % between two PNGs.

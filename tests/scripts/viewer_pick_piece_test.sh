@@ -16,8 +16,16 @@ box=$(convert "$OUT/shot-2.png" -crop 130x120+600+120 +repage -fx "g >= r + 10/2
 [[ "$box" =~ ^([0-9]+)x([0-9]+)\+([0-9]+)\+([0-9]+)$ ]] || fail "no torn piece right of the slime in shot 2 (box '$box')"
 x=$((600 + BASH_REMATCH[3] + BASH_REMATCH[1] / 2))
 y=$((120 + BASH_REMATCH[4] + BASH_REMATCH[2] / 2))
-press_and_move "$x" "$y" 0.1 $(seq -s ' ' -f "%g,$y" $((x - 20)) -20 500)
-sleep 2
+# Dragged back a step at a time until the two merge, then held still: dragging on past the merge would
+# press the merged slime against the second hand's hold.
+xdotool mousemove --window "$WINDOW" "$x" "$y" mousedown 1
+for step_x in $(seq $((x - 20)) -20 500); do
+  said "merge 1 " && break
+  xdotool mousemove --window "$WINDOW" "$step_x" "$y"
+  sleep 0.1
+done
+wait_until_said "merge 1 " 8
+sleep 1
 screenshot 3
 quit_viewer  # while still holding the button
 xdotool mouseup 1

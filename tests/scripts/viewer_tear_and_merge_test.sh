@@ -9,10 +9,12 @@ sleep 1.5
 screenshot 2
 # ... and back, button still down: the piece it holds is pressed against the rest.
 for x in $(seq 700 -20 520); do
+  said "merge 1 " && break
   xdotool mousemove --window "$WINDOW" "$x" 180
   sleep 0.1
 done
-sleep 2
+wait_until_said "merge 1 " 8
+sleep 1
 screenshot 3
 quit_viewer  # while still holding the button
 xdotool mouseup 1
