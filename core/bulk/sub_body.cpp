@@ -379,6 +379,11 @@ void carryDrawnSurface(BulkBody& body, TriangleMesh drawn, double support, const
     double bestDistance = std::numeric_limits<double>::infinity();
     const auto visit = [&](const glm::i64vec3& c) {
       if (glm::any(glm::lessThan(c, first)) || glm::any(glm::greaterThan(c, last))) return;
+      // A cell farther than the nearest face found so far holds no nearer one: a nearer face's nearest
+      // point would lie in a cell within that distance, and the face is listed in every cell its box meets.
+      const glm::dvec3 cellLow = glm::dvec3(c) * cell;
+      const glm::dvec3 away = glm::max(glm::max(cellLow - p, p - (cellLow + glm::dvec3(cell))), glm::dvec3(0.0));
+      if (glm::dot(away, away) > bestDistance) return;
       const std::size_t k = cellIndex(c);
       for (std::uint32_t slot = cellStart[k]; slot < cellStart[k + 1]; ++slot) {
         const std::uint32_t f = cellFaces[slot];

@@ -91,8 +91,9 @@ void signedDistanceOnGrid(const SurfaceView& surface, ScalarGrid& grid) {
   const double reach = 1.75 * h;
   for (const Triangle& t : surface.triangles) {
     const glm::dvec3 a = surface.positions[t.x], b = surface.positions[t.y], c = surface.positions[t.z];
-    const glm::dvec3 low = (glm::min(a, glm::min(b, c)) - glm::dvec3(reach) - grid.origin) / h;
-    const glm::dvec3 high = (glm::max(a, glm::max(b, c)) + glm::dvec3(reach) - grid.origin) / h;
+    const glm::dvec3 boxLow = glm::min(a, glm::min(b, c)), boxHigh = glm::max(a, glm::max(b, c));
+    const glm::dvec3 low = (boxLow - glm::dvec3(reach) - grid.origin) / h;
+    const glm::dvec3 high = (boxHigh + glm::dvec3(reach) - grid.origin) / h;
     const int i0 = clampIndex(std::ceil(low.x), n.x), i1 = clampIndex(high.x, n.x);
     const int j0 = clampIndex(std::ceil(low.y), n.y), j1 = clampIndex(high.y, n.y);
     const int k0 = clampIndex(std::ceil(low.z), n.z), k1 = clampIndex(high.z, n.z);
@@ -102,6 +103,10 @@ void signedDistanceOnGrid(const SurfaceView& surface, ScalarGrid& grid) {
           const std::size_t g = grid.index(i, j, k);
           if (!near[g]) continue;
           const glm::dvec3 p = grid.point(i, j, k);
+          // No nearer than its box: a triangle whose box is as far as the nearest one found so far
+          // cannot lower the distance (most of them, once a point's nearest neighbour has been met).
+          const glm::dvec3 outside = glm::max(glm::max(boxLow - p, p - boxHigh), glm::dvec3(0.0));
+          if (glm::dot(outside, outside) >= d[g] * d[g]) continue;
           d[g] = std::min(d[g], glm::length(p - closestPointOnTriangle(p, a, b, c)));
         }
   }

@@ -14,11 +14,33 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <limits>
 #include <stdexcept>
 #include <utility>
 
 namespace slime {
+namespace {
+
+// A tear's or a merge's cost: wall-clock and the thread's CPU milliseconds since construction.
+class TopologyTimer {
+ public:
+  double milliseconds() const {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - wall_).count();
+  }
+  double cpuMilliseconds() const { return threadCpuMilliseconds() - cpu_; }
+
+ private:
+  static double threadCpuMilliseconds() {
+    timespec now{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+    return 1e3 * static_cast<double>(now.tv_sec) + 1e-6 * static_cast<double>(now.tv_nsec);
+  }
+  std::chrono::steady_clock::time_point wall_ = std::chrono::steady_clock::now();
+  double cpu_ = threadCpuMilliseconds();
+};
+
+}  // namespace
 namespace {
 
 constexpr int kGoodStateInterval = 8;   // steps between saved good states
@@ -89,6 +111,7 @@ Simulation::Simulation(const Simulation& other)
       touchingFor_(other.touchingFor_),
       pendingTear_(other.pendingTear_),
       lastTopologyMilliseconds_(other.lastTopologyMilliseconds_),
+      lastTopologyCpuMilliseconds_(other.lastTopologyCpuMilliseconds_),
       handSpeed_(other.handSpeed_) {
   std::copy(std::begin(other.handHeld_), std::end(other.handHeld_), std::begin(handHeld_));
   std::copy(std::begin(other.handTarget_), std::end(other.handTarget_), std::begin(handTarget_));
@@ -248,7 +271,7 @@ bool Simulation::mergePieces() {
       double& touching = touchingFor_[i * count + j];
       touching = touchingNodes(a->body(), b->body(), drawnSpacing_) >= kTouchingNodes ? touching + interval : 0.0;
       if (touching < settings_.slime.mergeTime - 1e-9) continue;
-      const auto begin = std::chrono::steady_clock::now();
+      const TopologyTimer timer;
       std::array<int, kHands> handFrom{};
       const double support = kSmoothSupportSteps * settings_.slime.radius / std::ldexp(1.0, settings_.slime.resolution);
       std::unique_ptr<BulkPiece> merged = a->mergedWith(*b, drawnSpacing_, drawnSpacing_, support, handFrom);
@@ -267,7 +290,8 @@ bool Simulation::mergePieces() {
       touchingFor_.clear();
       selfContact_.forget();  // its contacts name the pieces' old vertices
       saveGoodState();
-      lastTopologyMilliseconds_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
+      lastTopologyMilliseconds_ = timer.milliseconds();
+      lastTopologyCpuMilliseconds_ = timer.cpuMilliseconds();
       return true;
     }
   return false;
@@ -276,7 +300,7 @@ bool Simulation::mergePieces() {
 bool Simulation::tearPieces() {
   if (pendingTear_) {
     if (stepCount_ < pendingTear_->dueStep) return false;
-    const auto begin = std::chrono::steady_clock::now();
+    const TopologyTimer timer;
     PendingTear pending = std::move(*pendingTear_);
     pendingTear_.reset();
     const std::size_t p = pending.piece;
@@ -298,21 +322,21 @@ bool Simulation::tearPieces() {
     selfContact_.forget();  // its contacts name the pieces' old vertices
     saveGoodState();  // the guard never rolls back across a tear
     // The dearer of the tear's two steps.
-    lastTopologyMilliseconds_ = std::max(
-        pending.milliseconds, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count());
+    lastTopologyMilliseconds_ = std::max(pending.milliseconds, timer.milliseconds());
+    lastTopologyCpuMilliseconds_ = std::max(pending.cpuMilliseconds, timer.cpuMilliseconds());
     return true;
   }
   for (std::size_t p = 0; p < pieces_.size(); ++p) {
     auto* bulk = dynamic_cast<BulkPiece*>(pieces_[p].get());
     if (bulk == nullptr) continue;
-    const auto begin = std::chrono::steady_clock::now();
+    const TopologyTimer timer;
     const TearPlan plan = planTear(bulk->body(), settings_.slime.tearStretch, settings_.slime.smallestPiece * slimeRestVolume_);
     if (plan.parts < 2) continue;
     if (pieces_.size() - 1 + plan.parts > static_cast<std::size_t>(settings_.slime.maxPieces)) continue;
     BulkPiece::SplitSurfaces surfaces = bulk->splitSurfaces(plan, drawnSpacing_);
     if (surfaces.surfaces.empty()) continue;
-    pendingTear_ = PendingTear{p, std::move(surfaces), stepCount_ + kTearStageSteps,
-                               std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count()};
+    pendingTear_ = PendingTear{p, std::move(surfaces), stepCount_ + kTearStageSteps, timer.milliseconds(),
+                               timer.cpuMilliseconds()};
     return false;  // torn at the second half
   }
   return false;

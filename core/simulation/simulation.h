@@ -127,6 +127,8 @@ class Simulation {
   int tears() const { return tears_; }     // since (re)load
   int merges() const { return merges_; }
   double lastTopologyMilliseconds() const { return lastTopologyMilliseconds_; }  // the last tear's or merge's cost
+  // The same in the thread's CPU time: what the work costs, whatever else the machine runs.
+  double lastTopologyCpuMilliseconds() const { return lastTopologyCpuMilliseconds_; }
 
  private:
   void start();  // time zero, models built for the pieces, their good state saved
@@ -170,9 +172,11 @@ class Simulation {
     BulkPiece::SplitSurfaces surfaces;   // its parts' drawn surfaces, made at the tear's first step
     std::int64_t dueStep = 0;            // when the pieces are made
     double milliseconds = 0.0;           // the first step's cost
+    double cpuMilliseconds = 0.0;        // ... in CPU time
   };
   std::optional<PendingTear> pendingTear_;  // a tear half done (merges wait; a rollback drops it)
   double lastTopologyMilliseconds_ = 0.0;
+  double lastTopologyCpuMilliseconds_ = 0.0;
   bool handHeld_[kHands] = {false, false};  // the hand held at the last step
   glm::dvec3 handTarget_[kHands] = {};      // ... with this target
   double handSpeed_ = 0.0;                  // the hands' recent fastest target speed, m/s (speedLimit)
