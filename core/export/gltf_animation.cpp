@@ -5,6 +5,7 @@
 #include <tiny_gltf.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <sstream>
@@ -82,22 +83,32 @@ void addMaterial(tinygltf::Model& model, const ExportMaterial& slime, double thi
 
 }  // namespace
 
-std::string glbBytes(const std::vector<SurfaceMesh>& frames, const ExportMaterial& material) {
-  if (frames.empty()) throw std::runtime_error("glTF: no frame to write");
-  const SurfaceMesh& first = frames.front();
-  for (const SurfaceMesh& frame : frames)
-    if (frame.triangles != first.triangles)
-      throw std::runtime_error("glTF: the surface's triangles changed at t = " + std::to_string(frame.time) +
-                               " s (slime.level or autoLevel); one .glb holds one mesh: export .ply or .obj");
+namespace {
 
-  tinygltf::Model model;
-  model.asset.version = "2.0";
-  model.asset.generator = "slime";
-  model.buffers.emplace_back();
+// Frames [first, last] share one set of pieces and triangles: they animate as morph targets of one mesh.
+struct Span {
+  std::size_t first = 0, last = 0;
+};
 
+std::vector<Span> spansOf(const std::vector<SurfaceMesh>& frames) {
+  std::vector<Span> spans{{0, 0}};
+  for (std::size_t k = 1; k < frames.size(); ++k) {
+    const SurfaceMesh& start = frames[spans.back().first];
+    if (frames[k].triangles == start.triangles && frames[k].pieceVertexStarts == start.pieceVertexStarts &&
+        frames[k].positions.size() == start.positions.size())
+      spans.back().last = k;
+    else
+      spans.push_back({k, k});
+  }
+  return spans;
+}
+
+// The mesh of frames [span.first, span.last]: the first of them, and one morph target per frame (when
+// there are several) holding p_k − p_first and n_k − n_first. Returns the mesh's index.
+int addSpanMesh(tinygltf::Model& model, const std::vector<SurfaceMesh>& frames, const Span& span, const std::string& name) {
+  const SurfaceMesh& first = frames[span.first];
   tinygltf::Primitive primitive;
   primitive.mode = TINYGLTF_MODE_TRIANGLES;
-  addMaterial(model, material, meanChord(first));
   primitive.material = 0;
   {  // indices: uint32, three per triangle
     std::vector<unsigned char>& data = model.buffers[0].data;
@@ -124,10 +135,11 @@ std::string glbBytes(const std::vector<SurfaceMesh>& frames, const ExportMateria
       addAccessor(model, floats(first.normals), TINYGLTF_TYPE_VEC3, TINYGLTF_TARGET_ARRAY_BUFFER, false);
 
   tinygltf::Mesh mesh;
-  mesh.name = "slime";
-  const std::size_t n = frames.size();
+  mesh.name = name;
+  const std::size_t n = span.last - span.first + 1;
   if (n > 1) {
-    for (const SurfaceMesh& frame : frames) {
+    for (std::size_t k = span.first; k <= span.last; ++k) {
+      const SurfaceMesh& frame = frames[k];
       primitive.targets.push_back(
           {{"POSITION", addAccessor(model, floats(frame.positions, &first.positions), TINYGLTF_TYPE_VEC3,
                                     TINYGLTF_TARGET_ARRAY_BUFFER, true)},
@@ -139,36 +151,89 @@ std::string glbBytes(const std::vector<SurfaceMesh>& frames, const ExportMateria
   }
   mesh.primitives.push_back(primitive);
   model.meshes.push_back(mesh);
+  return static_cast<int>(model.meshes.size()) - 1;
+}
 
-  tinygltf::Node node;
-  node.name = "slime";
-  node.mesh = 0;
-  // The simulation's z is up; glTF's y is up: a rotation of −90° about x, (x, y, z) → (x, z, −y).
-  node.rotation = {-0.70710678118654752, 0.0, 0.0, 0.70710678118654752};
-  model.nodes.push_back(node);
+// Appends a sampler and a channel driving `path` of node `node` to the animation.
+void addChannel(tinygltf::Model& model, tinygltf::Animation& animation, const std::vector<float>& times,
+                const std::vector<float>& values, int type, const char* interpolation, int node, const char* path) {
+  tinygltf::AnimationSampler sampler;
+  sampler.input = addAccessor(model, times, TINYGLTF_TYPE_SCALAR, 0, true);
+  sampler.output = addAccessor(model, values, type, 0, false);
+  sampler.interpolation = interpolation;
+  animation.samplers.push_back(sampler);
+  tinygltf::AnimationChannel channel;
+  channel.sampler = static_cast<int>(animation.samplers.size()) - 1;
+  channel.target_node = node;
+  channel.target_path = path;
+  animation.channels.push_back(channel);
+}
+
+}  // namespace
+
+std::string glbBytes(const std::vector<SurfaceMesh>& frames, const ExportMaterial& material) {
+  if (frames.empty()) throw std::runtime_error("glTF: no frame to write");
+  const SurfaceMesh& first = frames.front();
+  const std::vector<Span> spans = spansOf(frames);
+
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "slime";
+  model.buffers.emplace_back();
+  addMaterial(model, material, meanChord(first));
+
   tinygltf::Scene scene;
-  scene.nodes = {0};
+  for (const Span& span : spans) {
+    std::string name = "slime";
+    if (spans.size() > 1) {
+      char text[120];
+      std::snprintf(text, sizeof text, "slime, %zu piece%s, t %.3f-%.3f s", frames[span.first].pieceCount(),
+                    frames[span.first].pieceCount() == 1 ? "" : "s", frames[span.first].time, frames[span.last].time);
+      name = text;
+    }
+    tinygltf::Node node;
+    node.name = name;
+    node.mesh = addSpanMesh(model, frames, span, name);
+    // The simulation's z is up; glTF's y is up: a rotation of −90° about x, (x, y, z) → (x, z, −y).
+    node.rotation = {-0.70710678118654752, 0.0, 0.0, 0.70710678118654752};
+    if (span.first > 0) node.scale = {0.0, 0.0, 0.0};  // shown from its first frame on (the animation)
+    model.nodes.push_back(node);
+    scene.nodes.push_back(static_cast<int>(model.nodes.size()) - 1);
+  }
   model.scenes.push_back(scene);
   model.defaultScene = 0;
 
-  if (n > 1) {
-    std::vector<float> times(n), weights(n * n, 0.0f);
-    for (std::size_t k = 0; k < n; ++k) {
-      times[k] = static_cast<float>(frames[k].time - first.time);
-      weights[k * n + k] = 1.0f;
-    }
-    tinygltf::AnimationSampler sampler;
-    sampler.input = addAccessor(model, times, TINYGLTF_TYPE_SCALAR, 0, true);
-    sampler.output = addAccessor(model, weights, TINYGLTF_TYPE_SCALAR, 0, false);
-    sampler.interpolation = "LINEAR";
-    tinygltf::AnimationChannel channel;
-    channel.sampler = 0;
-    channel.target_node = 0;
-    channel.target_path = "weights";
+  // One animation: each span's morph weights, one-hot at its frame k's time and linear between; and,
+  // where the pieces change (a tear, a merge), each span's node shown (scale 1) from its first frame's
+  // time until the next span's and hidden (scale 0) otherwise, stepwise: glTF 2.0 has no visibility.
+  if (frames.size() > 1) {
     tinygltf::Animation animation;
     animation.name = "slime";
-    animation.samplers.push_back(sampler);
-    animation.channels.push_back(channel);
+    const auto at = [&](std::size_t k) { return static_cast<float>(frames[k].time - first.time); };
+    for (std::size_t s = 0; s < spans.size(); ++s) {
+      const Span& span = spans[s];
+      const std::size_t n = span.last - span.first + 1;
+      const int node = static_cast<int>(s);
+      if (n > 1) {
+        std::vector<float> times(n), weights(n * n, 0.0f);
+        for (std::size_t k = 0; k < n; ++k) {
+          times[k] = at(span.first + k);
+          weights[k * n + k] = 1.0f;
+        }
+        addChannel(model, animation, times, weights, TINYGLTF_TYPE_SCALAR, "LINEAR", node, "weights");
+      }
+      if (spans.size() > 1) {
+        std::vector<float> times, scales;
+        const auto key = [&](float time, float scale) {
+          times.push_back(time);
+          scales.insert(scales.end(), {scale, scale, scale});
+        };
+        if (span.first > 0) key(0.0f, 0.0f);
+        key(at(span.first), 1.0f);
+        if (span.last + 1 < frames.size()) key(at(span.last + 1), 0.0f);
+        addChannel(model, animation, times, scales, TINYGLTF_TYPE_VEC3, "STEP", node, "scale");
+      }
+    }
     model.animations.push_back(animation);
   }
 

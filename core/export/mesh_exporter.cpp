@@ -107,27 +107,6 @@ void writeMesh(MeshFormat format, const std::string& path, const SurfaceMesh& me
   }
 }
 
-// A .glb's frames are morph targets of the first frame's mesh: every frame needs its pieces, their
-// vertices and their triangles. Pieces torn off or merged change them, which a .glb cannot hold.
-void checkSamePieces(const SurfaceMesh& first, const SurfaceMesh& frame) {
-  char text[400];
-  if (frame.pieceCount() != first.pieceCount() || frame.pieceVertexStarts != first.pieceVertexStarts) {
-    std::snprintf(text, sizeof text,
-                  "--export-mesh .glb: the slime has %zu piece%s at t = %g s where the first frame (t = %g s) had %zu, "
-                  "or their vertices differ; a .glb animates one fixed set of pieces. Export .ply or .obj frames "
-                  "instead (each file holds every piece of its frame)",
-                  frame.pieceCount(), frame.pieceCount() == 1 ? "" : "s", frame.time, first.time, first.pieceCount());
-    throw std::runtime_error(text);
-  }
-  if (frame.triangles != first.triangles) {
-    std::snprintf(text, sizeof text,
-                  "--export-mesh .glb: the surface's triangles at t = %g s differ from the first frame's (t = %g s); "
-                  "a .glb animates one fixed set of triangles. Export .ply or .obj frames instead",
-                  frame.time, first.time);
-    throw std::runtime_error(text);
-  }
-}
-
 }  // namespace
 
 MeshFormat meshFormatOf(const std::string& path, const std::string& option) {
@@ -191,7 +170,6 @@ void MeshExporter::add(double time, std::span<const SurfaceView> surfaces, const
   SurfaceMesh mesh = surfaceMeshOf(time, surfaces);
   if (format_ == MeshFormat::Glb) {
     if (kept_.empty()) material_ = material;
-    else checkSamePieces(kept_.front(), mesh);
     kept_.push_back(std::move(mesh));
   } else {
     writeMesh(format_, pathOf(frames_), mesh, material, objUp_);

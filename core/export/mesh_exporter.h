@@ -49,8 +49,7 @@ class MeshExporter {
   bool due(std::int64_t step) const { return step == nextStep_; }
   // Adds the frame at `time`, every piece of it in the one file (surfaceMeshOf), with the slime's
   // material then: a .ply or .obj (and its .mtl) is written now, a .glb's frames are kept for finish().
-  // A .glb holds one set of pieces for the whole run (gltf_animation.h): a frame whose pieces differ
-  // from the first frame's in number or in triangles throws std::runtime_error saying so.
+  // In a .glb each run of frames with one set of pieces is a mesh shown over its frames (gltf_animation.h).
   void add(double time, std::span<const SurfaceView> surfaces, const ExportMaterial& material);
   void finish();  // writes the .glb, with the first frame's material
   int frames() const { return frames_; }
