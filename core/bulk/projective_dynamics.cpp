@@ -279,7 +279,8 @@ glm::dvec3 ProjectiveSolver::step(BulkBody& body, BulkScratch& scratch, const Pr
       const std::uint32_t i = mouse.nodes[k];
       const double w = state.inverseMasses[i];
       if (w <= 0.0) continue;
-      const double mass = 1.0 / w, stiffness = mouse.shares[k] * mouse.stiffness, damping = mouse.shares[k] * mouse.damping;
+      const double mass = 1.0 / w, stiffness = nodeShare(mouse, k) * mouse.stiffness,
+                   damping = nodeShare(mouse, k) * mouse.damping;
       const glm::dvec3 v = state.velocities[i];
       const glm::dvec3 next =
           (mass / h * v + stiffness * (springTarget(mouse, k) - state.positions[i]) + damping * springTargetVelocity(mouse, k)) /

@@ -46,14 +46,14 @@ glm::dvec3 addMouseSpringForces(const MouseSpring& spring, const std::vector<glm
   glm::dvec3 total(0.0);
   for (std::size_t k = 0; k < spring.nodes.size(); ++k) {
     const std::uint32_t i = spring.nodes[k];
-    total += spring.shares[k] * (spring.stiffness * (springTarget(spring, k) - positions[i]) +
+    total += nodeShare(spring, k) * (spring.stiffness * (springTarget(spring, k) - positions[i]) +
                                  spring.damping * (springTargetVelocity(spring, k) - velocities[i]));
   }
   const double magnitude = glm::length(total);
   const double scale = magnitude > spring.maxForce ? spring.maxForce / magnitude : 1.0;
   for (std::size_t k = 0; k < spring.nodes.size(); ++k) {
     const std::uint32_t i = spring.nodes[k];
-    forces[i] += (scale * spring.shares[k]) *
+    forces[i] += (scale * nodeShare(spring, k)) *
                  (spring.stiffness * (springTarget(spring, k) - positions[i]) +
                   spring.damping * (springTargetVelocity(spring, k) - velocities[i]));
   }
@@ -69,7 +69,8 @@ glm::dvec3 applyMouseSpringImplicitly(const MouseSpring& spring, const std::vect
     const std::uint32_t i = spring.nodes[k];
     const double w = inverseMasses[i];
     if (w <= 0.0) continue;
-    const double mass = 1.0 / w, stiffness = spring.shares[k] * spring.stiffness, damping = spring.shares[k] * spring.damping;
+    const double mass = 1.0 / w, stiffness = nodeShare(spring, k) * spring.stiffness,
+                 damping = nodeShare(spring, k) * spring.damping;
     const glm::dvec3 v = velocities[i];
     const glm::dvec3 next =
         (mass / h * v + stiffness * (springTarget(spring, k) - positions[i]) + damping * springTargetVelocity(spring, k)) /

@@ -36,6 +36,15 @@ std::vector<std::uint32_t> pointsWithinRadius(const std::vector<glm::dvec3>& pos
 constexpr double kMouseStiffness = 400.0;  // N/m, the whole pinch
 constexpr double kMouseDampingRatio = 0.7; // of the pinch's critical damping 2√(k m)
 
+// How a hand holds what it grabs. A pinch (the default) shares kMouseStiffness among the nodes it takes:
+// each of a big wad's nodes is held loosely (200 nodes, 2 N/m each), so the held material draws out with a
+// strand pulled from it. A fist holds every node it takes by kFistNodeStiffness, ten times a resolution-2
+// element's own stiffness (E L ≈ 3 · 1,200 Pa · 1.1 cm ≈ 40 N/m): the wad goes with the hand as one
+// piece, its shape kept, and only the material outside it draws out (docs/physics.md, "The shape, drawn
+// out"). Both pull with at most sim.handForce in all.
+enum class Grip { Pinch, Fist };
+constexpr double kFistNodeStiffness = 400.0;  // N/m, each held node
+
 // A hand pressing the slime onto the floor squeezes the material under its fingertip out sideways, and
 // the film left under it resists the more the thinner it gets (Stefan's squeeze film, F = 3π η R⁴ ḣ / 2h³:
 // the Maxwell branch's η1 = μ1 τ = 430 Pa·s under a 1.5 cm pinch pushed at 0.23 m/s by 16 N leaves
@@ -50,14 +59,20 @@ constexpr double kPressStopFraction = 0.25;
 struct MouseSpring {
   std::vector<std::uint32_t> nodes;
   std::vector<glm::dvec3> offsets;  // node − grab point at the grab
-  std::vector<double> shares;       // of the stiffness and damping, sum 1
+  std::vector<double> shares;       // of the stiffness and damping, sum 1 (a pinch's)
   std::vector<double> lowest;       // the lowest z each node is driven to, m (kPressStopFraction)
   glm::dvec3 target{0.0};
   glm::dvec3 targetVelocity{0.0};
-  double stiffness = kMouseStiffness;
-  double damping = 0.0;             // N·s/m
+  Grip grip = Grip::Pinch;
+  double stiffness = kMouseStiffness;  // N/m: a pinch's whole, shared; a fist's on each node
+  double damping = 0.0;             // N·s/m, as the stiffness
   double maxForce = SimSettings{}.handForce;  // N; Simulation::grab sets the run's sim.handForce
 };
+
+// The k-th node's part of the stiffness and damping: its share in a pinch, all of it in a fist.
+inline double nodeShare(const MouseSpring& spring, std::size_t k) {
+  return spring.grip == Grip::Fist ? 1.0 : spring.shares[k];
+}
 
 // Where the spring drives its k-th node, target + offset_k but no lower than lowest_k, and how fast
 // that point moves (not down once it is at its stop).

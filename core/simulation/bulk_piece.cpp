@@ -323,12 +323,18 @@ void BulkPiece::substep(double h) {
       std::vector<glm::dvec3>& a = scratch_.forces;
       bulkInternalForces(body_, state.positions, state.velocities, a, false);
       for (Hand& hand : hands_)
-        if (hand.holding) hand.force = addMouseSpringForces(hand.spring, state.positions, state.velocities, a);
+        if (hand.holding && hand.spring.grip == Grip::Pinch)
+          hand.force = addMouseSpringForces(hand.spring, state.positions, state.velocities, a);
       const glm::dvec3 gravity{0.0, 0.0, -settings_.sim.gravity};
       for (std::size_t i = 0; i < state.size(); ++i) {
         const double w = state.inverseMasses[i];
         if (w != 0.0) state.velocities[i] += h * (a[i] * w + gravity);
       }
+      // A fist's springs, each as stiff as ten elements, by backward Euler after the kick (explicitly they
+      // would need a step under 2√(m/k) of a node).
+      for (Hand& hand : hands_)
+        if (hand.holding && hand.spring.grip == Grip::Fist)
+          hand.force = applyMouseSpringImplicitly(hand.spring, state.positions, state.inverseMasses, h, state.velocities);
       dampEdges(body_, h, scratch_, state);
       // Drift and the floor in one pass (the floor moves only the node it holds).
       for (std::size_t i = 0; i < state.size(); ++i) {
@@ -425,7 +431,7 @@ const std::vector<glm::dvec3>& BulkPiece::drawnPositions() const {
 
 double BulkPiece::volume() const { return enclosedVolume(body_.state.positions, body_.mesh.surface); }
 
-bool BulkPiece::grab(const glm::dvec3& point, double radius, int index) {
+bool BulkPiece::grab(const glm::dvec3& point, double radius, int index, Grip grip) {
   Hand& hand = hands_[index];
   // The drawn surface point nearest to `point`, and the body's nodes within `radius` of it (or,
   // when none is that close, the nodes that carry the nearest drawn vertex). The surface as the
@@ -461,6 +467,11 @@ bool BulkPiece::grab(const glm::dvec3& point, double radius, int index) {
   }
   spring.nodes = nodes;
   spring.target = surface;
+  spring.grip = grip;
+  if (grip == Grip::Fist) {  // each node by itself: its stiffness and a damping for a node of the mean mass
+    spring.stiffness = kFistNodeStiffness;
+    mass /= static_cast<double>(nodes.size());
+  }
   spring.damping = kMouseDampingRatio * 2.0 * std::sqrt(spring.stiffness * mass);
   spring.maxForce = settings_.sim.handForce;
   hand.pendingTarget = surface;

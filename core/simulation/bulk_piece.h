@@ -42,7 +42,7 @@ class BulkPiece final : public Piece {
   double elasticEnergy() const override { return bulkElasticEnergy(body_, body_.state.positions); }
   std::size_t invertedElements() const override { return invertedBulkElements(body_, body_.state.positions); }
 
-  bool grab(const glm::dvec3& point, double radius, int hand) override;
+  bool grab(const glm::dvec3& point, double radius, int hand, Grip grip) override;
 
   const BulkBody& body() const { return body_; }
   // The body as the self-contact sees it (self_contact.h), borrowed until the body changes; the drawn

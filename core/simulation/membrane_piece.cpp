@@ -129,7 +129,7 @@ void MembranePiece::endStep(const StepContext& context) {
 
 double MembranePiece::volume() const { return enclosedVolume(body_.state.positions, body_.triangles); }
 
-bool MembranePiece::grab(const glm::dvec3& point, double radius, int index) {
+bool MembranePiece::grab(const glm::dvec3& point, double radius, int index, Grip /*grip*/) {
   Hand& hand = hands_[index];
   const glm::dvec3 surface = nearestSurfacePoint(body_.state.positions, body_.triangles, point);
   std::vector<std::uint32_t> indices = pointsWithinRadius(body_.state.positions, surface, radius);

@@ -37,7 +37,7 @@ class MembranePiece final : public Piece {
   SlimeMetrics metrics() const override { return metricsOf(body_.freeInverseMasses); }
   std::size_t elementCount() const override { return body_.springs.size(); }
 
-  bool grab(const glm::dvec3& point, double radius, int hand) override;
+  bool grab(const glm::dvec3& point, double radius, int hand, Grip grip) override;  // holds kinematically, either grip
   void release(int hand) override;
 
   const SlimeBody& body() const { return body_; }

@@ -98,7 +98,7 @@ class Piece {
   virtual std::size_t invertedElements() const { return 0; }
 
   // Hands: grab (false if no point is taken), drag and release, as Simulation's.
-  virtual bool grab(const glm::dvec3& point, double radius, int hand) = 0;
+  virtual bool grab(const glm::dvec3& point, double radius, int hand, Grip grip) = 0;
   void dragTo(const glm::dvec3& target, int hand);
   virtual void release(int hand);
   void applyHandForce(double maxForce);  // a hand that holds feels a new sim.handForce now

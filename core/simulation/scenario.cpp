@@ -83,10 +83,15 @@ ScenarioEvent readEvent(const json& item, const EventReader& reader) {
   }
   if (item.contains("grab")) {
     const json& grab = item["grab"];
-    reader.allowOnly(grab, "grab", {"point", "radius"});
+    reader.allowOnly(grab, "grab", {"point", "radius", "grip"});
     event.kind = ScenarioEvent::Kind::Grab;
     event.point = reader.vector(grab, "grab", "point");
     event.radius = reader.number(grab, "grab", "radius", kDefaultGrabRadius, false, 1e-6);
+    if (grab.contains("grip")) {
+      const json& grip = grab["grip"];
+      if (grip == "fist") event.grip = Grip::Fist;
+      else if (grip != "pinch") reader.fail("grab.grip must be \"pinch\" or \"fist\", got " + grip.dump());
+    }
   } else if (item.contains("drag")) {
     const json& drag = item["drag"];
     reader.allowOnly(drag, "drag", {"to", "duration"});
@@ -183,7 +188,7 @@ void ScenarioPlayer::fire(const ScenarioEvent& event, Simulation& simulation, Se
   switch (event.kind) {
     case ScenarioEvent::Kind::Grab:
       motion.active = false;
-      simulation.grab(event.point, event.radius, event.hand);
+      simulation.grab(event.point, event.radius, event.hand, event.grip);
       break;
     case ScenarioEvent::Kind::Drag:
       if (!simulation.grabbing(event.hand)) break;

@@ -8,7 +8,8 @@
 //              {"t":3.0,"orbit":{"yaw":90,"pitch":10,"duration":3}}]}
 // Grab, drag, release and press take an optional "hand": 0 or 1 beside "t" (default 0), which of the
 // two hands acts: {"t":4.0,"hand":1,"grab":{...}}; each hand has its own drag or press in progress.
-// `point` means the surface point nearest to it. A press grabs the region within `radius` (default
+// `point` means the surface point nearest to it. A grab's optional "grip" is "pinch" (the default) or
+// "fist" (grab.h: a bulk slime's held wad goes with the hand whole instead of drawing out). A press grabs the region within `radius` (default
 // 0.015 m) of that point, pushes it `depth` along `direction` over `duration`, holds it there for
 // `hold` s (default 0), then lets go.
 // An orbit turns the viewer's camera about the slime by `yaw` degrees (counter-clockwise about +z,
@@ -18,6 +19,7 @@
 // A bad file is a SettingsError that names the file, the event and what is wrong.
 #pragma once
 
+#include "core/hands/grab.h"
 #include "core/settings/settings.h"
 
 #include <glm/vec2.hpp>
@@ -48,6 +50,7 @@ struct ScenarioEvent {
   double hold = 0.0;        // press: s held at its depth before letting go
   nlohmann::json values;    // set: {"dotted.key": value, ...}
   int hand = 0;             // grab, drag, release, press: which hand (0 or 1)
+  Grip grip = Grip::Pinch;  // grab
 };
 
 struct Scenario {

@@ -454,7 +454,7 @@ std::size_t Simulation::checkedHand(int hand) {
   return static_cast<std::size_t>(hand);
 }
 
-bool Simulation::grab(const glm::dvec3& point, double radius, int which) {
+bool Simulation::grab(const glm::dvec3& point, double radius, int which, Grip grip) {
   checkedHand(which);
   release(which);
   // The piece whose drawn surface passes nearest to the point (the first of equals).
@@ -471,7 +471,7 @@ bool Simulation::grab(const glm::dvec3& point, double radius, int which) {
     }
   }
   handPiece_[which] = nearest;
-  return handPiece(which).grab(point, radius, which);
+  return handPiece(which).grab(point, radius, which, grip);
 }
 
 void Simulation::dragTo(const glm::dvec3& target, int which) { handPiece(which).dragTo(target, static_cast<int>(checkedHand(which))); }

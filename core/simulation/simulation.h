@@ -83,8 +83,8 @@ class Simulation {
 
   // Grab the mass points within `radius` of the surface point nearest to `point` with hand `hand`
   // (0 or 1; a hand already holding lets go first); false if none. Membrane: points the other hand
-  // holds are left to it.
-  bool grab(const glm::dvec3& point, double radius, int hand = 0);
+  // holds are left to it. A bulk slime's grip is a pinch or a fist (grab.h).
+  bool grab(const glm::dvec3& point, double radius, int hand = 0, Grip grip = Grip::Pinch);
   void dragTo(const glm::dvec3& target, int hand = 0);  // move the hand's target (its points follow)
   void release(int hand = 0);
   void releaseAll();

@@ -49,6 +49,20 @@ void expectError(const std::string& text, const std::string& expected) {
   }
 }
 
+// A grab's grip: a pinch unless it says "fist"; anything else is an error naming the two.
+TEST(Scenario, AGrabHoldsWithAPinchOrAFist) {
+  const Scenario scenario = parseScenario(json::parse(R"({"events":[
+    {"t":1,"grab":{"point":[0,0,0],"radius":0.04,"grip":"fist"}},
+    {"t":1,"hand":1,"grab":{"point":[0,0,0],"grip":"pinch"}},
+    {"t":2,"grab":{"point":[0,0,0]}}]})"), "test");
+  ASSERT_EQ(scenario.events.size(), 3u);
+  EXPECT_EQ(scenario.events[0].grip, Grip::Fist);
+  EXPECT_EQ(scenario.events[1].grip, Grip::Pinch);
+  EXPECT_EQ(scenario.events[2].grip, Grip::Pinch);
+  expectError(R"({"events":[{"t":1,"grab":{"point":[0,0,0],"grip":"claw"}}]})",
+              "grab.grip must be \"pinch\" or \"fist\", got \"claw\"");
+}
+
 TEST(Scenario, BadFilesAreSettingsErrorsThatNameTheProblem) {
   expectError(R"([1,2])", "expected an object");
   expectError(R"({"evnts":[]})", "expected an object");
