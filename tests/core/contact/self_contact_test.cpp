@@ -135,7 +135,8 @@ TEST(SelfContact, APiecePressedOntoAnotherDoesNotPassThroughIt) {
 
 TEST(SelfContact, ItsSettingsAreInTheTableAndBadValuesAreRefused) {
   Settings settings = defaultSettings();
-  EXPECT_FALSE(settings.slime.selfContact) << "off until a slam's flattened slime comes back with it on (docs/physics.md)";
+  EXPECT_FALSE(settings.slime.selfContact) << "off until the fold leaves none and the untouched slime's cost is within 1.15x "
+                                               "(docs/physics.md, self-contact, limits 1 and 7)";
   EXPECT_LT(settings.slime.cling, settings.slime.modulus) << "pieces must part before the material tears";
   EXPECT_THROW(applyOverride(settings, "slime.cling=-1"), SettingsError);
   EXPECT_THROW(applyOverride(settings, "slime.selfContact=maybe"), SettingsError);
