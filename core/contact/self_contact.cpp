@@ -57,6 +57,16 @@ Corners corners(const ContactBody& body, std::uint32_t triangle, std::span<const
   return {place(body, t.x, nodes), place(body, t.y, nodes), place(body, t.z, nodes)};
 }
 
+// Whether the tetrahedron that carries a drawn vertex is inverted now (its carriers are a
+// tetrahedron's nodes, positively oriented at rest: tet_mesh.h). Where a slam or a squeeze turns an
+// element inside out, the element map turns the drawn surface over it inside out too: its triangles'
+// fronts face into the body, and a contact there would push the sheets through each other.
+bool carriedInverted(const ContactBody& body, std::uint32_t vertex, std::span<const glm::dvec3> nodes) {
+  const glm::u32vec4& c = body.carriers[vertex];
+  const glm::dvec3 a = nodes[c.x];
+  return glm::dot(nodes[c.y] - a, glm::cross(nodes[c.z] - a, nodes[c.w] - a)) <= 0.0;
+}
+
 // How far a drawn patch may stand off its outer triangle's plane, in mean rest outer edges (the broad
 // phase's back-to-back test allows this much).
 constexpr double kSelfContactBulge = 0.25;
@@ -66,14 +76,27 @@ constexpr double kSelfContactBulge = 0.25;
 // phase): then no drawn vertex over one can come to the other from its front. On a slime that is not
 // folded every pair is so (a convex surface lies behind each of its tangent planes), and so are the
 // top and bottom of a pancake, whose balls meet.
-bool backToBack(const ContactBody& first, std::uint32_t s, const ContactBody& second, std::uint32_t t, double margin) {
+// np and nq their unit normals.
+bool backToBack(const ContactBody& first, std::uint32_t s, const glm::dvec3& np, const ContactBody& second, std::uint32_t t,
+                const glm::dvec3& nq, double margin) {
   const std::vector<glm::dvec3>&x = first.state->positions, &y = second.state->positions;
   const Triangle &p = first.surface[s], &q = second.surface[t];
-  const glm::dvec3 np = unitNormal(x[p.x], x[p.y], x[p.z]), nq = unitNormal(y[q.x], y[q.y], y[q.z]);
   const double qInFront = std::max({glm::dot(y[q.x] - x[p.x], np), glm::dot(y[q.y] - x[p.x], np), glm::dot(y[q.z] - x[p.x], np)});
   if (qInFront > -margin) return false;
   const double pInFront = std::max({glm::dot(x[p.x] - y[q.x], nq), glm::dot(x[p.y] - y[q.x], nq), glm::dot(x[p.z] - y[q.x], nq)});
   return pInFront < -margin;
+}
+
+// Whether two outer triangles of one body (unit normals np, nq) have folded towards each other: their
+// normals turned more than acos(kSelfContactFacing) apart, and not each centroid behind the other's
+// plane (the convex rim of a slime sagging on the floor, whose pairs would cost and never meet). Only
+// then can neighbours at rest meet, as in the crumple under a pressing hand.
+bool folded(const ContactBody& body, std::uint32_t s, const glm::dvec3& np, std::uint32_t t, const glm::dvec3& nq) {
+  const std::vector<glm::dvec3>& x = body.state->positions;
+  const Triangle &p = body.surface[s], &q = body.surface[t];
+  if (glm::dot(np, nq) >= kSelfContactFacing) return false;
+  const glm::dvec3 apart = (x[q.x] + x[q.y] + x[q.z] - x[p.x] - x[p.y] - x[p.z]) / 3.0;
+  return !(glm::dot(apart, np) < 0.0 && glm::dot(apart, nq) > 0.0);
 }
 
 }  // namespace
@@ -137,8 +160,13 @@ void SelfContact::build(std::span<const ContactBody> bodies) {
       if (owner < cache.surfaceCount) cache.owned[fill[owner]++] = t;
     }
     // The drawn vertices' neighbours and rest areas.
-    std::vector<glm::dvec3> rest(cache.drawnCount);
+    std::vector<glm::dvec3>& rest = cache.restDrawn;
+    rest.resize(cache.drawnCount);
     for (std::uint32_t v = 0; v < cache.drawnCount; ++v) rest[v] = place(body, v, body.restNodes);
+    double drawnEdgeSum = 0.0;
+    for (const Triangle& t : body.drawnTriangles)
+      drawnEdgeSum += glm::length(rest[t.y] - rest[t.x]) + glm::length(rest[t.z] - rest[t.y]) + glm::length(rest[t.x] - rest[t.z]);
+    cache.meanDrawnEdge = body.drawnTriangles.empty() ? 0.0 : drawnEdgeSum / (3.0 * static_cast<double>(body.drawnTriangles.size()));
     // How much farther than its corners from its centroid what is drawn over each outer triangle reaches.
     cache.patchScale.assign(cache.surfaceCount, 1.0);
     for (std::uint32_t s = 0; s < cache.surfaceCount; ++s) {
@@ -189,6 +217,7 @@ void SelfContact::broadPhase(std::span<const ContactBody> bodies, const SelfCont
     glm::dvec3 centre;
     double radius;
     std::uint32_t body, triangle;
+    glm::dvec3 normal;  // the outer triangle's, now
   };
   // Only motion relative to each other matters: a body that falls or is carried whole keeps its pairs.
   // Each body's nodes are measured from their mean (its velocity, its shift since the last broad
@@ -248,7 +277,7 @@ void SelfContact::broadPhase(std::span<const ContactBody> bodies, const SelfCont
     for (std::uint32_t s = 0; s < cache.surfaceCount; ++s) {
       if (cache.ownedStart[s] == cache.ownedStart[s + 1]) continue;
       const Triangle& outer = body.surface[s];
-      Ball ball{(x[outer.x] + x[outer.y] + x[outer.z]) / 3.0, 0.0, b, s};
+      Ball ball{(x[outer.x] + x[outer.y] + x[outer.z]) / 3.0, 0.0, b, s, unitNormal(x[outer.x], x[outer.y], x[outer.z])};
       const double corner = std::max({glm::dot(x[outer.x] - ball.centre, x[outer.x] - ball.centre),
                                       glm::dot(x[outer.y] - ball.centre, x[outer.y] - ball.centre),
                                       glm::dot(x[outer.z] - ball.centre, x[outer.z] - ball.centre)});
@@ -269,14 +298,18 @@ void SelfContact::broadPhase(std::span<const ContactBody> bodies, const SelfCont
       const glm::dvec3 between = p.centre - q.centre;
       const double reach = p.radius + q.radius;
       if (glm::dot(between, between) > reach * reach) continue;
+      bool near = false;
       if (p.body == q.body) {
         const BodyCache& cache = bodies_[p.body];
         const double exclusion = kSelfContactExclusion * cache.meanEdge;
         const glm::dvec3 apart = cache.restCentroids[p.triangle] - cache.restCentroids[q.triangle];
-        if (glm::dot(apart, apart) < exclusion * exclusion) continue;
+        near = glm::dot(apart, apart) < exclusion * exclusion;
+        if (near && !folded(bodies[p.body], p.triangle, p.normal, q.triangle, q.normal)) continue;
       }
-      if (backToBack(bodies[p.body], p.triangle, bodies[q.body], q.triangle, kSelfContactBulge * shortestEdge + 2.0 * margin)) continue;
-      pairs_.push_back({p.body, p.triangle, q.body, q.triangle});
+      if (backToBack(bodies[p.body], p.triangle, p.normal, bodies[q.body], q.triangle, q.normal,
+                     kSelfContactBulge * shortestEdge + 2.0 * margin))
+        continue;
+      pairs_.push_back({p.body, p.triangle, q.body, q.triangle, near});
     }
   // The sweep's order follows positions; the contacts are resolved in the bodies' own order.
   std::sort(pairs_.begin(), pairs_.end(), [](const Pair& l, const Pair& r) {
@@ -338,7 +371,7 @@ void SelfContact::stopApproach(const glm::dvec3& normal, double stiffness, doubl
 }
 
 std::size_t SelfContact::vertexAgainstTriangles(std::span<const ContactBody> bodies, std::uint32_t a, std::uint32_t sa,
-                                                std::uint32_t b, std::uint32_t sb, const SelfContactOptions& options) {
+                                                std::uint32_t b, std::uint32_t sb, bool near, const SelfContactOptions& options) {
   const ContactBody &vertexBody = bodies[a], &triangleBody = bodies[b];
   BodyCache &vertexCache = bodies_[a], &triangleCache = bodies_[b];
   if (!vertexCache.hasPrevious || !triangleCache.hasPrevious) return 0;
@@ -360,6 +393,13 @@ std::size_t SelfContact::vertexAgainstTriangles(std::span<const ContactBody> bod
     if (glm::any(glm::lessThan(p, low)) || glm::any(glm::greaterThan(p, high))) continue;
     for (std::uint32_t k = first; k < last; ++k) {
       const std::uint32_t triangle = triangleCache.owned[k];
+      if (near) {  // a crumple: its drawn neighbours at rest are never in contact
+        const Triangle& t = triangleBody.drawnTriangles[triangle];
+        const std::vector<glm::dvec3>& rest = triangleCache.restDrawn;
+        const glm::dvec3 apart = rest[vertex] - (rest[t.x] + rest[t.y] + rest[t.z]) / 3.0;
+        const double exclusion = kSelfContactDrawnExclusion * triangleCache.meanDrawnEdge;
+        if (glm::dot(apart, apart) < exclusion * exclusion) continue;
+      }
       const Corners c = corners(triangleBody, triangle, y);
       const glm::dvec3 normal = unitNormal(c.a, c.b, c.c);
       const double gap = glm::dot(p - c.a, normal) - kSelfContactSkin;
@@ -371,6 +411,10 @@ std::size_t SelfContact::vertexAgainstTriangles(std::span<const ContactBody> bod
       const double distanceBefore = glm::dot(place(vertexBody, vertex, vertexCache.previous) - before.a,
                                              unitNormal(before.a, before.b, before.c));
       if (distanceBefore < -kPreviousSlack) continue;
+      const Triangle& t = triangleBody.drawnTriangles[triangle];
+      if (carriedInverted(vertexBody, vertex, x) || carriedInverted(triangleBody, t.x, y) ||
+          carriedInverted(triangleBody, t.y, y) || carriedInverted(triangleBody, t.z, y))
+        continue;
       const glm::dvec3 onTriangle = clampedBarycentric(beta);
       gather(vertexBody, vertex, triangleBody, triangle, onTriangle, a == b);
       const double resistance = stiffness();
@@ -471,8 +515,8 @@ std::size_t SelfContact::resolve(std::span<const ContactBody> bodies, const Self
   --stepsToBroad_;
   std::size_t pushed = 0;
   for (const Pair& pair : pairs_) {
-    pushed += vertexAgainstTriangles(bodies, pair.bodyA, pair.triangleA, pair.bodyB, pair.triangleB, options);
-    pushed += vertexAgainstTriangles(bodies, pair.bodyB, pair.triangleB, pair.bodyA, pair.triangleA, options);
+    pushed += vertexAgainstTriangles(bodies, pair.bodyA, pair.triangleA, pair.bodyB, pair.triangleB, pair.near, options);
+    pushed += vertexAgainstTriangles(bodies, pair.bodyB, pair.triangleB, pair.bodyA, pair.triangleA, pair.near, options);
   }
   if (pushed > 0 || contactsLeft_) cling(bodies, options);
   // The crossing test needs the last step's positions wherever it will look: at every step while

@@ -14,8 +14,13 @@
 // Which vertex has crossed: it lies behind the triangle (0 > C > −band, projecting inside it) now,
 // and lay in front of it at the end of the last step (continuous in time, so a vertex that is inside
 // the body legitimately — the far side of a pressed or thin slab — is never pushed through it).
-// Neighbours at rest are never in contact: two outer triangles of one body whose rest centroids are
-// nearer than kSelfContactExclusion rest edges are skipped (a crease bends them towards each other).
+// Neighbours at rest are in contact only where the surface has folded: two outer triangles of one body
+// whose rest centroids are nearer than kSelfContactExclusion rest edges are skipped (a crease bends them
+// towards each other) unless their normals have turned more than 60° apart and they are not each behind
+// the other's plane (a crumple under a pressing hand); then only drawn vertices and triangles nearer at
+// rest than kSelfContactDrawnExclusion drawn edges are skipped. Where an element that carries the vertex
+// or the triangle is inverted (a slam turns elements inside out, and the drawn surface with them), there
+// is no contact: its triangle's front faces into the body.
 //
 // Cost: a broad phase every kSelfContactBroadInterval steps on the bodies' outer triangles (a few
 // hundred), balls grown by what the fastest node can travel meanwhile relative to its body's mean
@@ -53,6 +58,12 @@ constexpr double kSelfContactTravel = 0.25;
 // Outer triangles of one body whose rest centroids lie within this many mean rest outer edges are
 // neighbours: never in contact.
 constexpr double kSelfContactExclusion = 3.5;
+// ... unless they have folded towards each other (a crumple under a hand): the cosine between their
+// normals is below this, and they are not each behind the other's plane.
+constexpr double kSelfContactFacing = 0.5;
+// Within such a pair, a drawn vertex nearer at rest than this many mean drawn edges to a drawn
+// triangle's centroid is its neighbour (a corner of it, or of one beside it): never in contact.
+constexpr double kSelfContactDrawnExclusion = 2.0;
 // How far behind a triangle a crossing is sought, in mean rest outer edges (a vertex moves far less in a step).
 constexpr double kSelfContactBand = 0.25;
 // The gap a contact leaves between the sheets, m: the drawn surface is placed by the smooth map, which
@@ -100,6 +111,8 @@ class SelfContact {
   struct BodyCache {  // per body: what follows from its rest shape, its last positions and its contacts
     std::size_t nodeCount = 0, drawnCount = 0, surfaceCount = 0;
     double meanEdge = 0.0;                      // of the outer triangles at rest, m
+    double meanDrawnEdge = 0.0;                 // of the drawn triangles at rest, m
+    std::vector<glm::dvec3> restDrawn;          // per drawn vertex, where the element map places it at rest
     std::vector<glm::dvec3> restCentroids;      // per outer triangle
     std::vector<double> patchScale;             // per outer triangle: its drawn patch's reach / its corners', at rest
     std::vector<std::uint32_t> ownedStart, owned;  // per outer triangle, the drawn triangles over it (CSR)
@@ -116,13 +129,14 @@ class SelfContact {
   };
   struct Pair {
     std::uint32_t bodyA, triangleA, bodyB, triangleB;
+    bool near;  // of one body, within the exclusion at rest (and folded towards each other)
   };
 
   bool matches(std::span<const ContactBody> bodies) const;
   void build(std::span<const ContactBody> bodies);
   void broadPhase(std::span<const ContactBody> bodies, const SelfContactOptions& options);
   std::size_t vertexAgainstTriangles(std::span<const ContactBody> bodies, std::uint32_t a, std::uint32_t sa,
-                                     std::uint32_t b, std::uint32_t sb, const SelfContactOptions& options);
+                                     std::uint32_t b, std::uint32_t sb, bool near, const SelfContactOptions& options);
   void cling(std::span<const ContactBody> bodies, const SelfContactOptions& options);
   void gather(const ContactBody& vertexBody, std::uint32_t vertex, const ContactBody& triangleBody,
               std::uint32_t triangle, const glm::dvec3& barycentric, bool sameBody);

@@ -56,19 +56,43 @@ FoldResult fold(bool selfContact, double seconds = 4.0) {
   return result;
 }
 
-// Switched off (the code main had), the folded end sinks into the strand under it: the measure sees it.
-// On, the sheets are held apart; what still counts is the patch crumpled under the pressing hand, whose
-// folds lie nearer at rest than the contact's exclusion (docs/physics.md, self-contact, limits).
+// Switched off, the folded end sinks into the strand under it: the measure sees it. On, the sheets are
+// held apart, and so is the patch the pressing hand crumples, whose folds lie nearer at rest than the
+// contact's exclusion (only folded pairs of them are in contact: without them, 41 vertices counted);
+// a few vertices there still count (docs/physics.md, self-contact, limits).
 TEST(SelfContact, AFoldDoesNotPassThroughItself) {
   const FoldResult off = fold(false);
   EXPECT_GT(off.mostInsideTwice, 50u) << "without self-contact the fold should pass through itself";
   const FoldResult on = fold(true);
   std::printf("fold: vertices 0.5 mm inside two sheets, off %zu, on %zu (deepest %.2f mm)\n", off.mostInsideTwice,
               on.mostInsideTwice, 1e3 * on.deepest);
-  EXPECT_LT(static_cast<double>(on.mostInsideTwice), 0.65 * static_cast<double>(off.mostInsideTwice))
+  EXPECT_LT(static_cast<double>(on.mostInsideTwice), 0.2 * static_cast<double>(off.mostInsideTwice))
       << "off " << off.mostInsideTwice << ", on " << on.mostInsideTwice;
   EXPECT_EQ(on.rollbacks, 0u);
   EXPECT_LT(on.lowestRightSide, 0.03) << "the end was not pressed down onto the strand";
+}
+
+// Flung up 25 cm and slammed back onto the floor (tests/scenarios/fling_up_and_slam.json, released at
+// 1.1 s): the slam drives the sheets through each other for a moment (807 of 2,562 drawn vertices inside
+// two sheets at 1.15 s without self-contact), and they come apart by 1.25 s. The contact must not hold
+// that tangle: pushing vertices out along triangles that the slam had turned inside out kept 350–450
+// vertices inside two sheets from 1.15 s on, and the slime stayed flattened (docs/physics.md, self-contact).
+TEST(SelfContact, ASlamDoesNotTangleTheSurface) {
+  Settings settings = defaultSettings();
+  settings.slime.selfContact = true;
+  Simulation simulation(settings);
+  ScenarioPlayer player(loadScenario(std::string(SLIME_SOURCE_DIR) + "/tests/scenarios/fling_up_and_slam.json"));
+  std::size_t most = 0;
+  double nextSample = 1.25;
+  while (simulation.time() < 2.0) {
+    player.advanceTo(simulation.time(), simulation, settings);
+    simulation.step();
+    if (simulation.time() + 1e-9 < nextSample) continue;
+    nextSample += 0.05;
+    most = std::max(most, insideTwiceUnderVertices(simulation.surfaces(), kFoldDepth).insideTwice);
+  }
+  EXPECT_EQ(most, 0u) << "vertices 0.5 mm inside two sheets after the slam";
+  EXPECT_TRUE(simulation.divergences().empty());
 }
 
 // Two balls, one above the other (the upper one first: the hands hold the first piece).
@@ -111,7 +135,8 @@ TEST(SelfContact, APiecePressedOntoAnotherDoesNotPassThroughIt) {
 
 TEST(SelfContact, ItsSettingsAreInTheTableAndBadValuesAreRefused) {
   Settings settings = defaultSettings();
-  EXPECT_FALSE(settings.slime.selfContact) << "off until a slam's flattened slime comes back with it on (docs/physics.md)";
+  EXPECT_FALSE(settings.slime.selfContact) << "off until the fold leaves none and the untouched slime's cost is within 1.15x "
+                                               "(docs/physics.md, self-contact, limits 1 and 7)";
   EXPECT_LT(settings.slime.cling, settings.slime.modulus) << "pieces must part before the material tears";
   EXPECT_THROW(applyOverride(settings, "slime.cling=-1"), SettingsError);
   EXPECT_THROW(applyOverride(settings, "slime.selfContact=maybe"), SettingsError);
