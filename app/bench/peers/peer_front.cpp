@@ -171,10 +171,12 @@ ModeResult measureMode(const PeerFactory& factory, const PeerBall& ball, double 
 }
 
 // The shear modulus whose drop rests at `target`: bisection on ln G (rest height grows with G) at the
-// grid's shortest step and most iterations, the step halved while the fit's drops diverge.
+// grid's shortest step and most iterations, from 480 Pa (doubled while it diverges), the step halved
+// while the fit's drops diverge.
 struct Fit {
   double shear = 0.0, restHeight = 0.0, step = 0.0;
   int iterations = 1, drops = 0;
+  std::string tried;  // "G Pa: height m" (or "diverged") of each drop, for the message when no G fits
 };
 
 Fit fitShear(const PeerFactory& factory, const PeerInfo& peer, const PeerBall& ball, double target, double step,
@@ -187,11 +189,19 @@ Fit fitShear(const PeerFactory& factory, const PeerInfo& peer, const PeerBall& b
       ++fit.drops;
       const DropResult drop = measureDrop(factory, ball, shear, step, iterations, seconds);
       diverged = diverged || drop.diverged;
+      char line[96];
+      std::snprintf(line, sizeof line, drop.diverged ? "%s%.0f Pa: diverged" : "%s%.0f Pa: %.4f m",
+                    fit.tried.empty() ? "" : ", ", shear, drop.restHeight);
+      fit.tried += line;
       return drop.restHeight;
     };
     bool diverged = false;
     double low = kShearGuess, high = kShearGuess;
-    double lowHeight = height(low, diverged), highHeight = lowHeight;
+    double lowHeight = height(low, diverged);
+    // A soft guess that flies apart (Jolt's ball at resolution 3) starts again stiffer.
+    for (int k = 0; k < 4 && diverged; ++k) diverged = false, lowHeight = height(low *= 2.0, diverged);
+    high = low;
+    double highHeight = lowHeight;
     for (int k = 0; k < 12 && !diverged && lowHeight > target; ++k) lowHeight = height(low *= 0.5, diverged);
     for (int k = 0; k < 12 && !diverged && highHeight < target; ++k) highHeight = height(high *= 2.0, diverged);
     if (!diverged && lowHeight <= target && highHeight >= target) {
@@ -208,8 +218,9 @@ Fit fitShear(const PeerFactory& factory, const PeerInfo& peer, const PeerBall& b
         return fit;
       }
     }
-    std::printf("  fit at step %.4g ms: %s, halving the step\n", 1e3 * step,
-                diverged ? "a drop diverged" : "no modulus from 1/4096 to 4096 times the guess rests there");
+    std::printf("  fit at step %.4g ms, %d iterations: %s, halving the step (%s)\n", 1e3 * step, iterations,
+                diverged ? "a drop diverged" : "no modulus from 1/4096 to 4096 times the guess rests there",
+                fit.tried.c_str());
   }
   return {};
 }
@@ -331,8 +342,18 @@ int runFront(int argc, char** argv, const PeerInfo& peer, const PeerFactory& fac
     const int fitIterations = *std::max_element(options.iterations.begin(), options.iterations.end());
     const Fit fit = fitShear(factory, peer, ball, target, fitStep, fitIterations, options.seconds);
     if (fit.shear <= 0.0) {
-      std::fprintf(stderr, "%s: resolution %d: no stiffness rests the ball at %.4f m\n", argv[0], resolution, target);
-      return 1;
+      // No stiffness rests the peer's ball at the slime's height without flying apart: every point of
+      // this resolution is diverged, its modulus and measures null.
+      std::printf("%s resolution %d (%zu nodes): no stiffness rests the ball at %.5f m without diverging; "
+                  "its points are marked diverged\n", peer.name.c_str(), resolution, ball.mesh.positions.size(), target);
+      for (double stepMs : options.stepsMs)
+        for (int iterations : options.iterations)
+          points.push_back({{"resolution", resolution}, {"step_ms", stepMs}, {"iterations", iterations},
+                            {"cost_ms_per_ms", json()}, {"shear_modulus_pa", json()}, {"density_kg_m3", ball.density()},
+                            {"radius_m", kRadius}, {"poisson", kPoisson}, {"spheroidal_hz", json()},
+                            {"torsional_hz", json()}, {"damping_ratio", json()}, {"rest_height_m", json()},
+                            {"diverged", true}});
+      continue;
     }
     std::printf("%s resolution %d (%zu nodes): target rest height %.5f m; fitted G %.1f Pa rests at %.5f m "
                 "(step %.3g ms, %d iterations, %d drops)\n",
