@@ -205,7 +205,7 @@ Fit fitShear(const PeerFactory& factory, const PeerInfo& peer, const PeerBall& b
     for (int k = 0; k < 12 && !diverged && lowHeight > target; ++k) lowHeight = height(low *= 0.5, diverged);
     for (int k = 0; k < 12 && !diverged && highHeight < target; ++k) highHeight = height(high *= 2.0, diverged);
     if (!diverged && lowHeight <= target && highHeight >= target) {
-      if (high == low) low *= 0.5, lowHeight = height(low, diverged);  // the guess rested above the target
+      if (high == low) low *= 0.5, lowHeight = height(low, diverged);  // the guess rests at the target exactly
       while (!diverged && high / low > 1.003) {
         const double middle = std::sqrt(low * high), middleHeight = height(middle, diverged);
         (middleHeight < target ? low : high) = middle;
