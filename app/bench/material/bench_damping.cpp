@@ -21,20 +21,6 @@ struct DampingMethod {
   int iterations;  // projective's sim.iterations; 0 for the others
 };
 
-// Least-squares slope of y against t.
-double logSlope(const std::vector<double>& t, const std::vector<double>& y) {
-  const double n = static_cast<double>(t.size());
-  double st = 0.0, sy = 0.0, stt = 0.0, sty = 0.0;
-  for (std::size_t k = 0; k < t.size(); ++k) {
-    st += t[k];
-    sy += y[k];
-    stt += t[k] * t[k];
-    sty += t[k] * y[k];
-  }
-  const double determinant = n * stt - st * st;
-  return determinant != 0.0 ? (n * sty - st * sy) / determinant : 0.0;
-}
-
 json dampingRun(const Settings& base, const DampingOptions& options, const DampingMethod& method, bool spheroidal,
                 double dt) {
   Settings settings = elasticBall(base, options.resolution);
@@ -63,12 +49,7 @@ json dampingRun(const Settings& base, const DampingOptions& options, const Dampi
   // A mode damped out within the run has too few crossings for a frequency: its damping is then
   // taken at Lamb's ω (the energy still decays, which is what the ratio is about).
   const double omega = 2.0 * std::numbers::pi * (measured > 0.0 ? measured : theory);
-  std::vector<double> logEnergy;
-  for (std::size_t k = 0; k < times.size(); ++k) {
-    const double energy = omega * omega * amplitudes[k] * amplitudes[k] + rates[k] * rates[k];
-    logEnergy.push_back(std::log(std::max(energy, 1e-300)));
-  }
-  const double zeta = -logSlope(times, logEnergy) / (2.0 * omega);
+  const double zeta = energyDampingRatio(times, amplitudes, rates, omega);
   // Backward Euler's own damping of an undamped oscillator at ω: each step multiplies its energy by
   // 1 / (1 + (ωh)²), so ζ = ln(1 + (ωh)²) / (2ωh) ≈ ωh/2 — the closed form projective dynamics (an
   // implicit Euler step, Bouaziz et al. 2014) should approach as its iterations converge.

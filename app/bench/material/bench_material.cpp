@@ -379,15 +379,6 @@ ExponentialFit fitExponential(const std::vector<double>& t, const std::vector<do
   return fit;
 }
 
-double zeroCrossingFrequency(const std::vector<double>& t, const std::vector<double>& y) {
-  std::vector<double> crossings;
-  for (std::size_t k = 1; k < t.size(); ++k)
-    if ((y[k] < 0.0) != (y[k - 1] < 0.0))
-      crossings.push_back(t[k - 1] + (t[k] - t[k - 1]) * y[k - 1] / (y[k - 1] - y[k]));
-  if (crossings.size() < 3) return 0.0;
-  return static_cast<double>(crossings.size() - 1) / (2.0 * (crossings.back() - crossings.front()));
-}
-
 json runMaterialBench(const Settings& settings, const MaterialBenchOptions& options) {
   const Stopwatch watch;
   CsvTable lambTable{{"mode", "resolution", "nodes", "theory_hz", "measured_hz", "ratio"}, {}};

@@ -15,6 +15,7 @@
 
 #include "app/bench/material/bench_damping.h"
 #include "app/bench/material/bench_tensile.h"
+#include "app/bench/material/modal_fit.h"
 #include "core/settings/settings.h"
 
 #include <glm/vec3.hpp>
@@ -58,9 +59,5 @@ struct ExponentialFit {
 };
 ExponentialFit fitExponential(const std::vector<double>& t, const std::vector<double>& y, double tauLow,
                               double tauHigh);
-
-// The frequency of a sampled signal from its zero crossings (linear interpolation between samples):
-// (crossings − 1) / (2 (last − first)); 0 with fewer than three crossings.
-double zeroCrossingFrequency(const std::vector<double>& t, const std::vector<double>& y);
 
 }  // namespace slime

@@ -24,44 +24,13 @@ Settings elasticBall(const Settings& base, int resolution) {
   return settings;
 }
 
-void removeRigidMotion(const std::vector<double>& masses, const std::vector<glm::dvec3>& rest,
-                       std::vector<glm::dvec3>& vectors) {
-  double mass = 0.0;
-  glm::dvec3 centre(0.0), momentum(0.0);
-  for (std::size_t i = 0; i < rest.size(); ++i) {
-    mass += masses[i];
-    centre += masses[i] * rest[i];
-    momentum += masses[i] * vectors[i];
-  }
-  centre /= mass;
-  for (glm::dvec3& u : vectors) u -= momentum / mass;
-  glm::dvec3 angular(0.0);
-  glm::dmat3 inertia(0.0);
-  for (std::size_t i = 0; i < rest.size(); ++i) {
-    const glm::dvec3 r = rest[i] - centre;
-    angular += masses[i] * glm::cross(r, vectors[i]);
-    inertia += masses[i] * (glm::dot(r, r) * glm::dmat3(1.0) - glm::outerProduct(r, r));
-  }
-  const glm::dvec3 spin = glm::inverse(inertia) * angular;
-  for (std::size_t i = 0; i < rest.size(); ++i) vectors[i] -= glm::cross(spin, rest[i] - centre);
-}
-
 std::vector<glm::dvec3> modeShape(const Simulation& simulation, bool spheroidal, double eta) {
   const Settings& settings = simulation.settings();
   const std::vector<glm::dvec3>& rest = simulation.bulkBody().mesh.positions;
-  std::vector<glm::dvec3> shape(rest.size());
-  double largest = 0.0;
-  for (std::size_t i = 0; i < rest.size(); ++i) {
-    const glm::dvec3 x = rest[i] - settings.slime.position;
-    shape[i] = spheroidal ? spheroidalModeShape(x, settings.slime.radius, eta, settings.slime.poisson)
-                          : torsionalModeShape(x, settings.slime.radius, eta);
-    largest = std::max(largest, glm::length(shape[i]));
-  }
-  for (glm::dvec3& s : shape) s /= largest;
   std::vector<double> masses(rest.size());
   for (std::size_t i = 0; i < rest.size(); ++i) masses[i] = 1.0 / simulation.bulkBody().freeInverseMasses[i];
-  removeRigidMotion(masses, rest, shape);
-  return shape;
+  return lambModeShape(rest, masses, settings.slime.position, settings.slime.radius, spheroidal, eta,
+                       settings.slime.poisson);
 }
 
 namespace {

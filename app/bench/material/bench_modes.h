@@ -3,6 +3,7 @@
 #pragma once
 
 #include "core/simulation/simulation.h"
+#include "app/bench/material/modal_fit.h"
 #include "core/settings/settings.h"
 
 #include <glm/vec3.hpp>
@@ -14,12 +15,6 @@ namespace slime {
 // A free, undamped, weightless ball: the elastic limit Lamb's oracle is about (longTerm = 1, no
 // viscosity, no gravity) at `resolution`, its centre at least a diameter above the floor.
 Settings elasticBall(const Settings& base, int resolution);
-
-// Takes the rigid motion out of per-node vectors (as velocities, or as forces per unit mass):
-// afterwards Σ m u = 0 and Σ m (X − c) × u = 0, so a mode shape starts no drift or spin and a load
-// pushes and turns the body as a whole by nothing.
-void removeRigidMotion(const std::vector<double>& masses, const std::vector<glm::dvec3>& rest,
-                       std::vector<glm::dvec3>& vectors);
 
 // Lamb's n = 2 mode shape (axis z) at the body's rest nodes, its largest value 1, rigid motion removed.
 std::vector<glm::dvec3> modeShape(const Simulation& simulation, bool spheroidal, double eta);

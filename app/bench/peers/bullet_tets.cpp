@@ -13,6 +13,12 @@
 // inverted tetrahedra at the end.
 //   usage: bullet_tets [--resolutions 1,2,3] [--seconds 2] [--step H] [--modulus 1200]
 //                      [--long-term 0.4] [--poisson 0.4] [--json FILE]
+// With --front it measures the front's points instead (peer_front.h: the same oracles as jolt_tets, its
+// modulus G fitted to the static sag, Bullet's damping 0, one point per step; Bullet's explicit scheme
+// has no iterations):
+//          bullet_tets --front [--resolutions 1,2] [--steps-ms 1,2,4,8,16.7] [--seconds S] [--json FILE]
+//                      [--target-rest-height H,...] [--slime PATH]
+#include "app/bench/peers/peer_front.h"
 #include "core/bulk/tet_mesh.h"
 
 #include <BulletSoftBody/btDeformableBodySolver.h>
@@ -35,12 +41,14 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace {
 
-constexpr double kRadius = 0.04, kMass = 0.268, kDrop = 0.02;
+using slime::peers::kDrop;
+using slime::peers::kRadius;
 constexpr double kMaxWallSeconds = 60.0;  // a resolution slower than this stops early and says so
 
 struct Options {
@@ -72,71 +80,115 @@ double bodyVolume(const btSoftBody& body, const std::vector<slime::Tetrahedron>&
   return volume;
 }
 
-nlohmann::json runBody(int resolution, const Options& options, double step) {
-  btSoftBodyRigidBodyCollisionConfiguration configuration;
-  btCollisionDispatcher dispatcher(&configuration);
-  btDbvtBroadphase broadphase;
-  btDeformableBodySolver deformableSolver;
-  btDeformableMultiBodyConstraintSolver solver;
-  solver.setDeformableSolver(&deformableSolver);
-  btDeformableMultiBodyDynamicsWorld world(&dispatcher, &broadphase, &solver, &configuration, &deformableSolver);
-  const btVector3 gravity(0, 0, -9.81);
-  world.setGravity(gravity);
-  btSoftBodyWorldInfo& info = world.getWorldInfo();
-  info.m_gravity = gravity;
-  info.m_sparsesdf.Initialize();
-  info.m_sparsesdf.setDefaultVoxelsz(btScalar(0.005));
-  info.m_sparsesdf.Reset();
-
-  btBoxShape floorShape(btVector3(1, 1, 0.5));
-  floorShape.setMargin(btScalar(0.001));
-  btTransform floorPlace;
-  floorPlace.setIdentity();
-  floorPlace.setOrigin(btVector3(0, 0, -0.5));
-  btDefaultMotionState floorMotion(floorPlace);
-  btRigidBody floor(btRigidBody::btRigidBodyConstructionInfo(0, &floorMotion, &floorShape));
-  floor.setFriction(0.6);
-  world.addRigidBody(&floor);
-
-  const slime::TetMesh mesh = slime::makeBallTetMesh(resolution, kRadius, {0.0, 0.0, kRadius + kDrop});
-  std::vector<btVector3> positions;
-  for (const glm::dvec3& p : mesh.positions) positions.emplace_back(btScalar(p.x), btScalar(p.y), btScalar(p.z));
-  // Lumped masses: each node a quarter of its tetrahedra's share of the mass, by volume.
-  std::vector<double> lumped(positions.size(), 0.0);
-  double total = 0.0;
-  for (const slime::Tetrahedron& t : mesh.tetrahedra) {
-    const double v = slime::tetrahedronVolume(mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z], mesh.positions[t.w]);
-    for (int corner = 0; corner < 4; ++corner) lumped[t[corner]] += 0.25 * v;
-    total += v;
+// Bullet's deformable world holding the ball: a static floor when dropped, gravity as a deformable
+// force, the stable neo-Hookean elasticity of shear modulus G and Lamé's λ with its damping, the edges as
+// links (the node tree Bullet's contact builds pairs neighbouring nodes along the links, and without
+// them it never finishes), explicit steps.
+class BulletWorld final : public slime::peers::PeerWorld {
+ public:
+  BulletWorld(const slime::peers::PeerBall& ball, const slime::peers::PeerScene& scene, double poisson, double damping)
+      : step_(scene.step), world_(&dispatcher_, &broadphase_, &solver_, &configuration_, &deformableSolver_),
+        gravity_(0, 0, scene.dropped ? btScalar(-9.81) : btScalar(0)), gravityForce_(gravity_),
+        elasticity_(btScalar(scene.shearModulus), btScalar(2.0 * scene.shearModulus * poisson / (1.0 - 2.0 * poisson)),
+                    btScalar(damping)) {
+    solver_.setDeformableSolver(&deformableSolver_);
+    world_.setGravity(gravity_);
+    btSoftBodyWorldInfo& info = world_.getWorldInfo();
+    info.m_gravity = gravity_;
+    info.m_sparsesdf.Initialize();
+    info.m_sparsesdf.setDefaultVoxelsz(btScalar(0.005));
+    info.m_sparsesdf.Reset();
+    if (scene.dropped) {
+      floorShape_.setMargin(btScalar(0.001));
+      btTransform floorPlace;
+      floorPlace.setIdentity();
+      floorPlace.setOrigin(btVector3(0, 0, -0.5));
+      floorMotion_.setWorldTransform(floorPlace);
+      floor_ = std::make_unique<btRigidBody>(btRigidBody::btRigidBodyConstructionInfo(0, &floorMotion_, &floorShape_));
+      floor_->setFriction(0.6);
+      world_.addRigidBody(floor_.get());
+    }
+    std::vector<btVector3> positions;
+    for (const glm::dvec3& p : ball.mesh.positions)
+      positions.emplace_back(btScalar(p.x + scene.centre.x), btScalar(p.y + scene.centre.y), btScalar(p.z + scene.centre.z));
+    std::vector<btScalar> masses(ball.masses.begin(), ball.masses.end());
+    body_ = new btSoftBody(&info, static_cast<int>(positions.size()), positions.data(), masses.data());
+    for (const slime::Tetrahedron& t : ball.mesh.tetrahedra)
+      body_->appendTetra(static_cast<int>(t.x), static_cast<int>(t.y), static_cast<int>(t.z), static_cast<int>(t.w));
+    for (const glm::u32vec2& edge : slime::tetrahedronEdges(ball.mesh.tetrahedra))
+      body_->appendLink(static_cast<int>(edge.x), static_cast<int>(edge.y), nullptr, true);
+    body_->initializeDmInverse();
+    body_->m_tetraScratches.resize(body_->m_tetras.size());
+    body_->m_tetraScratchesTn.resize(body_->m_tetras.size());
+    btSoftBodyHelpers::generateBoundaryFaces(body_);
+    body_->getCollisionShape()->setMargin(btScalar(0.003));
+    body_->m_cfg.kKHR = 1;  // contact hardness against kinematic and rigid bodies, as Bullet's demos
+    body_->m_cfg.kCHR = 1;
+    body_->m_cfg.kDF = 0.6;  // friction, as the slime's
+    body_->m_cfg.collisions = btSoftBody::fCollision::SDF_RD | btSoftBody::fCollision::SDF_RDN;  // nodes against the floor
+    for (std::size_t i = 0; i < scene.velocities.size(); ++i) {
+      const glm::dvec3& v = scene.velocities[i];
+      body_->m_nodes[static_cast<int>(i)].m_v = btVector3(btScalar(v.x), btScalar(v.y), btScalar(v.z));
+    }
+    world_.addSoftBody(body_);
+    if (scene.dropped) world_.addForce(body_, &gravityForce_);
+    world_.addForce(body_, &elasticity_);
+    world_.setImplicit(false);
+    world_.setLineSearch(false);
   }
-  std::vector<btScalar> masses;
-  for (double share : lumped) masses.push_back(btScalar(kMass * share / total));
-  auto* body = new btSoftBody(&info, static_cast<int>(positions.size()), positions.data(), masses.data());
-  for (const slime::Tetrahedron& t : mesh.tetrahedra)
-    body->appendTetra(static_cast<int>(t.x), static_cast<int>(t.y), static_cast<int>(t.z), static_cast<int>(t.w));
-  // The edges as links too, as CreateFromTetGenData makes them: the node tree Bullet's contact builds
-  // pairs neighbouring nodes along the links, and without them it never finishes.
-  for (const glm::u32vec2& edge : slime::tetrahedronEdges(mesh.tetrahedra))
-    body->appendLink(static_cast<int>(edge.x), static_cast<int>(edge.y), nullptr, true);
-  body->initializeDmInverse();
-  body->m_tetraScratches.resize(body->m_tetras.size());
-  body->m_tetraScratchesTn.resize(body->m_tetras.size());
-  btSoftBodyHelpers::generateBoundaryFaces(body);
-  body->getCollisionShape()->setMargin(btScalar(0.003));
-  body->m_cfg.kKHR = 1;  // contact hardness against kinematic and rigid bodies, as Bullet's demos
-  body->m_cfg.kCHR = 1;
-  body->m_cfg.kDF = 0.6;  // friction, as the slime's
-  body->m_cfg.collisions = btSoftBody::fCollision::SDF_RD | btSoftBody::fCollision::SDF_RDN;  // nodes against the floor
-  world.addSoftBody(body);
+  ~BulletWorld() override {
+    world_.removeSoftBody(body_);
+    delete body_;
+    if (floor_) world_.removeRigidBody(floor_.get());
+  }
+  BulletWorld(const BulletWorld&) = delete;
+  BulletWorld& operator=(const BulletWorld&) = delete;
 
+  void step() override { world_.stepSimulation(btScalar(step_), 1, btScalar(step_)); }
+  void positions(std::vector<glm::dvec3>& out) const override {
+    out.resize(static_cast<std::size_t>(body_->m_nodes.size()));
+    for (int i = 0; i < body_->m_nodes.size(); ++i) {
+      const btVector3& x = body_->m_nodes[i].m_x;
+      out[static_cast<std::size_t>(i)] = {x.x(), x.y(), x.z()};
+    }
+  }
+  void velocities(std::vector<glm::dvec3>& out) const override {
+    out.resize(static_cast<std::size_t>(body_->m_nodes.size()));
+    for (int i = 0; i < body_->m_nodes.size(); ++i) {
+      const btVector3& v = body_->m_nodes[i].m_v;
+      out[static_cast<std::size_t>(i)] = {v.x(), v.y(), v.z()};
+    }
+  }
+  const btSoftBody& body() const { return *body_; }
+
+ private:
+  double step_;
+  btSoftBodyRigidBodyCollisionConfiguration configuration_;
+  btCollisionDispatcher dispatcher_{&configuration_};
+  btDbvtBroadphase broadphase_;
+  btDeformableBodySolver deformableSolver_;
+  btDeformableMultiBodyConstraintSolver solver_;
+  btDeformableMultiBodyDynamicsWorld world_;
+  btVector3 gravity_;
+  btDeformableGravityForce gravityForce_;
+  btDeformableNeoHookeanForce elasticity_;
+  btBoxShape floorShape_{btVector3(1, 1, 0.5)};
+  btDefaultMotionState floorMotion_;
+  std::unique_ptr<btRigidBody> floor_;
+  btSoftBody* body_ = nullptr;
+};
+
+nlohmann::json runBody(int resolution, const Options& options, double step) {
+  const slime::peers::PeerBall ball = slime::peers::makePeerBall(resolution);
+  const slime::TetMesh& mesh = ball.mesh;
   const double shear = options.longTerm * options.modulus;
   const double lambda = 2.0 * shear * options.poisson / (1.0 - 2.0 * options.poisson);
-  btDeformableGravityForce gravityForce(gravity);
-  btDeformableNeoHookeanForce elasticity(btScalar(shear), btScalar(lambda), btScalar(0.01));
-  world.addForce(body, &gravityForce);
-  world.addForce(body, &elasticity);
-  world.setImplicit(false);
-  world.setLineSearch(false);
+  slime::peers::PeerScene scene;
+  scene.shearModulus = shear;
+  scene.step = step;
+  scene.centre = {0.0, 0.0, kRadius + kDrop};
+  BulletWorld world(ball, scene, options.poisson, 0.01);
+  const btSoftBody* body = &world.body();
 
   int inverted = 0;
   const double restVolume = bodyVolume(*body, mesh.tetrahedra, &inverted);
@@ -146,7 +198,7 @@ nlohmann::json runBody(int resolution, const Options& options, double step) {
   long steps = 0;
   bool finite = true;
   while (steps * step < options.seconds && wall() < kMaxWallSeconds && finite) {
-    world.stepSimulation(btScalar(step), 1, btScalar(step));
+    world.step();
     ++steps;
     finite = std::isfinite(body->m_nodes[0].m_x.z());
   }
@@ -160,9 +212,6 @@ nlohmann::json runBody(int resolution, const Options& options, double step) {
   }
   const double volume = bodyVolume(*body, mesh.tetrahedra, &inverted);
   const double width = std::max(high.x() - low.x(), high.y() - low.y());
-  world.removeSoftBody(body);
-  delete body;
-  world.removeRigidBody(&floor);
   return {{"engine", "bullet btDeformableNeoHookeanForce (explicit)"},
           {"resolution", resolution}, {"nodes", mesh.positions.size()}, {"tetrahedra", mesh.tetrahedra.size()},
           {"step", step}, {"steps", steps}, {"seconds", simulated},
@@ -192,6 +241,13 @@ bool parseNumber(const char* text, double low, double high, double& out) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i)
+    if (!std::strcmp(argv[i], "--front")) {
+      const slime::peers::PeerInfo peer{"bullet", false, 1.0e-4};
+      return slime::peers::runFront(argc, argv, peer, [](const slime::peers::PeerBall& ball, const slime::peers::PeerScene& scene) {
+        return std::unique_ptr<slime::peers::PeerWorld>(new BulletWorld(ball, scene, slime::peers::kPoisson, 0.0));
+      });
+    }
   Options options;
   const char* usage =
       "usage: bullet_tets [--resolutions 1,2,3 (each 1 to 4)] [--seconds S (0.01 to 60)] [--step H (1e-5 to 0.05 s)]\n"
