@@ -2,6 +2,7 @@
 #include "core/bulk/projective_dynamics.h"
 
 #include "core/bulk/element_pass.h"
+#include "core/contact/floor_adhesion.h"
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
@@ -190,9 +191,13 @@ void ProjectiveSolver::holdOnFloor(const std::vector<double>& inverseMasses, con
   reaction_.assign(n, 0.0);
   freeZ_.resize(n);
   for (std::size_t i = 0; i < n; ++i) freeZ_[i] = solved_[i].z;
+  // A stuck node (the sticky floor) is in the active set from the start: its contact holds it down
+  // against a pull, λ ≥ −holds_[i], where a plain contact only pushes, λ ≥ 0.
+  const bool sticky = !holds_.empty();
+  const auto hold = [&](std::size_t i) { return sticky ? holds_[i] : 0.0; };
   contact_.clear();
   for (std::size_t i = 0; i < n; ++i)
-    if (inverseMasses[i] > 0.0 && freeZ_[i] < floor[i]) contact_.push_back(static_cast<std::uint32_t>(i));
+    if (inverseMasses[i] > 0.0 && (freeZ_[i] < floor[i] || hold(i) > 0.0)) contact_.push_back(static_cast<std::uint32_t>(i));
   keepColumns(contact_);
   std::erase_if(contact_, [&](std::uint32_t i) { return columnOf_[i] < 0; });
   if (contact_.empty()) return;
@@ -218,14 +223,15 @@ void ProjectiveSolver::holdOnFloor(const std::vector<double>& inverseMasses, con
       const std::vector<double>& col = columns_[static_cast<std::size_t>(columnOf_[contact_[b]])];
       for (std::size_t i = 0; i < n; ++i) heldZ_[i] += l * col[i];
     }
-    // The next active set: keep the pushed nodes, add the ones still below.
+    // The next active set: keep the pushed nodes (and the stuck ones pulled less than they hold), add
+    // the ones still below.
     std::vector<std::uint32_t> next;
     next.reserve(k);
     bool changed = false;
     inContact_.assign(n, 0);
     for (std::size_t b = 0; b < k; ++b) {
       inContact_[contact_[b]] = 1;
-      if (lambda(static_cast<Eigen::Index>(b)) > 0.0) next.push_back(contact_[b]);
+      if (lambda(static_cast<Eigen::Index>(b)) > -hold(contact_[b])) next.push_back(contact_[b]);
       else changed = true;
     }
     below_.clear();
@@ -249,7 +255,7 @@ void ProjectiveSolver::holdOnFloor(const std::vector<double>& inverseMasses, con
       // Out of rounds: the last solve's pushed nodes keep their reactions; the rest is put on the
       // floor after the solve (step()).
       for (std::size_t b = 0; b < k; ++b)
-        if (lambda(static_cast<Eigen::Index>(b)) > 0.0) reaction_[contact_[b]] = lambda(static_cast<Eigen::Index>(b));
+        if (lambda(static_cast<Eigen::Index>(b)) > -hold(contact_[b])) reaction_[contact_[b]] = lambda(static_cast<Eigen::Index>(b));
       if (next.empty()) heldZ_ = freeZ_;
       break;
     }
@@ -260,13 +266,15 @@ void ProjectiveSolver::holdOnFloor(const std::vector<double>& inverseMasses, con
 
 glm::dvec3 ProjectiveSolver::step(BulkBody& body, BulkScratch& scratch, const ProjectiveStep& options) {
   const double h = options.h;
+  const double theta = options.theta;
+  const double solveStep = theta * h;  // the backward Euler step the forces are solved over
   ParticleState& state = body.state;
   const std::size_t n = state.size();
   if (blocks_.size() != body.restBlocks.size()) reset(body);
   const ViscoelasticMaterial& m = body.material;
-  if (factoredStep_ != h || factoredShear_ != m.longTermShear + m.maxwellShear || factoredLambda_ != m.lameLambda ||
+  if (factoredStep_ != solveStep || factoredShear_ != m.longTermShear + m.maxwellShear || factoredLambda_ != m.lameLambda ||
       factoredInverseMasses_ != state.inverseMasses)
-    factor(body, h);
+    factor(body, solveStep);
   dampEdges(body, h, scratch, state);
   // The mouse spring, node by node backward Euler on m (v' − v)/h = s_k (k (t_k − x − h v') + c (v_t − v')),
   // then the whole hand's force limited as addMouseSpringForces does.
@@ -295,34 +303,51 @@ glm::dvec3 ProjectiveSolver::step(BulkBody& body, BulkScratch& scratch, const Pr
   }
   drawnFloorHeights(body, floor_);
   const std::vector<double>& floor = floor_;
+  stickyHolds(body, options.adhesion);
   start_.resize(n);
   predicted_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {  // one pass, not a loop and two copies
     const glm::dvec3 x = state.positions[i];
     start_[i] = x;
-    predicted_[i] = x + h * state.velocities[i] + (state.inverseMasses[i] > 0.0 ? h * h : 0.0) * options.gravity;
+    predicted_[i] = x + solveStep * state.velocities[i] + (state.inverseMasses[i] > 0.0 ? solveStep * solveStep : 0.0) * options.gravity;
     state.positions[i] = predicted_[i];
+  }
+  // The solve's floor: x_θ's that puts x_{n+1} on f_i ((1 − θ) z_n + θ f_i; f_i itself for backward Euler).
+  const bool midpoint = theta != 1.0;
+  if (midpoint) {
+    thetaFloor_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) thetaFloor_[i] = (1.0 - theta) * start_[i].z + theta * floor[i];
   }
   for (int iteration = 0; iteration < std::max(1, options.iterations); ++iteration) {
     localStep(body, h, iteration == 0);
     for (std::size_t i = 0; i < n; ++i) targets_[i] += masses_[i] * predicted_[i];  // the right-hand side
     factor_.solve(targets_, solved_);
-    holdOnFloor(state.inverseMasses, floor);
+    holdOnFloor(state.inverseMasses, midpoint ? thetaFloor_ : floor);
     for (std::size_t i = 0; i < n; ++i) state.positions[i] = state.inverseMasses[i] > 0.0 ? solved_[i] : predicted_[i];
   }
+  // x_{n+1} = x_n + (x_θ − x_n)/θ; a node the solve held on the floor ends exactly on it.
+  if (midpoint)
+    for (std::size_t i = 0; i < n; ++i) {
+      glm::dvec3& x = state.positions[i];
+      x = start_[i] + (x - start_[i]) / theta;
+      if (state.inverseMasses[i] > 0.0 && reaction_[i] != 0.0) x.z = floor[i];
+    }
   // Friction: a node the floor held with the reaction N has its slide across the floor undone up to
-  // the Coulomb limit μ N h²/m (the slide μ N moves the mass m in a step h); a node the solve missed
-  // (past the column budget, or the active set's last round) is put on the floor and its slide
-  // undone up to μ × depth (as xpbd.h; the same limit with N = m depth/h²).
+  // the Coulomb limit μ N θh²/m (the slide μ N moves the mass m in a step h, θh² for x_{n+1} = x_n +
+  // h v_n + θh² a); a stuck node up to (μ max(N, 0) + σ(t)A_i) θh²/m; a node the solve missed (past the
+  // column budget, or the active set's last round) is put on the floor and its slide undone up to
+  // μ × depth (as xpbd.h; the same limit with N = m depth/h²).
+  const bool sticky = !holds_.empty();
   for (std::size_t i = 0; i < n; ++i) {
     glm::dvec3& x = state.positions[i];
     if (state.inverseMasses[i] == 0.0) continue;
     double limit = 0.0;
+    const double hold = sticky && reaction_[i] != 0.0 ? holds_[i] : 0.0;
     if (x.z < floor[i]) {
       limit = options.friction * (floor[i] - x.z);
       x.z = floor[i];
-    } else if (reaction_[i] > 0.0) {
-      limit = options.friction * reaction_[i] * h * h * state.inverseMasses[i];
+    } else if (reaction_[i] > 0.0 || hold > 0.0) {
+      limit = (options.friction * std::max(reaction_[i], 0.0) + hold) * solveStep * h * state.inverseMasses[i];
     } else {
       continue;
     }
@@ -332,9 +357,79 @@ glm::dvec3 ProjectiveSolver::step(BulkBody& body, BulkScratch& scratch, const Pr
     x.x -= undo * slide.x;
     x.y -= undo * slide.y;
   }
-  for (std::size_t i = 0; i < n; ++i)
-    if (state.inverseMasses[i] > 0.0) state.velocities[i] = (state.positions[i] - start_[i]) / h;
+  // v_{n+1} from x_{n+1} = x_n + h ((1 − θ) v_n + θ v_{n+1}). A node on the floor (held by the solve,
+  // stuck, or put there) ends as backward Euler ends it, v = (x_{n+1} − x_n)/h, so it lands and stays;
+  // so does a node the hand holds, whose spring is backward Euler's (above): the midpoint rule's end
+  // velocity 2 v̄ − v_n, a yanked node's twice the hand's speed, tripped the guard's speed limit
+  // (173 m/s against 157 in a 1 m yank in 10 ms of a 10 g slime).
+  if (midpoint) {
+    drivenByHand_.assign(n, 0);
+    if (options.mouse != nullptr)
+      for (const std::uint32_t i : options.mouse->nodes) drivenByHand_[i] = 1;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (state.inverseMasses[i] <= 0.0) continue;
+    const glm::dvec3 average = (state.positions[i] - start_[i]) / h;
+    const bool endsAsBackwardEuler =
+        !midpoint || reaction_[i] != 0.0 || state.positions[i].z <= floor[i] || drivenByHand_[i];
+    state.velocities[i] = endsAsBackwardEuler ? average : (average - (1.0 - theta) * state.velocities[i]) / theta;
+  }
+  updateSticky(state.positions, h);
   return hand;
+}
+
+std::size_t ProjectiveSolver::stuckCount() const {
+  return static_cast<std::size_t>(std::count(stuck_.begin(), stuck_.end(), 1));
+}
+
+void ProjectiveSolver::stickyHolds(const BulkBody& body, double strength) {
+  const std::size_t n = body.state.size();
+  if (strength <= 0.0) {
+    holds_.clear();
+    return;
+  }
+  if (stuck_.size() != n) {
+    stuck_.assign(n, 0);
+    left_.assign(n, 0);
+    age_.assign(n, 0.0);
+  }
+  // A_i: a third of the floor-facing (projected) area of its surface triangles (floor_adhesion.h).
+  area_.assign(n, 0.0);
+  const std::vector<glm::dvec3>& x = body.state.positions;
+  for (const Triangle& t : body.mesh.surface) {
+    if (t.x >= n || t.y >= n || t.z >= n) continue;
+    const glm::dvec3 normal = glm::cross(x[t.y] - x[t.x], x[t.z] - x[t.x]);  // 2 A n̂
+    const double downward = std::max(0.0, -normal.z) / 6.0;
+    area_[t.x] += downward;
+    area_[t.y] += downward;
+    area_[t.z] += downward;
+  }
+  holds_.assign(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i)
+    if (stuck_[i]) holds_[i] = adhesionGrownShare(age_[i]) * strength * area_[i];
+}
+
+void ProjectiveSolver::updateSticky(const std::vector<glm::dvec3>& positions, double h) {
+  if (holds_.empty()) {
+    stuck_.clear();  // adhesion 0 (or switched off): no contact is kept
+    return;
+  }
+  for (std::size_t i = 0; i < holds_.size(); ++i) {
+    if (stuck_[i]) {
+      if (reaction_[i] != 0.0) {
+        age_[i] += h;
+        continue;
+      }
+      stuck_[i] = 0;  // pulled off past its hold: the active set let it go
+      left_[i] = 1;
+      ++peeled_;
+    } else if (left_[i]) {
+      if (positions[i].z > floor_[i] + 2.0 * kAdhesionContactBand) left_[i] = 0;
+    } else if (reaction_[i] > 0.0 && area_[i] > 0.0) {
+      stuck_[i] = 1;  // a surface node the floor pushed: caught where it landed
+      age_[i] = 0.0;
+    }
+  }
 }
 
 }  // namespace slime

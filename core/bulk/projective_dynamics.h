@@ -48,11 +48,28 @@
 
 namespace slime {
 
+// θ of the step (sim.integrator=projective_midpoint: θ = ½, kMidpointTheta). The forces are taken at
+// x_θ = x_n + θh v_n + (θh)² (g + F(x_θ)/m), the same minimisation as backward Euler over the step θh
+// (the matrix A = M/(θh)² + Σ w DᵀD, factored once), and the step ends at
+//   v_{n+1} = v_n + (v_θ − v_n)/θ,  v_θ = (x_θ − x_n)/(θh),   x_{n+1} = x_n + h ((1 − θ) v_n + θ v_{n+1}),
+// so x_{n+1} = x_n + (x_θ − x_n)/θ. θ = 1 is backward Euler (the projective step, ζ ≈ ωh/2); θ = ½ is the
+// implicit midpoint rule, which on a linear oscillator keeps the energy exactly (ζ = 0) at any step
+// and shortens the period by a factor of about 1 + (ωh)²/12. Between them, ζ ≈ (θ − ½) ωh.
+// A node the floor holds (or the sticky floor keeps), or the hand holds, ends the step as backward Euler
+// ends it, v_{n+1} = (x_{n+1} − x_n)/h: a landing stops, it does not bounce back as the midpoint rule would.
+constexpr double kMidpointTheta = 0.5;
+
 struct ProjectiveStep {
   double h = 0.001;               // s
   int iterations = 1;             // local/global iterations
+  double theta = 1.0;             // 1: backward Euler; ½: implicit midpoint (above)
   glm::dvec3 gravity{0.0, 0.0, -9.81};
   double friction = 0.0;          // Coulomb μ of the floor
+  // The sticky floor inside the solve (slime.adhesion, Pa; 0 = none): a surface node held on the floor
+  // sticks, and its contact then holds a pull up to σ(t)·A_i (floor_adhesion.h's strength, ageing and
+  // floor-facing area) inside the active set, a bound on the reaction −σ(t)A_i ≤ λ_i instead of 0 ≤ λ_i;
+  // across the floor its slide is held up to the same force more than the friction's.
+  double adhesion = 0.0;
   const MouseSpring* mouse = nullptr;  // null: nothing grabbed
 };
 
@@ -80,11 +97,19 @@ class ProjectiveSolver {
   int factorisations() const { return factorisations_; }
   // Per node, the floor the last step held it above, m (drawnFloorHeights, bulk_body.h).
   const std::vector<double>& floorHeights() const { return floor_; }
+  // The sticky floor's nodes stuck after the last step (ProjectiveStep::adhesion), and those peeled since reset.
+  std::size_t stuckCount() const;
+  std::size_t peeledCount() const { return peeled_; }
 
  private:
   void factor(const BulkBody& body, double h);
   // The floor inside the global solve: z of solved_ with the active set of floor nodes held at their floor.
+  // A stuck node (holds_[i] > 0) stays in the active set while its reaction is above −holds_[i].
   void holdOnFloor(const std::vector<double>& inverseMasses, const std::vector<double>& floor);
+  // holds_: per node, what its sticky contact holds this step, N (σ(t)·A_i; 0 where not stuck).
+  void stickyHolds(const BulkBody& body, double strength);
+  // After the step: a node the floor pushed sticks, a stuck one pulled past its hold has peeled.
+  void updateSticky(const std::vector<glm::dvec3>& positions, double h);
   // Computes the columns A⁻¹e_i of `nodes` not kept yet, four per solve, while the budget lasts
   // (columnOf_ stays −1 for a node past it).
   void keepColumns(const std::vector<std::uint32_t>& nodes);
@@ -110,6 +135,14 @@ class ProjectiveSolver {
   std::vector<std::uint32_t> contact_, factoredContact_, below_;
   std::vector<double> reaction_, freeZ_, heldZ_;
   std::vector<char> inContact_;  // per node, whether it is in this round's active set
+  // The sticky floor (ProjectiveStep::adhesion): per node, stuck, peeled and not yet off the floor
+  // (it sticks again only after rising above 2 kAdhesionContactBand), time in contact (s), hold (N).
+  std::vector<char> stuck_, left_, peeledNow_;
+  std::vector<double> age_, holds_, area_;
+  std::size_t peeled_ = 0;
+  // θ's midpoint floor: per node, (1 − θ) z_n + θ f_i, so that x_{n+1} = x_n + (x_θ − x_n)/θ ends on f_i.
+  std::vector<double> thetaFloor_;
+  std::vector<char> drivenByHand_;  // per node, held by the step's hand (its velocity ends as backward Euler's)
   struct Contact;  // the dense Cholesky factor of (A⁻¹)_CC (Eigen)
   std::unique_ptr<Contact> contactFactor_;
 };

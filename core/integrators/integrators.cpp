@@ -11,8 +11,10 @@ Integrator parseIntegrator(std::string_view name) {
   if (name == "implicit_euler") return Integrator::ImplicitEuler;
   if (name == "xpbd") return Integrator::Xpbd;
   if (name == "projective") return Integrator::Projective;
+  if (name == "projective_midpoint") return Integrator::ProjectiveMidpoint;
   throw std::invalid_argument("unknown integrator \"" + std::string(name) +
-                              "\" (explicit_euler, symplectic_euler, rk4, implicit_euler, xpbd, projective)");
+                              "\" (explicit_euler, symplectic_euler, rk4, implicit_euler, xpbd, projective, "
+                              "projective_midpoint)");
 }
 
 std::string integratorName(Integrator integrator) {
@@ -23,12 +25,13 @@ std::string integratorName(Integrator integrator) {
     case Integrator::ImplicitEuler: return "implicit_euler";
     case Integrator::Xpbd: return "xpbd";
     case Integrator::Projective: return "projective";
+    case Integrator::ProjectiveMidpoint: return "projective_midpoint";
   }
   return "unknown";
 }
 
 std::vector<std::string> integratorNames() {
-  return {"explicit_euler", "symplectic_euler", "rk4", "implicit_euler", "xpbd", "projective"};
+  return {"explicit_euler", "symplectic_euler", "rk4", "implicit_euler", "xpbd", "projective", "projective_midpoint"};
 }
 
 void explicitEulerStep(ParticleState& state, double dt, const AccelerationField& field,

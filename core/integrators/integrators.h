@@ -17,10 +17,11 @@
 
 namespace slime {
 
-enum class Integrator { ExplicitEuler, SymplecticEuler, Rk4, ImplicitEuler, Xpbd, Projective };
+enum class Integrator { ExplicitEuler, SymplecticEuler, Rk4, ImplicitEuler, Xpbd, Projective, ProjectiveMidpoint };
 
 // "explicit_euler" ... "xpbd", "projective" (the bulk body's backward Euler by projective dynamics,
-// core/bulk/projective_dynamics.h); parseIntegrator throws std::invalid_argument on an unknown name.
+// core/bulk/projective_dynamics.h), "projective_midpoint" (its implicit midpoint rule on the same
+// factorisation, with the sticky floor in the solve: kMidpointTheta there); parseIntegrator throws std::invalid_argument on an unknown name.
 Integrator parseIntegrator(std::string_view name);
 std::string integratorName(Integrator integrator);
 std::vector<std::string> integratorNames();

@@ -72,6 +72,7 @@ double largestStableStep(Integrator integrator, double omega, double dampingRate
       return omega + dampingRate > 0.0 ? 2.78 / (omega + dampingRate) : infinity;
     case Integrator::ImplicitEuler:
     case Integrator::Projective:
+    case Integrator::ProjectiveMidpoint:
       return infinity;
   }
   return infinity;

@@ -189,14 +189,18 @@ void forEachField(S& s, Visitor&& visitor) {
         "viewer: while the camera moves (every pixel changes), trace the image smaller when frames miss this rate; "
         "full resolution again the frame the camera stops (0: always full resolution)");
   // Simulation
-  visit("sim.dt", s.sim.dt, Limits{1e-6, 0.01, "s"}, "fixed time step");
+  visit("sim.dt", s.sim.dt, Limits{1e-6, 0.02, "s"}, "fixed time step (up to 20 ms: 60 Hz and slower for the implicit steps)");
   visit("sim.integrator", s.sim.integrator,
-        Choices{"auto", "explicit_euler", "symplectic_euler", "rk4", "implicit_euler", "xpbd", "projective"},
+        Choices{"auto", "explicit_euler", "symplectic_euler", "rk4", "implicit_euler", "xpbd", "projective",
+                "projective_midpoint"},
         "time integrator (auto: symplectic_euler, or projective for a bulk slime whose slowest jiggle is over 30 Hz, "
-        "too fast for 60 frames a second to show)");
-  visit("sim.substeps", s.sim.substeps, Limits{1, 1000, "substeps"}, "substeps per step (xpbd, projective)");
+        "too fast for 60 frames a second to show; projective_midpoint: the implicit midpoint rule on projective's "
+        "factorisation, its jiggle kept at long steps, with the sticky floor)");
+  visit("sim.substeps", s.sim.substeps, Limits{1, 1000, "substeps"},
+        "substeps per step (xpbd, projective, projective_midpoint)");
   visit("sim.iterations", s.sim.iterations, Limits{1, 100, "iterations"},
-        "projective: local/global iterations per substep (more: less numerical damping, more cost)");
+        "projective, projective_midpoint: local/global iterations per substep (more: closer to the implicit step, "
+        "more cost)");
   visit("sim.gravity", s.sim.gravity, Limits{0.0, 100.0, "m/s^2"}, "|g|, pointing along -z");
   // 16 N (1.6 kg-force) a hand: a child's firm pull on a toy held in both hands, well under what a
   // child's grip holds (grip strength 100-200 N at 6-10 years); a default slime's strand needs

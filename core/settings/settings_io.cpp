@@ -240,14 +240,15 @@ void validateSettings(const Settings& settings) {
          "the ball to start above the floor: z ≥ slime.radius = " + formatNumber(settings.slime.radius) + " m");
   if (settings.slime.model == "bulk" && settings.sim.integrator != "auto" && settings.sim.integrator != "symplectic_euler" &&
       settings.sim.integrator != "explicit_euler" && settings.sim.integrator != "rk4" &&
-      settings.sim.integrator != "projective")
+      settings.sim.integrator != "projective" && settings.sim.integrator != "projective_midpoint")
     fail("sim.integrator", settings.sim.integrator,
-         "auto, projective, symplectic_euler, explicit_euler or rk4 with slime.model=bulk (implicit_euler and xpbd are "
-         "the membrane's only)");
-  if (settings.slime.model == "membrane" && settings.sim.integrator == "projective")
+         "auto, projective, projective_midpoint, symplectic_euler, explicit_euler or rk4 with slime.model=bulk "
+         "(implicit_euler and xpbd are the membrane's only)");
+  if (settings.slime.model == "membrane" &&
+      (settings.sim.integrator == "projective" || settings.sim.integrator == "projective_midpoint"))
     fail("sim.integrator", settings.sim.integrator,
-         "auto, explicit_euler, symplectic_euler, rk4, implicit_euler or xpbd with slime.model=membrane (projective is "
-         "the bulk body's only)");
+         "auto, explicit_euler, symplectic_euler, rk4, implicit_euler or xpbd with slime.model=membrane (projective and "
+         "projective_midpoint are the bulk body's only)");
   if (settings.floor.pattern == "image" && settings.floor.image.empty())
     fail("floor.image", "\"\"", "the path of a PNG file when floor.pattern is image");
 }

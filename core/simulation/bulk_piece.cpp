@@ -210,7 +210,7 @@ void BulkPiece::rebuildModels(const Settings& settings, Integrator integrator) {
   integrator_ = integrator;
   // The Maxwell state moves between the projective solver's stretches U_v and the body's metrics G_v.
   if (projectiveActive_) projective_.storeMaxwell(body_);
-  projectiveActive_ = integrator_ == Integrator::Projective;
+  projectiveActive_ = integrator_ == Integrator::Projective || integrator_ == Integrator::ProjectiveMidpoint;
   if (projectiveActive_) {
     projective_.loadMaxwell(body_);
     projective_.invalidate();
@@ -239,7 +239,7 @@ double BulkPiece::largestStableStep() const {
 }
 
 int BulkPiece::travelSubstepsNeeded() const {
-  if (integrator_ == Integrator::Projective) return 1;
+  if (projectiveActive_) return 1;
   double fastest = 0.0;
   for (const glm::dvec3& v : body_.state.velocities) fastest = std::max(fastest, glm::dot(v, v));
   const double travel = std::sqrt(fastest) * settings_.sim.dt;
@@ -289,17 +289,23 @@ void BulkPiece::substep(double h) {
   ParticleState& state = body_.state;
   // The sticky floor reads a stuck node's pull from the kick-drift step's Δx = h²F/m; projective's implicit step
   // is not that, and holding its nodes back made it roll back (21 times in a two-hand pull at 6000 Pa): no adhesion.
-  const double adhesion = integrator_ == Integrator::Projective ? 0.0 : settings_.slime.adhesion;
+  // projective_midpoint holds its stuck nodes inside the solve instead (ProjectiveStep::adhesion).
+  const double adhesion = projectiveActive_ ? 0.0 : settings_.slime.adhesion;
   const double friction = settings_.slime.friction;
   bool floorDone = false;  // the floor contact on every node, fused with the drift below
   if (adhesion > 0.0) adhesion_.beginSubstep(state);
   switch (integrator_) {
     case Integrator::ExplicitEuler: explicitEulerStep(state, h, accelerationField_, integratorScratch_); break;
     case Integrator::Rk4: rk4Step(state, h, accelerationField_, integratorScratch_); break;
-    case Integrator::Projective: {
+    case Integrator::Projective:
+    case Integrator::ProjectiveMidpoint: {
       ProjectiveStep options;
       options.h = h;
       options.iterations = settings_.sim.iterations;
+      if (integrator_ == Integrator::ProjectiveMidpoint) {
+        options.theta = kMidpointTheta;
+        options.adhesion = settings_.slime.adhesion;
+      }
       options.gravity = glm::dvec3(0.0, 0.0, -settings_.sim.gravity);
       options.friction = settings_.slime.friction;
       // The first holding hand goes through the solver (as with one hand); a second one is applied

@@ -39,8 +39,8 @@ void MembranePiece::rebuildModels(const Settings& settings, Integrator integrato
   settings_ = settings;
   integrator_ = integrator;
   const glm::dvec3 gravity{0.0, 0.0, -settings_.sim.gravity};
-  if (integrator_ == Integrator::Projective)
-    throw std::invalid_argument("sim.integrator=projective is the bulk body's only (slime.model=bulk)");
+  if (integrator_ == Integrator::Projective || integrator_ == Integrator::ProjectiveMidpoint)
+    throw std::invalid_argument("sim.integrator=" + integratorName(integrator_) + " is the bulk body's only (slime.model=bulk)");
   const bool hasVolume = settings_.slime.pressure > 0.0;
   forceModel_ = ForceModel{};
   forceModel_.springs = &body_.springs;
@@ -114,7 +114,8 @@ void MembranePiece::substep(double h) {
       lastSolverIterations_ = implicitEulerStep(state, h, forceModel_, ImplicitEulerOptions{}, implicitScratch_);
       break;
     case Integrator::Xpbd: xpbdSubstep(state, h, xpbdModel_, xpbdScratch_); break;
-    case Integrator::Projective: break;  // the bulk body's only (rebuildModels refuses it here)
+    case Integrator::Projective:
+    case Integrator::ProjectiveMidpoint: break;  // the bulk body's only (rebuildModels refuses it here)
   }
   placeGrabbedPoints();
   resolveFloorContact(state, settings_.slime.friction);
