@@ -41,7 +41,6 @@ constexpr double kSupportedShare = 0.25;
 constexpr double kStaticChunk = 0.25;         // s: the static solve runs until a chunk changes its height
 constexpr double kStaticConverged = 1e-5;     // by less than this share
 constexpr double kRestWindow = 0.3;         // of the rest run, its last part averaged
-constexpr double kRestViscosity = 100.0;    // Pa·s, slime.viscosity's largest: the rest run settles soonest
 
 double threadCpuSeconds() {
   timespec now{};
@@ -110,11 +109,11 @@ json dropRun(const Settings& settings, bool automatic, double seconds) {
           {"first_rollback", simulation.divergences().empty() ? json() : json(simulation.divergences()[0].what)}};
 }
 
-// The elastic ball set down touching the frictionless floor, the dampers at their largest: its top
-// node's height averaged over the run's last kRestWindow (the jiggle's remains average out).
+// The elastic ball set down touching the frictionless floor (the scene's dampers: the oracle does not
+// change the step's stability): its top node's height averaged over the run's last kRestWindow (the
+// bounce's remains average out).
 json restRun(const Settings& settings, bool automatic, double seconds) {
   Settings rest = restSettings(settings);
-  rest.slime.viscosity = kRestViscosity;
   rest.slime.position.z = rest.slime.radius;
   Simulation simulation(rest);
   simulation.setAutomaticSubsteps(automatic);

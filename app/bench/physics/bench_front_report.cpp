@@ -148,10 +148,14 @@ bool writeChart(const json& points, const FrontError& error, const std::string& 
     script << "set arrow from " << error.guideBound << ", graph 0 to " << error.guideBound
            << ", graph 1 nohead dashtype 2 lc 'gray40'\nset label 'guide' at " << error.guideBound
            << ", graph 0.97 offset 0.5,0 tc 'gray40'\n";
+  // Each series in its colour, the resolution as the point's shape (filled: a peer's); the key draws
+  // one entry per series and per resolution.
   script << "plot ";
   for (std::size_t k = 0; k < order.size(); ++k)
-    script << "'" << stem << ".dat' index " << k << " using 1:2:3 with points pt variable ps 1.3 lw 1.5 title '"
-           << order[k] << "', ";
+    script << "'" << stem << ".dat' index " << k << " using 1:2:3 with points pt variable ps 1.3 lw 1.5 lc " << k + 1
+           << " notitle, NaN with points pt 7 lc " << k + 1 << " title '" << order[k] << "', ";
+  for (int resolution = 1; resolution <= 4; ++resolution)
+    script << "NaN with points pt " << pointTypes[resolution] << " lc 'black' title 'resolution " << resolution << "', ";
   script << "'" << stem << ".dat' index " << order.size()
          << " using 1:2 with steps lc 'black' lw 1.5 title 'Pareto front (ours)'\n";
   script.close();
