@@ -70,8 +70,13 @@ nlohmann::json bulkFrontIntegrators(const Settings& settings);
 // beats on both (no larger error and no larger cost, one strictly smaller), by cost ascending.
 std::vector<std::size_t> paretoFront(const std::vector<std::pair<double, double>>& errorAndCost);
 
-// A peer's front point (peer_front.h's schema) with its errors, computed with our oracles: Lamb's n = 2
-// frequencies from its G, ρ, R and ν; the rest height against `staticRestHeight` (≤ 0: none).
+// A peer's front point with its errors, computed with our oracles: Lamb's n = 2 frequencies from its G,
+// ρ, R and ν; the rest height against `staticRestHeight` (≤ 0: none). A peer program, run as
+// `PROGRAM --front --resolutions 1,2 --steps-ms 1,2,4,8,16.7 --iterations 1,2,4,8 --seconds S --json FILE`,
+// writes FILE = {"peer": "jolt" | "bullet", "processor": "...", "points": [{"resolution", "step_ms",
+// "iterations", "cost_ms_per_ms", "shear_modulus_pa", "density_kg_m3", "radius_m", "poisson",
+// "spheroidal_hz", "torsional_hz" (null: not measured), "damping_ratio", "rest_height_m" (the top of the
+// body at rest), "diverged"}]}.
 nlohmann::json peerPointErrors(const nlohmann::json& point, double staticRestHeight);
 
 // The guide's accuracy: Lamb's n = 2 modes within 5 %, numerical damping ratio ≤ 0.02, rest height
