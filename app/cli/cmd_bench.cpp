@@ -4,6 +4,7 @@
 #include "app/bench/render/bench_reference.h"
 #include "app/bench/render/bench_caustics.h"
 #include "app/bench/material/bench_material.h"
+#include "app/bench/physics/bench_front.h"
 #include "app/bench/physics/bench_physics.h"
 #include "app/bench/render/bench_render.h"
 #include "app/bench/report/bench_report.h"
@@ -103,6 +104,9 @@ struct PhysicsCommand {
   PhysicsBenchOptions bench;
   std::string levels = "3-6";
   std::string resolutions = "1-3";
+  bool front = false, quick = false;
+  FrontOptions frontOptions;
+  std::string frontIterations = "1,2,4,8";
 };
 
 void registerPhysics(CLI::App& bench, int& exitCode) {
@@ -129,8 +133,37 @@ void registerPhysics(CLI::App& bench, int& exitCode) {
       ->check(CLI::Range(0.0, 60.0))->capture_default_str();
   command->add_option("--json", b.jsonFile, "Write every figure as JSON");
   command->add_option("--csv", b.csvFile, "Write the tables as CSV (FILE and FILE_stability, FILE_theory, FILE_accuracy)");
+  FrontOptions& f = options->frontOptions;
+  f.outputDirectory = "front";
+  command->add_flag("--front", options->front,
+                    "The front instead (docs/performance.md): every bulk integrator x step x iterations x resolution, "
+                    "cost against each error (Lamb's modes, numerical damping, creep, rest height), the peers beside");
+  command->add_flag("--quick", options->quick, "With --front: two points at resolution 1 and short runs (CI)");
+  command->add_option("--front-steps-ms", f.stepsMs, "With --front: steps, ms (the explicit methods also at automatic substeps)")
+      ->delimiter(',')->check(CLI::Range(0.01, 100.0))->capture_default_str();
+  command->add_option("--front-iterations", options->frontIterations, "With --front: sim.iterations of the methods that iterate")
+      ->capture_default_str();
+  command->add_option("--jobs", f.jobs, "With --front: points measured at once, one thread each")
+      ->check(CLI::Range(1, 64))->capture_default_str();
+  command->add_option("--front-dir", f.outputDirectory, "With --front: where front.json, front.md and the charts go")
+      ->capture_default_str();
   addSceneOptions(*command, options->scene);
-  command->callback([options, &exitCode] {
+  command->callback([options, command, &exitCode] {
+    if (options->front) {
+      FrontOptions front = options->quick ? FrontOptions::quick() : options->frontOptions;
+      if (options->quick) {
+        front.jobs = options->frontOptions.jobs;
+        front.outputDirectory = options->frontOptions.outputDirectory;
+      } else {
+        if (command->count("--resolutions") > 0)
+          front.resolutions = parseList("--resolutions", options->resolutions, kMinBodyResolution, kMaxBodyResolution);
+        front.iterations = parseList("--front-iterations", options->frontIterations, 1, 100);
+        front.integrators = options->bench.integrators;
+      }
+      runFront(loadSettings(options->scene), front);
+      exitCode = 0;
+      return;
+    }
     PhysicsBenchOptions bench = options->bench;
     bench.levels = parseList("--levels", options->levels, 0, 7);
     bench.resolutions = parseList("--resolutions", options->resolutions, kMinBodyResolution, kMaxBodyResolution);

@@ -16,6 +16,7 @@ namespace {
 
 using nlohmann::json;
 
+
 struct DampingMethod {
   std::string integrator;
   int iterations;  // projective's sim.iterations; 0 for the others
@@ -23,23 +24,37 @@ struct DampingMethod {
 
 json dampingRun(const Settings& base, const DampingOptions& options, const DampingMethod& method, bool spheroidal,
                 double dt) {
-  Settings settings = elasticBall(base, options.resolution);
+  Settings settings = base;
+  settings.slime.resolution = options.resolution;
   settings.sim.integrator = method.integrator;
   if (method.iterations > 0) settings.sim.iterations = method.iterations;
   settings.sim.dt = dt;
+  json run = measureModeDamping(settings, spheroidal, options.periods, options.speed);
+  run["method"] = method.integrator;
+  run["iterations"] = method.iterations;
+  run["dt_s"] = dt;
+  return run;
+}
+
+}  // namespace
+
+json measureModeDamping(const Settings& base, bool spheroidal, double periods, double speed, bool automaticSubsteps) {
+  const Settings settings = elasticBall(base, base.slime.resolution);
   Simulation simulation(settings);
+  simulation.setAutomaticSubsteps(automaticSubsteps);
   const double eta = lambRoot(2, spheroidal, settings.slime.poisson);
   const double theory = lambTheoryHz(simulation, eta);
   const std::vector<glm::dvec3> shape = modeShape(simulation, spheroidal, eta);
   std::vector<glm::dvec3> velocities(shape.size());
-  for (std::size_t i = 0; i < shape.size(); ++i) velocities[i] = options.speed * shape[i];
+  for (std::size_t i = 0; i < shape.size(); ++i) velocities[i] = speed * shape[i];
   simulation.setVelocities(velocities);
 
   std::vector<double> times, amplitudes, rates;
-  const double seconds = options.periods / theory;
+  const double seconds = periods / theory;
   const Stopwatch watch;
   while (simulation.time() < seconds) {
     simulation.step();
+    if (!automaticSubsteps && !simulation.divergences().empty()) break;
     times.push_back(simulation.time());
     amplitudes.push_back(modalAmplitude(simulation, shape));
     rates.push_back(modalVelocity(simulation, shape));
@@ -53,24 +68,20 @@ json dampingRun(const Settings& base, const DampingOptions& options, const Dampi
   // Backward Euler's own damping of an undamped oscillator at ω: each step multiplies its energy by
   // 1 / (1 + (ωh)²), so ζ = ln(1 + (ωh)²) / (2ωh) ≈ ωh/2 — the closed form projective dynamics (an
   // implicit Euler step, Bouaziz et al. 2014) should approach as its iterations converge.
-  const double h = dt / simulation.substepsPerStep();
+  const double h = settings.sim.dt / simulation.substepsPerStep();
   const double backwardEuler = std::log1p(omega * omega * h * h) / (2.0 * omega * h);
-  return {{"method", method.integrator},
-          {"iterations", method.iterations},
-          {"mode", spheroidal ? "spheroidal_n2" : "torsional_n2"},
-          {"dt_s", dt},
+  return {{"mode", spheroidal ? "spheroidal_n2" : "torsional_n2"},
           {"substeps", simulation.substepsPerStep()},
           {"theory_hz", theory},
           {"measured_hz", measured},
           {"frequency_ratio", measured / theory},
           {"damping_ratio", zeta},
           {"backward_euler_damping_ratio", backwardEuler},
-          {"periods", options.periods},
+          {"periods", periods},
+          {"simulated_s", simulation.time()},
           {"rollbacks", simulation.divergences().size()},
           {"cost_ms_per_sim_ms", wall / (1e3 * simulation.time())}};
 }
-
-}  // namespace
 
 json runDampingBench(const Settings& settings, const DampingOptions& options, CsvTable& table) {
   std::vector<DampingMethod> methods{{"symplectic_euler", 0}, {"rk4", 0}};

@@ -29,4 +29,13 @@ struct DampingOptions {
 // implicit Euler step's damping at the measured ω and substep h) and returns the same rows as JSON.
 nlohmann::json runDampingBench(const Settings& settings, const DampingOptions& options, CsvTable& table);
 
+// One run of the free elastic ball (elasticBall at slime.resolution, settings' integrator, sim.dt,
+// sim.iterations) started in Lamb's n = 2 torsional or spheroidal mode at `speed` (m/s at its largest)
+// for `periods` of Lamb's frequency: theory_hz, measured_hz (0: fewer than three zero crossings),
+// frequency_ratio, damping_ratio, backward_euler_damping_ratio, substeps, rollbacks. With
+// automaticSubsteps off the step is exactly sim.dt / sim.substeps (a blow-up shows as a rollback, and
+// the run stops at the first).
+nlohmann::json measureModeDamping(const Settings& settings, bool spheroidal, double periods, double speed,
+                                  bool automaticSubsteps = true);
+
 }  // namespace slime

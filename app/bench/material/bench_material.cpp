@@ -22,7 +22,6 @@ namespace {
 
 using nlohmann::json;
 
-constexpr double kSettleViscosity = 100.0;  // Pa·s (slime.viscosity's largest): the dampers while the body settles
 constexpr double kFrozenRelaxation = 1000.0; // s: slime.relaxation's largest value, the Maxwell branch frozen
 constexpr int kSeriesInterval = 10;         // steps between the creep series' samples
 constexpr double kFitTauLow = 0.01, kFitTauHigh = 100.0;  // s
@@ -87,10 +86,10 @@ void push(Simulation& simulation, const std::vector<glm::dvec3>& acceleration, d
 
 // The material switched between frozen (relaxation at its largest, strong dampers: the body settles
 // elastically) and flowing (the scene's relaxation time and viscosity: the slime as it is).
-void setPhase(Simulation& simulation, const Settings& scene, bool frozen) {
+void setPhase(Simulation& simulation, const Settings& scene, double settleViscosity, bool frozen) {
   Settings settings = simulation.settings();
   settings.slime.relaxation = frozen ? kFrozenRelaxation : scene.slime.relaxation;
-  settings.slime.viscosity = frozen ? kSettleViscosity : scene.slime.viscosity;
+  settings.slime.viscosity = frozen ? settleViscosity : scene.slime.viscosity;
   simulation.applySettings(settings);
 }
 
@@ -103,16 +102,18 @@ struct PhaseRecord {
 // every kSeriesInterval steps.
 template <typename Scale>
 PhaseRecord runPhase(Simulation& simulation, const std::vector<glm::dvec3>& load, Scale scale,
-                     const std::vector<glm::dvec3>& shape, double seconds) {
+                     const std::vector<glm::dvec3>& shape, double seconds, bool stopAtRollback) {
   PhaseRecord record;
   const double start = simulation.time();
   const std::int64_t firstStep = simulation.stepCount();
   record.times.push_back(0.0);
   record.amplitudes.push_back(modalAmplitude(simulation, shape));
+  const std::size_t rollbacks = simulation.divergences().size();
   while (simulation.time() - start < seconds - 0.5 * simulation.settings().sim.dt) {
     const double factor = scale(simulation.time() - start);
     if (factor != 0.0) push(simulation, load, factor);
     simulation.step();
+    if (stopAtRollback && simulation.divergences().size() > rollbacks) break;
     record.volume.add(simulation);
     if ((simulation.stepCount() - firstStep) % kSeriesInterval == 0) {
       record.times.push_back(simulation.time() - start);
@@ -127,7 +128,9 @@ PhaseRecord runPhase(Simulation& simulation, const std::vector<glm::dvec3>& load
 // solid's initial state (the instantaneous elastic response, no Maxwell flow yet) with nothing left
 // swinging; then the relaxation time is switched to the scene's (applySettings keeps the Maxwell state)
 // and the twist's amplitude a(t) fitted with a∞ + (a0 − a∞) exp(−t/τ).
-json creepRun(const Settings& scene, const MaterialBenchOptions& options, CsvTable& series) {
+}  // namespace
+
+json measureCreep(const Settings& scene, const MaterialBenchOptions& options, CsvTable& series) {
   Settings settings = scene;
   settings.slime.model = "bulk";
   if (options.creepResolution > 0) settings.slime.resolution = options.creepResolution;
@@ -135,8 +138,10 @@ json creepRun(const Settings& scene, const MaterialBenchOptions& options, CsvTab
   settings.sim.gravity = 0.0;
   settings.slime.position.z = std::max(settings.slime.position.z, 2.0 * settings.slime.radius);
   settings.slime.relaxation = kFrozenRelaxation;
-  settings.slime.viscosity = kSettleViscosity;
+  settings.slime.viscosity = options.settleViscosity;
   Simulation simulation(settings);
+  simulation.setAutomaticSubsteps(options.automaticSubsteps);
+  const bool stop = !options.automaticSubsteps;
 
   // The load: a body force along the n = 2 torsional mode (top and bottom twisted opposite ways about
   // z; no net force or torque). Its response is isochoric, so the non-relaxing volume terms take no part.
@@ -158,15 +163,19 @@ json creepRun(const Settings& scene, const MaterialBenchOptions& options, CsvTab
   auto constant = [](double value) { return [value](double) { return value; }; };
 
   const Stopwatch watch;
-  const PhaseRecord loading = runPhase(simulation, load, rampUp, shape, options.settleSeconds);
+  const double settle = options.settleViscosity;
+  const PhaseRecord loading = runPhase(simulation, load, rampUp, shape, options.settleSeconds, stop);
   const double elastic = loading.amplitudes.back();  // a0 = σ/G0 in the twist's units
   const double settleSpeed = simulation.metrics().maxSpeed;
-  setPhase(simulation, scene, false);
-  const PhaseRecord creep = runPhase(simulation, load, constant(1.0), shape, options.creepSeconds);
-  setPhase(simulation, scene, true);
-  const PhaseRecord unloading = runPhase(simulation, load, rampDown, shape, options.settleSeconds);
-  setPhase(simulation, scene, false);
-  const PhaseRecord recovery = runPhase(simulation, load, constant(0.0), shape, options.creepSeconds);
+  setPhase(simulation, scene, settle, false);
+  const PhaseRecord creep = runPhase(simulation, load, constant(1.0), shape, options.creepSeconds, stop);
+  const bool recover = options.recovery && !(stop && !simulation.divergences().empty());
+  setPhase(simulation, scene, settle, true);
+  const PhaseRecord unloading =
+      recover ? runPhase(simulation, load, rampDown, shape, options.settleSeconds, stop) : PhaseRecord{};
+  setPhase(simulation, scene, settle, false);
+  const PhaseRecord recovery =
+      recover ? runPhase(simulation, load, constant(0.0), shape, options.creepSeconds, stop) : PhaseRecord{};
 
   // Normalised by a0: the closed form is creep 1/L − (1/L − 1) e^(−t/τc) (L = μ∞/G) and, after the
   // elastic part a0 springs back, recovery (creep(t1) − 1) e^(−t/τc).
@@ -210,6 +219,9 @@ json creepRun(const Settings& scene, const MaterialBenchOptions& options, CsvTab
                        {"relaxation_s", scene.slime.relaxation},
                        {"long_term", longTerm},
                        {"wall_s", watch.milliseconds() * 1e-3},
+                       {"simulated_s", simulation.time()},
+                       {"substeps", simulation.substepsPerStep()},
+                       {"rollbacks", simulation.divergences().size()},
                        {"volume_ratio", volume.toJson()}};
   json creepJson = {{"material_tau_s", tauC},
                     {"measured_tau_s", creepFit.tau},
@@ -232,8 +244,11 @@ json creepRun(const Settings& scene, const MaterialBenchOptions& options, CsvTab
                        {"seconds", options.creepSeconds},
                        {"series", recoverySeries}};
   recoveryJson.update(common);
+  if (!recover) recoveryJson = nullptr;
   return {{"creep", creepJson}, {"recovery", recoveryJson}};
 }
+
+namespace {
 
 // Total energy, kinetic + elastic (less the elastic energy at rest), of a free body in a large
 // spheroidal n = 2 oscillation with every dissipation off. Symplectic Euler's stored velocities are
@@ -401,7 +416,7 @@ json runMaterialBench(const Settings& settings, const MaterialBenchOptions& opti
   }
 
   CsvTable creepTable{{"phase", "t_s", "measured", "fit", "closed_form", "measured_tau_s", "material_tau_s"}, {}};
-  const json creep = creepRun(settings, options, creepTable);
+  const json creep = measureCreep(settings, options, creepTable);
   const json& c = creep["creep"];
   const json& r = creep["recovery"];
   std::printf("\nCreep under a constant twist (resolution %d), twist / elastic twist fitted a_inf + (a0 - a_inf) exp(-t/tau)\n",

@@ -16,6 +16,7 @@
 #include "app/bench/material/bench_damping.h"
 #include "app/bench/material/bench_tensile.h"
 #include "app/bench/material/modal_fit.h"
+#include "app/bench/report/bench_report.h"
 #include "core/settings/settings.h"
 
 #include <glm/vec3.hpp>
@@ -34,6 +35,9 @@ struct MaterialBenchOptions {
   double twistLoad = 0.75;                // m/s², the twist's body force per unit mass at its largest
   double settleSeconds = 1.0;             // elastic settling (Maxwell branch frozen) before creep and recovery
   double creepSeconds = 8.0;              // under load, then as long again unloaded
+  bool recovery = true;                   // the unloaded half too
+  double settleViscosity = 100.0;         // Pa·s: the dampers while the body settles (slime.viscosity's largest)
+  bool automaticSubsteps = true;          // off: the creep runs at exactly sim.dt / sim.substeps (bench_front.h)
   double energySeconds = 10.0;
   double energySpeed = 0.1;               // m/s, the largest initial speed of the energy run (20× Lamb's)
   TensileOptions tensile;
@@ -48,6 +52,13 @@ struct MaterialBenchOptions {
 };
 
 nlohmann::json runMaterialBench(const Settings& settings, const MaterialBenchOptions& options);
+
+// Creep under a constant twist, then (options.recovery) recovery with the twist removed, at the
+// scene's resolution (or options.creepResolution), integrator and step: {"creep": {material_tau_s,
+// measured_tau_s, error, ...}, "recovery": ...} (docs/material.md). `series` gets the fitted series.
+// A rollback of the divergence guard shows as "rollbacks" in both; with automaticSubsteps off the run
+// stops at the first.
+nlohmann::json measureCreep(const Settings& scene, const MaterialBenchOptions& options, CsvTable& series);
 
 // y(t) ≈ asymptote + (initial − asymptote)·exp(−t/tau), least squares: for each τ the model is linear
 // in (asymptote, initial − asymptote); τ by golden-section search on the residual over [tauLow, tauHigh].

@@ -70,11 +70,15 @@ double zeroCrossingFrequency(const std::vector<double>& t, const std::vector<dou
 
 double energyDampingRatio(const std::vector<double>& t, const std::vector<double>& amplitude,
                           const std::vector<double>& rate, double omega) {
-  const double n = static_cast<double>(t.size());
-  double st = 0.0, sy = 0.0, stt = 0.0, sty = 0.0;
+  // The fit stops where a strongly damped mode has fallen to round-off (1e-12 of its start's energy).
+  constexpr double kLostEnergy = 1e-12;
+  const double initial = t.empty() ? 0.0 : omega * omega * amplitude[0] * amplitude[0] + rate[0] * rate[0];
+  double n = 0.0, st = 0.0, sy = 0.0, stt = 0.0, sty = 0.0;
   for (std::size_t k = 0; k < t.size(); ++k) {
     const double energy = omega * omega * amplitude[k] * amplitude[k] + rate[k] * rate[k];
+    if (energy < kLostEnergy * initial && n >= 2.0) break;
     const double y = std::log(std::max(energy, 1e-300));
+    n += 1.0;
     st += t[k];
     sy += y;
     stt += t[k] * t[k];

@@ -41,7 +41,7 @@ PeerRun runPeer(const std::string& program, std::vector<std::string> arguments) 
   std::ifstream file(jsonPath);
   json report = ok ? json::parse(file, nullptr, false) : json();
   std::filesystem::remove(jsonPath);
-  if (!report.is_array() || report.empty()) return run;
+  if (report.is_discarded() || report.empty() || !(report.is_array() || report.is_object())) return run;
   run.report = report;
   run.cpuSeconds = usage.ru_utime.tv_sec + 1e-6 * usage.ru_utime.tv_usec + usage.ru_stime.tv_sec +
                    1e-6 * usage.ru_stime.tv_usec;
@@ -61,7 +61,7 @@ std::string findPeerProgram(const std::string& configured, const std::string& na
 
 json runBulletBall(const std::string& program, int level, double seconds) {
   const PeerRun run = runPeer(program, {"--levels", std::to_string(level), "--seconds", std::to_string(seconds)});
-  if (run.report.is_null()) return nullptr;
+  if (!run.report.is_array()) return nullptr;
   json ball = run.report[0];
   const double simulated = ball["seconds"].get<double>();
   ball["cpu_seconds"] = run.cpuSeconds;
@@ -73,11 +73,16 @@ json runBulletBall(const std::string& program, int level, double seconds) {
 json runBulletTets(const std::string& program, int resolution, double seconds) {
   const PeerRun run =
       runPeer(program, {"--resolutions", std::to_string(resolution), "--seconds", std::to_string(seconds)});
-  if (run.report.is_null()) return nullptr;
+  if (!run.report.is_array()) return nullptr;
   json body = run.report[0];
   body["process_cpu_seconds"] = run.cpuSeconds;
   body["cpu_ms_per_simulated_s"] = 1e3 * body["cpu_ms_per_simulated_ms"].get<double>();
   return body;
+}
+
+json runPeerFront(const std::string& program, const std::vector<std::string>& arguments) {
+  const PeerRun run = runPeer(program, arguments);
+  return run.report.is_object() ? run.report : json();
 }
 
 }  // namespace slime

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include <string>
+#include <vector>
 
 namespace slime {
 
@@ -21,5 +22,9 @@ nlohmann::json runBulletBall(const std::string& program, int level, double secon
 // dropped 2 cm, `seconds` simulated; its own CPU time per simulated ms (set-up excluded), the rest
 // aspect, the volume and the inverted elements. Null if the program failed.
 nlohmann::json runBulletTets(const std::string& program, int resolution, double seconds);
+
+// A peer's front (bench_front.h): `program` run with `arguments` and --json FILE, the object it wrote
+// ({"peer", "processor", "points": [...]}); null if it failed or wrote none.
+nlohmann::json runPeerFront(const std::string& program, const std::vector<std::string>& arguments);
 
 }  // namespace slime
