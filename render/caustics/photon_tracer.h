@@ -46,6 +46,8 @@ struct PhotonCone {
 };
 PhotonCone photonCone(const SlimeGeometry& geometry, const glm::vec3& light);
 
+struct WavefrontVertex;  // wavefront.h
+
 class PhotonTracer {
  public:
   PhotonTracer(const SlimeGeometry& geometry, const SlimeIntersector& intersector, const ShadingParameters& parameters)
@@ -56,10 +58,18 @@ class PhotonTracer {
   // if it met it: the caustic map's reference for its ratio (caustic_map.h).
   void trace(const PhotonCone& cone, std::uint64_t first, std::uint64_t count, std::vector<PhotonLanding>& landings,
              PhotonTally& tally, std::vector<PhotonLanding>* straight = nullptr) const;
+  // One vertex of the light's wavefront (wavefront.h) along `fromLight`: every branch of its path
+  // tree followed (no Russian roulette: a partial reflection inside goes on with its weight F while
+  // that is at least kMinPhotonWeight), Snell and Fresnel about the shading normal the eye's rays
+  // refract about (the hit triangle's vertex normals interpolated, with render.normals=smooth), so
+  // that neighbouring vertices land on a continuous wavefront and not facet by facet.
+  void traceVertex(const Ray& fromLight, WavefrontVertex& vertex, PhotonTally& tally) const;
 
  private:
   void tracePhoton(const Ray& fromLight, std::uint64_t index, std::vector<PhotonLanding>& landings, PhotonTally& tally) const;
   float surfaceTransmission(float cosine, bool entering, float& reflectedShare) const;
+  // The normal Snell and Fresnel use at a crossing, facing the incoming `direction` (`outward`: the geometric one).
+  glm::vec3 shadingFacing(const SlimeHit& hit, const glm::vec3& outward, const glm::vec3& direction, bool entering) const;
 
   const SlimeGeometry& geometry_;
   const SlimeIntersector& intersector_;
