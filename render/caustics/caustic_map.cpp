@@ -178,10 +178,12 @@ void CausticMap::clear() {
   ratios_.clear();
   spreading_.grid = nullptr;
   spreading_.vertices = nullptr;
+  spreading_.refined = nullptr;
 }
 
 void CausticMap::beginWavefront(const WavefrontGrid& grid, int level, const std::vector<WavefrontVertex>& vertices,
-                                const PhotonCone& cone, const FloorRegion& region, double cellPerTriangle) {
+                                const PhotonCone& cone, const FloorRegion& region, double cellPerTriangle,
+                                const std::vector<std::uint8_t>* refined) {
   clear();
   if (level < 0 || level >= grid.levels()) return;
   Spreading& w = spreading_;
@@ -190,6 +192,7 @@ void CausticMap::beginWavefront(const WavefrontGrid& grid, int level, const std:
   w.vertices = &vertices;
   w.apex = cone.apex;
   w.step = 1 << (grid.levels() - 1 - level);
+  w.refined = refined && w.step > 1 ? refined : nullptr;
   w.side = grid.side() / w.step;
   const int side = w.side;
   w.flux = static_cast<float>(cone.solidAngle / (2.0 * side * side));  // each light triangle's share of the intensity
@@ -227,7 +230,6 @@ void CausticMap::spreadBand(Spreading::Band& sums, std::uint64_t traced) const {
   const WavefrontGrid& grid = *w.grid;
   const std::vector<WavefrontVertex>& vertices = *w.vertices;
   const int step = w.step, side = w.side;
-  const float fluxF = w.flux;
   const double cell = w.cell;
   CellGrid cells;
   cells.low = w.low;
@@ -235,9 +237,7 @@ void CausticMap::spreadBand(Spreading::Band& sums, std::uint64_t traced) const {
   cells.columns = w.columns;
   cells.rows = w.rows;
   using Sums = Spreading::Band;
-  const auto vertexAt = [&](int column, int row) -> const WavefrontVertex& {
-    return vertices[grid.rank(column * step, row * step)];
-  };
+  const auto vertexAt = [&](int column, int row) -> const WavefrontVertex& { return vertices[grid.rank(column, row)]; };
   // A branch's landings: the light through the slime spread; the light past it is U − S's (finishWavefront).
   const auto depositBranch = [&](Sums& sums, const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c, bool isDirect,
                                  const glm::vec3& power) {
@@ -252,7 +252,7 @@ void CausticMap::spreadBand(Spreading::Band& sums, std::uint64_t traced) const {
       depositBranch(sums, p0, p1, p2, isDirect, halfPower), depositBranch(sums, p0, p2, p3, isDirect, halfPower);
     }
   };
-  const auto triangle = [&](Sums& sums, const WavefrontVertex& a, const WavefrontVertex& b, const WavefrontVertex& c) {
+  const auto triangle = [&](Sums& sums, const WavefrontVertex& a, const WavefrontVertex& b, const WavefrontVertex& c, float fluxF) {
     const WavefrontVertex* corner[3] = {&a, &b, &c};
     // Which path reaches each corner's branches at all three corners (the index there, else −1).
     const auto find = [](const WavefrontVertex& v, std::uint64_t path) {
@@ -301,10 +301,15 @@ void CausticMap::spreadBand(Spreading::Band& sums, std::uint64_t traced) const {
         std::max({grid.rank(column * step, row * step), grid.rank((column + 1) * step, row * step),
                   grid.rank(column * step, (row + 1) * step), grid.rank((column + 1) * step, (row + 1) * step)}) >= traced)
       break;  // a corner not traced yet: the band goes on from here
-    const WavefrontVertex &v00 = vertexAt(column, row), &v10 = vertexAt(column + 1, row), &v11 = vertexAt(column + 1, row + 1),
-                          &v01 = vertexAt(column, row + 1);
-    triangle(sums, v00, v10, v11);
-    triangle(sums, v00, v11, v01);
+    // A refined square (the moving map's, caustics.h): its four squares of the next finer level.
+    const int width = w.refined && (*w.refined)[q] ? step / 2 : step;
+    for (int y = row * step; y < (row + 1) * step; y += width)
+      for (int x = column * step; x < (column + 1) * step; x += width) {
+        const WavefrontVertex &v00 = vertexAt(x, y), &v10 = vertexAt(x + width, y), &v11 = vertexAt(x + width, y + width),
+                              &v01 = vertexAt(x, y + width);
+        triangle(sums, v00, v10, v11, width == step ? w.flux : 0.25f * w.flux);
+        triangle(sums, v00, v11, v01, width == step ? w.flux : 0.25f * w.flux);
+      }
   }
   sums.next = q;
 }

@@ -57,8 +57,11 @@ class CausticMap {
   // however the calls cut it. `grid` and `vertices` must outlive the spreading, the vertices only
   // appended to.
   static constexpr std::uint64_t kAllTraced = ~std::uint64_t{0};
+  // `refined` (one flag per light square of `level`, row-major; null: none): a flagged square spreads
+  // the four squares of the next finer level in its place, their vertices traced in `vertices`.
   void beginWavefront(const WavefrontGrid& grid, int level, const std::vector<WavefrontVertex>& vertices, const PhotonCone& cone,
-                      const FloorRegion& region, double cellPerTriangle = kFineCells);
+                      const FloorRegion& region, double cellPerTriangle = kFineCells,
+                      const std::vector<std::uint8_t>* refined = nullptr);
   bool spreadWavefront(tbb::task_arena* arena, std::uint64_t traced);
   bool spreading() const { return spreading_.grid != nullptr; }
   std::uint64_t squaresLeft() const;  // the most light squares a band has left to spread
@@ -85,6 +88,7 @@ class CausticMap {
   struct Spreading {
     const WavefrontGrid* grid = nullptr;
     const std::vector<WavefrontVertex>* vertices = nullptr;
+    const std::vector<std::uint8_t>* refined = nullptr;
     glm::vec3 apex{0.0f};
     std::uint64_t needed = 0;  // the vertices of the grid's order up to the level's
     int step = 1, side = 0, columns = 0, rows = 0;

@@ -2,7 +2,8 @@
 //
 // The vertices of a grid over the light's cone are traced through the slime (wavefront.h,
 // photon_tracer.h) and its triangles spread over the floor's caustic map (caustic_map.h): a bounded
-// grid while anything moves, a finer one traced over the frames while all stays still.
+// grid while anything moves, refined where its vertices' paths part, and a finer one traced over the
+// frames while all stays still.
 #pragma once
 
 #include "core/settings/settings.h"
@@ -22,18 +23,18 @@ class Caustics {
   // While the slime, the light and the optics stay as in the last frame, each frame traces another
   // 1/kStillBudgets of the still grid's vertices (about one budget, render.photons), kStillBudgets frames in all.
   static constexpr int kStillBudgets = 16;
-  // A frame that starts the map again (the slime, the light or the optics moved) traces a grid of
-  // about a budget over this: the map a handled slime shows every frame, its cost the caustics' share
-  // of a handled frame (issue 30 item 4: 5,000 by default). 4: a vertex follows every branch of its
-  // path and its two triangles are spread, several times a photon's cost; a grid of a quarter budget
-  // (1,225 vertices by default) costs a held frame about what the photon map's half budget did.
-  static constexpr int kMovingDivisor = 4;
-  // Kept halves: while only the slime moves, frame after frame (held, dragged, falling), a moving frame
-  // traces half of its grid's M vertices afresh, in turn [0, M/2) and [M/2, M) of the grid's order, and
-  // keeps the other half from the moving frame before (issue 28). Half of them are one frame behind the
-  // slime (≈ 30 ms of a hand's motion). A light, optics or budget change, a new moving grid, or the
-  // first moving frame after a still one, traces all M; the still frames start again on the still grid.
-
+  // A frame that starts the map again (the slime, the light or the optics moved) traces the moving
+  // grid's coarse level, of about a budget over this (961 vertices by default), and in each of its
+  // squares whose corners take different paths (the outline, the edge of total internal reflection:
+  // needsFinerVertices) the finer level's five vertices, spreading that square as four: about 1,600
+  // vertices in all on the default slime held. The refinement keeps the moving frame's image 38–39 dB
+  // from the finished map's, as `slime view --check-every` measures it (the coarse level alone: 36.6–36.9;
+  // caustics_test.cpp), at about the photon map's cost of a held frame (docs/rendering.md).
+  static constexpr int kMovingDivisor = 10;
+  // A moving frame's vertices follow a partial reflection inside only while it keeps this much of
+  // the light: the finished map's 2–4 % echoes inside the jelly cost a query each and split the
+  // vertices' paths (more squares refined) for a faint glow the moving frame leaves out.
+  static constexpr float kMovingVertexWeight = 0.1f;
   // The map for this frame, or null when caustics are off (render.caustics, render.shadows, the light
   // below the floor, no slime). `arena`: the vertices in its threads; null: on this thread (the brute
   // force, the oracle). Brings the map up to date:
@@ -43,8 +44,7 @@ class Caustics {
   // - `progressive` (the interactive viewer): a new shape, light or setting starts again from the
   //   moving grid; the k-th frame in a row with nothing changed brings the still grid to k/16 of its
   //   vertices, coarse to fine, the map drawn from its finest whole level (its 2nd, 5th and 16th
-  //   frames), so the 16th still frame is the finished map; a frame where only the slime moved since
-  //   the last moving frame traces half of the moving grid (kept halves, above).
+  //   frames), so the 16th still frame is the finished map.
   const CausticMap* update(const Settings& settings, const ShadingParameters& parameters, const SlimeGeometry& geometry,
                            const SlimeIntersector& intersector, tbb::task_arena* arena, bool progressive = false);
 
@@ -57,8 +57,8 @@ class Caustics {
   static constexpr std::uint64_t kFewestPhotons = 1000;
   static constexpr std::uint64_t kFirstPhotons = 5000;  // before the rate is known: the default's moving frame
 
-  // The wavefront grids (wavefront.h) of a budget B = render.photons: a moving frame's of about
-  // B / kMovingDivisor vertices, and the still map's of about kStillBudgets · B in three levels (sides
+  // The wavefront grids (wavefront.h) of a budget B = render.photons: a moving frame's coarse level of about
+  // B / kMovingDivisor vertices (movingVertices; its finer level of side 2 movingSide), and the still map's of about kStillBudgets · B in three levels (sides
   // 4m, 2m, m with m = √B: about B, 4 B and 16 B vertices), traced coarse to fine.
   static int movingSide(std::uint64_t vertices);  // the side of a moving grid of at most that many vertices (≥ 9)
   static int stillSide(std::uint64_t budget);
@@ -72,6 +72,7 @@ class Caustics {
   const PhotonTally& tally() const { return tally_; }
   bool converged() const { return onStillGrid_ && traced_ >= stillGrid_.vertices() && !next_.spreading(); }
   double lastMs() const { return lastMs_; }  // the last update's time, wall clock
+  int shownLevel() const { return onStillGrid_ ? builtLevel_ : -1; }  // the still grid's level shown (−1: the moving map or none)
 
  private:
   // The vertices [first, first + count) of `grid`'s order traced on `geometry`: appended, with their tally.
@@ -84,16 +85,15 @@ class Caustics {
              tbb::task_arena* arena, Vertices& out);
 
   std::vector<float> key_;  // the slime's vertices, the light, the optics and the budget of the map
+  // The moving grid's refinement: the coarse squares needsFinerVertices picks (refined_, side² flags)
+  // get their finer vertices (fineRanks_) traced into vertices_, which becomes indexed by rank.
+  void refine(const PhotonTracer& tracer, int side, tbb::task_arena* arena);
+  std::vector<std::uint8_t> refined_;
+  std::vector<std::uint32_t> fineRanks_;
   // The map's vertices gain `traced`'s.
   void append(const Vertices& traced);
 
-  // The last moving frame's two halves of its grid's vertices (kept halves): valid while no still frame
-  // came after it; the next moving frame traces halves_[nextHalf_] afresh and keeps the other.
-  Vertices halves_[2];
-  Vertices added_;  // a still frame's new vertices, reused from frame to frame
-  bool halvesValid_ = false;
-  int nextHalf_ = 0;
-  bool stale_ = false;  // the map holds a half traced on an earlier shape of the slime
+  Vertices added_;  // a frame's new vertices, reused from frame to frame
   std::uint64_t lastTraced_ = 0;
   WavefrontGrid movingGrid_, stillGrid_;
   bool onStillGrid_ = true;  // vertices_ are the still grid's (else the moving grid's)
@@ -115,6 +115,7 @@ class Caustics {
   // `wanted` photons, or fewer where the frame budget says so.
   std::uint64_t withinBudget(std::uint64_t wanted) const;
   double lastMs_ = 0.0;
+  void timeUpdate(double milliseconds);  // lastMs_, and the rate for the frame budget
 };
 
 }  // namespace slime

@@ -15,9 +15,6 @@ namespace {
 // A branch is followed while its weight (largest channel) is at least this: an eighth of the
 // Whitted tracer's threshold, so that what is cut off stays well below the power oracle's 2 %.
 constexpr float kMinPhotonWeight = kMinRayWeight / 8.0f;
-// A wavefront vertex follows every branch, no roulette: those below the Whitted tracer's threshold itself
-// (a third partial reflection inside, F³ ≈ 10⁻⁴) are cut off, as the eye's rays cut them.
-constexpr float kMinVertexWeight = kMinRayWeight;
 // Crossings of the surface one photon may make, all its branches together.
 constexpr int kMaxCrossings = 16;
 
@@ -324,7 +321,7 @@ void PhotonTracer::traceVertex(const Ray& fromLight, WavefrontVertex& vertex, Ph
       const glm::vec3 w = weight * transmitted;
       const std::optional<glm::vec3> along = refract(ray.direction, facing, entering ? 1.0f : p.ior, entering ? p.ior : 1.0f);
       const std::uint64_t path = extendPath(top.path, 1, piece);
-      if (along && largest(w) >= kMinVertexWeight && canBranch) {
+      if (along && largest(w) >= minVertexWeight_ && canBranch) {
         const bool leavesForGood = !entering && geometry_.supports(hit.primitive);
         Ray next{offsetRayOrigin(point, outward, *along), *along, 0.0f, kInfinity};
         if (leavesForGood) {
@@ -343,7 +340,7 @@ void PhotonTracer::traceVertex(const Ray& fromLight, WavefrontVertex& vertex, Ph
       tally.reflected += glm::dvec3(r);
       continue;
     }
-    if (largest(r) >= kMinVertexWeight && canBranch) {
+    if (largest(r) >= minVertexWeight_ && canBranch) {
       const glm::vec3 along = reflect(ray.direction, facing);
       stack[size++] = PathBranch{Branch{Ray{offsetRayOrigin(point, outward, along), along, 0.0f, kInfinity}, r, true},
                                  extendPath(top.path, 2, piece)};

@@ -50,8 +50,12 @@ struct WavefrontVertex;  // wavefront.h
 
 class PhotonTracer {
  public:
-  PhotonTracer(const SlimeGeometry& geometry, const SlimeIntersector& intersector, const ShadingParameters& parameters)
-      : geometry_(geometry), intersector_(intersector), parameters_(parameters) {}
+  // `minVertexWeight`: the least weight a wavefront vertex's branch goes on with (traceVertex). By
+  // default the Whitted tracer's threshold itself: a vertex follows every branch, no roulette, those
+  // below it (a third partial reflection inside, F³ ≈ 10⁻⁴) cut off as the eye's rays cut them.
+  PhotonTracer(const SlimeGeometry& geometry, const SlimeIntersector& intersector, const ShadingParameters& parameters,
+               float minVertexWeight = kMinRayWeight)
+      : geometry_(geometry), intersector_(intersector), parameters_(parameters), minVertexWeight_(minVertexWeight) {}
   // Photons [first, first + count) of the cone's sequence: their floor landings appended to `landings`.
   // With `straight`, each photon that would meet the floor along its straight line from the light is
   // appended there too, at that point, with weight 1 if it missed the slime (the direct light) and 0
@@ -60,7 +64,7 @@ class PhotonTracer {
              PhotonTally& tally, std::vector<PhotonLanding>* straight = nullptr) const;
   // One vertex of the light's wavefront (wavefront.h) along `fromLight`: every branch of its path
   // tree followed (no Russian roulette: a partial reflection inside goes on with its weight F while
-  // that is at least kMinPhotonWeight), Snell and Fresnel about the shading normal the eye's rays
+  // that is at least minVertexWeight), Snell and Fresnel about the shading normal the eye's rays
   // refract about (the hit triangle's vertex normals interpolated, with render.normals=smooth), so
   // that neighbouring vertices land on a continuous wavefront and not facet by facet.
   void traceVertex(const Ray& fromLight, WavefrontVertex& vertex, PhotonTally& tally) const;
@@ -74,6 +78,7 @@ class PhotonTracer {
   const SlimeGeometry& geometry_;
   const SlimeIntersector& intersector_;
   const ShadingParameters& parameters_;
+  float minVertexWeight_ = kMinRayWeight;
 };
 
 }  // namespace slime

@@ -65,4 +65,35 @@ void traceWavefront(const PhotonTracer& tracer, const PhotonCone& cone, const Wa
   }
 }
 
+void traceWavefrontAt(const PhotonTracer& tracer, const PhotonCone& cone, const WavefrontGrid& grid, const std::uint32_t* ranks,
+                      std::uint64_t count, WavefrontVertex* byRank, PhotonTally& tally) {
+  if (cone.empty()) return;
+  for (std::uint64_t i = 0; i < count; ++i) {
+    const std::uint32_t k = ranks[i];
+    const glm::vec3 direction = grid.direction(cone, grid.column(k), grid.row(k));
+    byRank[k] = WavefrontVertex{};
+    tracer.traceVertex(Ray{cone.apex, direction, 0.0f, kInfinity}, byRank[k], tally);
+  }
+}
+
+namespace {
+
+bool samePaths(const WavefrontVertex& a, const WavefrontVertex& b) {
+  if (a.count != b.count) return false;
+  for (int i = 0; i < a.count; ++i) {
+    bool found = false;
+    for (int j = 0; j < b.count && !found; ++j) found = a.branches[i].path == b.branches[j].path;
+    if (!found) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+bool needsFinerVertices(const WavefrontGrid& grid, const std::vector<WavefrontVertex>& byRank, int column, int row, int step) {
+  const WavefrontVertex& v00 = byRank[grid.rank(column, row)];
+  return !samePaths(v00, byRank[grid.rank(column + step, row)]) || !samePaths(v00, byRank[grid.rank(column + step, row + step)]) ||
+         !samePaths(v00, byRank[grid.rank(column, row + step)]);
+}
+
 }  // namespace slime

@@ -70,5 +70,16 @@ class WavefrontGrid {
 // The vertices [first, first + count) of `grid`'s order traced: their results appended to `out`.
 void traceWavefront(const PhotonTracer& tracer, const PhotonCone& cone, const WavefrontGrid& grid, std::uint64_t first,
                     std::uint64_t count, std::vector<WavefrontVertex>& out, PhotonTally& tally);
+// The vertices of `grid`'s order whose places are ranks[0, count) traced: each into byRank[its place].
+void traceWavefrontAt(const PhotonTracer& tracer, const PhotonCone& cone, const WavefrontGrid& grid, const std::uint32_t* ranks,
+                      std::uint64_t count, WavefrontVertex* byRank, PhotonTally& tally);
+
+// Whether the light square of `grid` at (column, row), `step` grid points wide, needs its finer
+// vertices (the moving map's refinement, caustics.h): its four corners (traced, in byRank) do not take
+// the same paths: the slime's outline, the edge of total internal reflection, a branch cut off. There
+// a coarse square spreads its corners' light over squares as wide as itself (caustic_map.h), the
+// moving map's largest error against the finished one. (A square whose shared path lands folded or
+// unevenly, a focus inside it, refined as well: no measurable gain on the default slime, 2026-11-29.)
+bool needsFinerVertices(const WavefrontGrid& grid, const std::vector<WavefrontVertex>& byRank, int column, int row, int step);
 
 }  // namespace slime

@@ -11,6 +11,7 @@
 #include "render/caustics/caustics.h"
 #include "render/caustics/photon_tracer.h"
 #include "render/caustics/wavefront.h"
+#include "render/image/image_io.h"
 #include "render/trace/brute_tracer.h"
 #include "render/trace/embree_scene.h"
 #include "render/trace/optics.h"
@@ -22,6 +23,7 @@
 #include <cmath>
 #include <mutex>
 #include <random>
+#include <tuple>
 
 namespace slime::testing {
 namespace {
@@ -477,10 +479,12 @@ TEST(Caustics, ProgressiveMapEndsAtThePlainRendersFinishedMap) {
   Image image;
   image.resize(48, 36);
   const auto budget = static_cast<std::uint64_t>(settings.render.photons);
-  const std::uint64_t moving = Caustics::movingVertices(budget);
+  const std::uint64_t moving = Caustics::movingVertices(budget);  // the moving grid's coarse level
   EXPECT_LE(moving, budget / Caustics::kMovingDivisor);
   RenderStats stats = renderer.render(settings, image);
-  EXPECT_EQ(stats.causticPhotons, moving);
+  const std::uint64_t refined = stats.causticPhotons;  // and the finer vertices of its squares at the outline
+  EXPECT_GT(refined, moving);
+  EXPECT_LT(refined, 4 * moving);
   const Image early = image;
   stats = renderer.render(settings, image);
   EXPECT_EQ(stats.causticPhotons, Caustics::stillTarget(budget, 2));
@@ -491,73 +495,97 @@ TEST(Caustics, ProgressiveMapEndsAtThePlainRendersFinishedMap) {
   Settings moved = settings;
   moved.light.position.x = 0.24;
   stats = renderer.render(moved, image);
-  EXPECT_EQ(stats.causticPhotons, moving);
+  EXPECT_GT(stats.causticPhotons, moving);
+  EXPECT_LT(stats.causticPhotons, 4 * moving);
 }
 
-// Moving frames where only the slime moved (issue 28) trace half of their grid's M vertices afresh, in
-// turn [0, M/2) and [M/2, M), and keep the other half from the moving frame before: the map is exactly
-// the one built from those two halves; the still frame after it starts again on the still grid.
-// (Tracing the same half every frame, or keeping nothing, fails the equalities below.)
-TEST(Caustics, MovingFramesTraceHalfThePhotonsAndKeepTheOtherHalf) {
+// A moving frame traces the moving grid's coarse level and, in each coarse square whose corners do
+// not take the same paths (the outline, the edge of total internal reflection), the finer level's
+// vertices, and spreads those squares as four: the map equals the one built from the same vertices
+// by CausticMap alone, and it lies closer to the finished map than the coarse level's alone does.
+// (Without the refinement the default slime's shadow, rendered, is 36.6–36.9 dB from the finished
+// map's against 38.3–39.2 with it: MovingMapImageIsCloseToTheFinishedMap.)
+TEST(Caustics, MovingFramesRefineTheSquaresWhosePathsDiffer) {
   const glm::dvec3 light{0.1, 0.05, 0.5}, color{0.5, 0.7, 0.9};
-  // Triangle meshes, c larger than a and b: its bounds change too.
-  Ball a({0.0, 0.0, 0.04}, light, color, 20.0, false), b({0.006, 0.0, 0.04}, light, color, 20.0, false),
-      c({0.012, 0.004, 0.04}, light, color, 20.0, false, 1.1);
-  Settings settings = a.settings;
-  settings.render.photons = 2000;
+  Ball ball({0.0, 0.0, 0.04}, light, color, 20.0, false);
+  Settings settings = ball.settings;
+  settings.render.photons = 4000;
   const auto budget = static_cast<std::uint64_t>(settings.render.photons);
-  const WavefrontGrid movingGrid(Caustics::movingSide(budget / Caustics::kMovingDivisor), 1);
-  const std::uint64_t moving = movingGrid.vertices(), half = moving / 2;
-  ASSERT_EQ(moving, Caustics::movingVertices(budget));
-  const auto traced = [&](const Ball& ball, std::uint64_t first, std::uint64_t count) {
-    std::vector<WavefrontVertex> vertices;
-    PhotonTally tally;
-    traceWavefront(PhotonTracer(ball.geometry, ball.embree, ball.parameters), photonCone(ball.geometry, ball.parameters.lightPosition),
-                   movingGrid, first, count, vertices, tally);
-    return vertices;
-  };
-  const auto mapOf = [&](const Ball& ball, const std::vector<std::vector<WavefrontVertex>>& parts) {
-    std::vector<WavefrontVertex> all;
-    for (const auto& part : parts) all.insert(all.end(), part.begin(), part.end());
-    const PhotonCone cone = photonCone(ball.geometry, ball.parameters.lightPosition);
-    CausticMap map;
-    map.buildWavefront(movingGrid, 0, all, cone, shadowRegion(cone, ball.geometry.boundCenter, ball.geometry.boundRadius), nullptr,
-                       CausticMap::kCoarseCells);
-    return map;
-  };
-  // The gain over a grid of floor points about the shadows: equal maps give equal gains everywhere.
-  const auto differences = [&](const CausticMap& x, const CausticMap& y) {
-    int count = 0;
-    for (int j = 0; j <= 40; ++j)
-      for (int i = 0; i <= 40; ++i) {
-        const glm::vec3 point(-0.1f + 0.25f * i / 40.0f, -0.12f + 0.24f * j / 40.0f, 0.0f);
-        count += x.gain(point, glm::vec3(light)) != y.gain(point, glm::vec3(light));
-      }
-    return count;
-  };
+  const int side = Caustics::movingSide(budget / Caustics::kMovingDivisor);
+  const WavefrontGrid grid(2 * side, 2);
+  const PhotonCone cone = photonCone(ball.geometry, ball.parameters.lightPosition);
+  const PhotonTracer tracer(ball.geometry, ball.embree, ball.parameters, Caustics::kMovingVertexWeight);
+  // Every vertex of the finer level traced: the refinement picks from them.
+  std::vector<WavefrontVertex> all;
+  PhotonTally tally;
+  traceWavefront(tracer, cone, grid, 0, grid.vertices(), all, tally);
+  std::vector<std::uint8_t> refined(static_cast<std::size_t>(side) * side, 0);
+  int squares = 0;
+  for (int row = 0; row < side; ++row)
+    for (int column = 0; column < side; ++column)
+      squares += refined[static_cast<std::size_t>(row) * side + column] = needsFinerVertices(grid, all, 2 * column, 2 * row, 2);
+  EXPECT_GT(squares, 0);
+  EXPECT_LT(squares, side * side / 2);
+  const FloorRegion region = shadowRegion(cone, ball.geometry.boundCenter, ball.geometry.boundRadius);
+  CausticMap expected, coarse, fine;
+  expected.beginWavefront(grid, 0, all, cone, region, CausticMap::kFineCells, &refined);
+  expected.spreadWavefront(nullptr, CausticMap::kAllTraced);
+  coarse.buildWavefront(grid, 0, all, cone, region, nullptr, CausticMap::kFineCells);
+  fine.buildWavefront(grid, 1, all, cone, region, nullptr, CausticMap::kFineCells);
   Caustics caustics;
-  const auto update = [&](const Ball& ball) {
-    return caustics.update(settings, ball.parameters, ball.geometry, ball.embree, nullptr, /*progressive=*/true);
-  };
-  ASSERT_NE(update(a), nullptr);  // the first moving frame: all M
-  EXPECT_EQ(caustics.lastTraced(), moving);
-  EXPECT_EQ(differences(*update(a), *update(a)), 0);
-  // a's still frames above ended the halves: b traces all M again.
-  const CausticMap* map = update(b);
-  EXPECT_EQ(caustics.lastTraced(), moving);
-  EXPECT_EQ(differences(*map, mapOf(b, {traced(b, 0, moving)})), 0);
-  map = update(c);  // the first half afresh on c, the second kept from b
-  EXPECT_EQ(caustics.lastTraced(), half);
-  EXPECT_EQ(caustics.photons(), moving);
-  EXPECT_EQ(differences(*map, mapOf(c, {traced(c, 0, half), traced(b, half, moving - half)})), 0);
-  EXPECT_GT(differences(*map, mapOf(c, {traced(c, 0, moving)})), 0);  // b's half shows
-  map = update(a);  // the second half afresh on a, the first kept from c
-  EXPECT_EQ(caustics.lastTraced(), moving - half);
-  EXPECT_EQ(differences(*map, mapOf(a, {traced(c, 0, half), traced(a, half, moving - half)})), 0);
-  // Still on a: the map starts again on the still grid, its first two sixteenths.
-  update(a);
-  EXPECT_EQ(caustics.lastTraced(), Caustics::stillTarget(budget, 2));
-  EXPECT_EQ(caustics.photons(), Caustics::stillTarget(budget, 2));
+  const CausticMap* map = caustics.update(settings, ball.parameters, ball.geometry, ball.embree, nullptr, /*progressive=*/true);
+  ASSERT_NE(map, nullptr);
+  // The coarse level's vertices and each refined square's finer ones (its edges' midpoints, its centre) once.
+  std::vector<std::uint8_t> needed(grid.vertices(), 0);
+  for (int row = 0; row < side; ++row)
+    for (int column = 0; column < side; ++column)
+      if (refined[static_cast<std::size_t>(row) * side + column])
+        for (const auto& [x, y] : {std::pair{1, 0}, {0, 1}, {1, 1}, {2, 1}, {1, 2}}) needed[grid.rank(2 * column + x, 2 * row + y)] = 1;
+  EXPECT_EQ(caustics.lastTraced(), grid.levelEnd(0) + static_cast<std::uint64_t>(std::count(needed.begin(), needed.end(), 1)));
+  // The gain over a grid of floor points about the shadow: equal maps give equal gains everywhere.
+  int differing = 0;
+  double refinedError = 0.0, coarseError = 0.0;
+  for (int j = 0; j <= 40; ++j)
+    for (int i = 0; i <= 40; ++i) {
+      const glm::vec3 point(-0.1f + 0.25f * i / 40.0f, -0.12f + 0.24f * j / 40.0f, 0.0f);
+      const glm::vec3 shown = map->gain(point, glm::vec3(light)), truth = fine.gain(point, glm::vec3(light));
+      differing += shown != expected.gain(point, glm::vec3(light));
+      refinedError += glm::length(shown - truth);
+      coarseError += glm::length(coarse.gain(point, glm::vec3(light)) - truth);
+    }
+  EXPECT_EQ(differing, 0);
+  EXPECT_LT(refinedError, 0.8 * coarseError) << refinedError << " against " << coarseError;
+}
+
+// The viewer's moving frames against the full trace (`slime view --check-every`, issue 43's aim 38 dB
+// mean): the settled default slime, lifted and stretched as a hand holds it, at the window test's
+// view, its first progressive frame (the refined moving map) against the plain render's finished map,
+// in 8-bit sRGB. Measured 39.2 and 38.3 dB; the moving grid's coarse level alone (needsFinerVertices
+// always false) 36.9 and 36.6 dB, a fail.
+double psnrDb(const Image& a, const Image& b) {
+  const std::vector<std::uint8_t> x = toSrgb8(a), y = toSrgb8(b);
+  double sum = 0.0;
+  for (std::size_t i = 0; i < x.size(); ++i) sum += (double(x[i]) - y[i]) * (double(x[i]) - y[i]);
+  return 10.0 * std::log10(255.0 * 255.0 / std::max(1e-12, sum / static_cast<double>(x.size())));
+}
+
+TEST(Caustics, MovingMapImageIsCloseToTheFinishedMap) {
+  const Settings settings = smallScene(230, 270);
+  const TriangleMesh settled = settledMesh(settings);
+  TriangleMesh lifted = settled;
+  for (auto& p : lifted.positions) p.z = 1.3 * p.z + 0.01;
+  for (const auto& [name, mesh, least] : {std::tuple{"settled", settled, 38.5}, std::tuple{"lifted", lifted, 37.8}}) {
+    Renderer renderer(settings);
+    renderer.setProgressiveCaustics(true);
+    renderer.updateSlime({mesh});
+    Image moving;
+    moving.resize(settings.camera.width, settings.camera.height);
+    renderer.render(settings, moving);
+    const Image finished = renderMesh(settings, mesh);
+    const double db = psnrDb(moving, finished);
+    EXPECT_GE(db, least) << name;
+    if (db < least) writePng(differenceImage(moving, finished), outputPath(std::string("moving_map_") + name + "_diff.png"));
+  }
 }
 
 // The viewer's frame budget (Caustics::setFrameBudget): render.photons goes up to 10⁷ a frame, seconds
@@ -569,21 +597,29 @@ TEST(Caustics, AFrameBudgetSpreadsTheMapOverFramesAndItStillEndsAtTheFinishedMap
   const glm::dvec3 light{0.1, 0.05, 0.5}, color{0.5, 0.7, 0.9};
   Ball ball({0.0, 0.0, 0.04}, light, color, 20.0, false);
   Settings settings = ball.settings;
-  settings.render.photons = 24000;  // a moving frame's 6,000 over kFirstPhotons
+  settings.render.photons = 30000;  // a moving frame's coarse 3,000, refined about twice, over kFirstPhotons
   Caustics budgeted;
   budgeted.setFrameBudget(1e-9);  // less than any trace: the fewest photons a frame
   const auto update = [&](Caustics& caustics, bool progressive) {
     return caustics.update(settings, ball.parameters, ball.geometry, ball.embree, nullptr, progressive);
   };
   ASSERT_NE(update(budgeted, true), nullptr);
-  EXPECT_EQ(budgeted.lastTraced(), Caustics::movingVertices(Caustics::kMovingDivisor * Caustics::kFirstPhotons));  // the grid within kFirstPhotons
-  EXPECT_LT(budgeted.lastTraced(), Caustics::movingVertices(static_cast<std::uint64_t>(settings.render.photons)));
+  // The coarse grid within kFirstPhotons / 2, and its refinement.
+  const std::uint64_t coarse = Caustics::movingVertices(Caustics::kMovingDivisor * Caustics::kFirstPhotons / 2);
+  EXPECT_LT(coarse, Caustics::movingVertices(static_cast<std::uint64_t>(settings.render.photons)));
+  EXPECT_GT(budgeted.lastTraced(), coarse);
+  EXPECT_LT(budgeted.lastTraced(), 2 * coarse);
+  // Each of the still grid's levels is shown in turn, coarse to fine, though a frame traces past a
+  // level's end before its squares are spread (the map skipped the first two levels so before).
   std::uint64_t frames = 1, largest = 0;
+  std::vector<int> levels;
   while (!budgeted.converged() && frames < 5000) {
     update(budgeted, true);
     largest = std::max(largest, budgeted.lastTraced());
+    if (levels.empty() || levels.back() != budgeted.shownLevel()) levels.push_back(budgeted.shownLevel());
     ++frames;
   }
+  EXPECT_EQ(levels, (std::vector<int>{-1, 0, 1, 2}));
   EXPECT_EQ(largest, Caustics::kFewestPhotons);
   ASSERT_TRUE(budgeted.converged()) << "after " << frames << " frames";
   EXPECT_EQ(budgeted.photons(), Caustics::finishedVertices(static_cast<std::uint64_t>(settings.render.photons)));
