@@ -91,6 +91,7 @@ class CausticMap {
     const std::vector<std::uint8_t>* refined = nullptr;
     glm::vec3 apex{0.0f};
     std::uint64_t needed = 0;  // the vertices of the grid's order up to the level's
+    std::size_t cells = 0;     // a band's sums: (columns + 2) × rows
     int step = 1, side = 0, columns = 0, rows = 0;
     float flux = 0.0f;
     glm::dvec2 low{0.0};
