@@ -1,7 +1,10 @@
-// The floor-space density estimate of the photons' landings (caustic_map.h).
+// The light's wavefront spread over the floor (caustic_map.h).
 #include "render/caustics/caustic_map.h"
 
+#include "render/trace/tsan_handoff.h"
+
 #include <glm/geometric.hpp>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -10,10 +13,9 @@ namespace slime {
 namespace {
 
 constexpr int kMaxNodesPerSide = 1024;
-constexpr int kMargin = 3;  // nodes beyond the landings' box: the splat and the smoothing stay inside
-// The widest box a node grows to, in cells either side (an average density needs h ≈ 2): wider, the
-// estimate would spill far out of a lit patch (a balloon estimate does not keep the total power).
-constexpr int kMaxHalfWidth = 6;
+constexpr int kMargin = 3;  // cells beyond the region: the bilinear read stays inside
+// The wavefront map's light rows in this many bands, each summed on its own (buildWavefront).
+constexpr int kBands = 4;
 
 }  // namespace
 
@@ -45,132 +47,6 @@ FloorRegion shadowRegion(const PhotonCone& cone, const glm::vec3& center, float 
   return region;
 }
 
-void CausticMap::build(const std::vector<PhotonLanding>& landings, double emitted, double solidAngle, const FloorRegion& region,
-                       const std::vector<PhotonLanding>* straight) {
-  nodes_.clear();
-  ratios_.clear();
-  if (landings.empty() || !(emitted > 0.0)) return;
-  const glm::vec2 low = region.low, high = region.high;
-  std::size_t inside = 0;
-  for (const PhotonLanding& l : landings) inside += l.x >= low.x && l.x <= high.x && l.y >= low.y && l.y <= high.y;
-  if (inside == 0) return;
-  const double n = static_cast<double>(inside);
-  // The grid: fine cells, a quarter of the width s = √(A K / n) an average box of K photons has.
-  const double photonsPerBox = std::max(8.0, 16.0 * std::cbrt(n / 1e4));
-  const glm::vec2 extent = glm::max(high - low, glm::vec2(1e-6f));
-  double cell = 0.25 * std::sqrt(static_cast<double>(extent.x) * extent.y * photonsPerBox / n);
-  cell = std::max({cell, static_cast<double>(extent.x) / (kMaxNodesPerSide - 2 * kMargin),
-                   static_cast<double>(extent.y) / (kMaxNodesPerSide - 2 * kMargin), 1e-6});
-  cell_ = static_cast<float>(cell);
-  columns_ = static_cast<int>(std::ceil(extent.x / cell)) + 1 + 2 * kMargin;
-  rows_ = static_cast<int>(std::ceil(extent.y / cell)) + 1 + 2 * kMargin;
-  origin_ = low - static_cast<float>(kMargin) * cell_;
-  const std::size_t size = static_cast<std::size_t>(columns_) * rows_;
-  // Summed-area tables of the photons' weights and counts, each photon in its nearest node's cell.
-  const int w = columns_ + 1;
-  const std::size_t tableSize = static_cast<std::size_t>(w) * (rows_ + 1);
-  const auto cellOf = [&](const PhotonLanding& l) {
-    const int x = std::clamp(static_cast<int>(std::lround((l.x - origin_.x) / cell_)), 0, columns_ - 1);
-    const int y = std::clamp(static_cast<int>(std::lround((l.y - origin_.y) / cell_)), 0, rows_ - 1);
-    return static_cast<std::size_t>(y + 1) * w + (x + 1);
-  };
-  const auto insideRegion = [&](const PhotonLanding& l) { return l.x >= low.x && l.x <= high.x && l.y >= low.y && l.y <= high.y; };
-  const auto add = [&](const std::vector<PhotonLanding>& photons, bool directOnly, std::vector<glm::dvec3>& weights,
-                       std::vector<double>& counts) {
-    for (const PhotonLanding& l : photons) {
-      if (!insideRegion(l) || (directOnly && l.weight.x <= 0.0f)) continue;
-      const std::size_t i = cellOf(l);
-      weights[i] += glm::dvec3(l.weight);
-      counts[i] += 1.0;
-    }
-  };
-  const auto integrate = [&](std::vector<glm::dvec3>& weights, std::vector<double>& counts) {
-    for (int y = 1; y <= rows_; ++y)
-      for (int x = 1; x <= columns_; ++x) {
-        const std::size_t i = static_cast<std::size_t>(y) * w + x;
-        weights[i] += weights[i - 1] + weights[i - w] - weights[i - w - 1];
-        counts[i] += counts[i - 1] + counts[i - w] - counts[i - w - 1];
-      }
-  };
-  std::vector<glm::dvec3> weights(tableSize, glm::dvec3(0.0));
-  std::vector<double> counts(tableSize, 0.0);
-  add(landings, false, weights, counts);
-  // The ratio's "arrived" tables start from the same photons through the slime (see below).
-  std::vector<glm::dvec3> arrived;
-  std::vector<double> arrivedCounts;
-  if (straight) arrived = weights, arrivedCounts = counts;
-  integrate(weights, counts);
-  const auto box = [&](const auto& table, int x0, int y0, int x1, int y1) {  // nodes [x0, x1] × [y0, y1]
-    x0 = std::max(x0, 0), y0 = std::max(y0, 0), x1 = std::min(x1, columns_ - 1), y1 = std::min(y1, rows_ - 1);
-    const std::size_t a = static_cast<std::size_t>(y0) * w + x0, b = static_cast<std::size_t>(y0) * w + x1 + 1,
-                      c = static_cast<std::size_t>(y1 + 1) * w + x0, d = static_cast<std::size_t>(y1 + 1) * w + x1 + 1;
-    return table[d] - table[b] - table[c] + table[a];
-  };
-  // Each node: the smallest square of (2h + 1)² cells about it that holds K photons (h ≤ kMaxHalfWidth): a
-  // balloon estimate, narrow where photons crowd (the focus), wide where they are sparse.
-  std::vector<glm::vec3> estimate(size, glm::vec3(0.0f));
-  const double scale = solidAngle / emitted / (cell * cell);  // each photon: Ω/N of the intensity
-  for (int y = 0; y < rows_; ++y)
-    for (int x = 0; x < columns_; ++x) {
-      // No photon in the 3 × 3 cells about it: outside the light (the box would reach in and spill it out).
-      if (box(counts, x - 1, y - 1, x + 1, y + 1) == 0.0) continue;
-      int h = 0;
-      while (h < kMaxHalfWidth && box(counts, x - h, y - h, x + h, y + h) < photonsPerBox) ++h;
-      const double area = (2.0 * h + 1.0) * (2.0 * h + 1.0);
-      estimate[static_cast<std::size_t>(y) * columns_ + x] = glm::vec3(box(weights, x - h, y - h, x + h, y + h) * (scale / area));
-    }
-  // A balloon estimate does not integrate to the power it was given (its box stops growing where the
-  // count first reaches K, an upward fluctuation more often than not; at a patch's edge it spills):
-  // scaled so that it does, the power the photons brought is kept (the smoothing keeps it too).
-  glm::dvec3 given(0.0), estimated(0.0);
-  given = box(weights, 0, 0, columns_ - 1, rows_ - 1) * scale;
-  for (const glm::vec3& e : estimate) estimated += glm::dvec3(e);
-  for (int c = 0; c < 3; ++c) {
-    const float ratio = estimated[c] > 0.0 ? static_cast<float>(given[c] / estimated[c]) : 0.0f;
-    for (glm::vec3& e : estimate) e[c] *= ratio;
-  }
-  // Then [1 2 1]/4 along each axis, against the steps where h changes.
-  const auto at = [&](std::vector<glm::vec3>& grid, int x, int y) -> glm::vec3& {
-    return grid[static_cast<std::size_t>(std::clamp(y, 0, rows_ - 1)) * columns_ + std::clamp(x, 0, columns_ - 1)];
-  };
-  std::vector<glm::vec3> smoothed(size);
-  const auto smooth = [&](std::vector<glm::vec3>& grid, std::vector<glm::vec3>& result) {
-    for (int y = 0; y < rows_; ++y)
-      for (int x = 0; x < columns_; ++x)
-        at(smoothed, x, y) = 0.25f * at(grid, x - 1, y) + 0.5f * at(grid, x, y) + 0.25f * at(grid, x + 1, y);
-    result.assign(size, glm::vec3(0.0f));
-    for (int y = 0; y < rows_; ++y)
-      for (int x = 0; x < columns_; ++x)
-        at(result, x, y) = 0.25f * at(smoothed, x, y - 1) + 0.5f * at(smoothed, x, y) + 0.25f * at(smoothed, x, y + 1);
-  };
-  smooth(estimate, nodes_);
-  if (!straight) return;
-  // The ratio (see the header): the arrived photons (through the slime, and the direct ones) against
-  // the straight ones, each in the smallest box holding K of its own.
-  std::vector<glm::dvec3> reference(tableSize, glm::dvec3(0.0));
-  std::vector<double> referenceCounts(tableSize, 0.0);
-  add(*straight, true, arrived, arrivedCounts);
-  add(*straight, false, reference, referenceCounts);
-  integrate(arrived, arrivedCounts);
-  integrate(reference, referenceCounts);
-  const auto halfWidth = [&](const std::vector<double>& table, int x, int y) {
-    int h = 0;
-    while (h < kMaxHalfWidth && box(table, x - h, y - h, x + h, y + h) < photonsPerBox) ++h;
-    return h;
-  };
-  std::vector<glm::vec3> ratio(size, glm::vec3(0.0f));
-  for (int y = 0; y < rows_; ++y)
-    for (int x = 0; x < columns_; ++x) {
-      const int big = halfWidth(referenceCounts, x, y);
-      const double expected = box(referenceCounts, x - big, y - big, x + big, y + big);
-      if (expected == 0.0) continue;  // beyond the cone's photons: no shadow of the slime reaches here
-      const int h = halfWidth(arrivedCounts, x, y);
-      const double areas = (2.0 * big + 1.0) * (2.0 * big + 1.0) / ((2.0 * h + 1.0) * (2.0 * h + 1.0));
-      ratio[static_cast<std::size_t>(y) * columns_ + x] = glm::vec3(box(arrived, x - h, y - h, x + h, y + h) * (areas / expected));
-    }
-  smooth(ratio, ratios_);
-}
-
 glm::vec3 CausticMap::irradiance(float x, float y) const { return bilinear(nodes_, x, y); }
 
 glm::vec3 CausticMap::bilinear(const std::vector<glm::vec3>& grid, float x, float y) const {
@@ -185,13 +61,368 @@ glm::vec3 CausticMap::bilinear(const std::vector<glm::vec3>& grid, float x, floa
          fy * ((1.0f - fx) * grid[i + columns_] + fx * grid[i + columns_ + 1]);
 }
 
-glm::vec3 CausticMap::gain(const glm::vec3& point, const glm::vec3& light) const {
-  if (!ratios_.empty()) return bilinear(ratios_, point.x, point.y);
-  const glm::vec3 toLight = light - point;
-  if (!(toLight.z > 0.0f)) return glm::vec3(0.0f);
-  const float r2 = glm::dot(toLight, toLight);
-  const float cosTheta = toLight.z / std::sqrt(r2);
-  return irradiance(point.x, point.y) * (r2 / cosTheta);
+glm::vec3 CausticMap::gain(const glm::vec3& point, const glm::vec3&) const { return bilinear(ratios_, point.x, point.y); }
+
+namespace {
+
+// The part of convex polygon `in` (n ≤ 8 corners) on one side of the line x_axis = value.
+int clipPolygon(const glm::dvec2* in, int n, int axis, double value, bool below, glm::dvec2* out) {
+  int m = 0;
+  for (int i = 0; i < n; ++i) {
+    const glm::dvec2 &a = in[i], &b = in[(i + 1) % n];
+    const double da = below ? value - a[axis] : a[axis] - value, db = below ? value - b[axis] : b[axis] - value;
+    if (da >= 0.0) out[m++] = a;
+    if ((da >= 0.0) != (db >= 0.0)) out[m++] = a + (b - a) * (da / (da - db));
+  }
+  return m;
+}
+
+// A grid of floor cells: columns × rows of side `cell`, cell (0, 0)'s low corner at `low`.
+struct CellGrid {
+  glm::dvec2 low{0.0};
+  double cell = 1.0;
+  int columns = 0, rows = 0;
+  int column(double x) const { return static_cast<int>(std::floor((x - low.x) / cell)); }
+  int row(double y) const { return static_cast<int>(std::floor((y - low.y) / cell)); }
+};
+
+// Spreads `value` over the cells of `grid` that triangle (a, b, c) covers, each getting the fraction
+// of the triangle's area inside it, exactly (cells outside the grid get nothing), as a vector
+// rasteriser does (the signed area each edge leaves to its right, row by row, as in font-rs, Levien
+// 2016): into `deltas`, rows of grid.columns + 2, whose running sums along a row (finishWavefront)
+// are the cells' shares. Its cost is the edges' length in cells, not the cells covered. A triangle of
+// no area puts a third in each corner's cell.
+template <class T>
+void spreadTriangle(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c, const CellGrid& grid, const T& value,
+                    std::vector<T>& deltas) {
+  const std::size_t stride = static_cast<std::size_t>(grid.columns) + 2;
+  const double columns = grid.columns;
+  glm::dvec2 p[8] = {(a - grid.low) / grid.cell, (b - grid.low) / grid.cell, (c - grid.low) / grid.cell};
+  const auto inCell = [&](const glm::dvec2& q, const T& v) {
+    const double x = std::floor(q.x), y = std::floor(q.y);
+    if (!(x >= 0.0 && y >= 0.0 && x < columns && y < grid.rows)) return;
+    const std::size_t i = static_cast<std::size_t>(y) * stride + static_cast<std::size_t>(x);
+    deltas[i] += v, deltas[i + 1] -= v;
+  };
+  const double twice = (p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[2].x - p[0].x) * (p[1].y - p[0].y);
+  if (!(std::abs(twice) > 2e-9)) {
+    if (std::isfinite(twice)) {
+      const T third = value * (1.0f / 3.0f);
+      inCell(p[0], third), inCell(p[1], third), inCell(p[2], third);
+    }
+    return;
+  }
+  const double xMin = std::min({p[0].x, p[1].x, p[2].x}), xMax = std::max({p[0].x, p[1].x, p[2].x});
+  const double yMin = std::min({p[0].y, p[1].y, p[2].y}), yMax = std::max({p[0].y, p[1].y, p[2].y});
+  if (!(xMax > 0.0 && yMax > 0.0 && xMin < columns && yMin < grid.rows)) return;
+  if (std::floor(xMin) == std::floor(xMax) && std::floor(yMin) == std::floor(yMax)) return inCell(p[0], value);
+  // Inside, left of an edge going down and right of one going up: −1 for a counter-clockwise triangle.
+  const float scale = static_cast<float>((twice > 0.0 ? -2.0 : 2.0) / std::abs(twice));
+  int n = 3;
+  if (xMin < 0.0 || xMax > columns) {  // the parts beyond the grid's sides cut off
+    glm::dvec2 kept[8];
+    n = clipPolygon(p, n, 0, 0.0, false, kept);
+    n = clipPolygon(kept, n, 0, columns, true, p);
+    if (n < 3) return;
+  }
+  for (int e = 0; e < n; ++e) {
+    glm::dvec2 p0 = p[e], p1 = p[(e + 1) % n];
+    if (p0.y == p1.y) continue;
+    float direction = scale;
+    if (p0.y > p1.y) std::swap(p0, p1), direction = -scale;
+    const T d = value * direction;
+    const double dxdy = (p1.x - p0.x) / (p1.y - p0.y);
+    const int first = std::max(0, static_cast<int>(std::floor(p0.y))), end = std::min(grid.rows, static_cast<int>(std::ceil(p1.y)));
+    for (int y = first; y < end; ++y) {
+      const double top = std::max(static_cast<double>(y), p0.y), bottom = std::min(y + 1.0, p1.y), dy = bottom - top;
+      if (!(dy > 0.0)) continue;
+      const double xa = std::clamp(p0.x + (top - p0.y) * dxdy, 0.0, columns), xb = std::clamp(p0.x + (bottom - p0.y) * dxdy, 0.0, columns);
+      const double x0 = std::min(xa, xb), x1 = std::max(xa, xb);
+      T* row = &deltas[static_cast<std::size_t>(y) * stride];
+      const double x0Floor = std::floor(x0), x1Ceil = std::ceil(x1);
+      const int i0 = static_cast<int>(x0Floor), i1 = static_cast<int>(x1Ceil);
+      if (i1 <= i0 + 1) {  // within one cell: the part right of the edge, and all of the cells beyond
+        const double right = 0.5 * (xa + xb) - x0Floor;
+        row[i0] += d * static_cast<float>(dy * (1.0 - right));
+        row[i0 + 1] += d * static_cast<float>(dy * right);
+        continue;
+      }
+      const double s = 1.0 / (x1 - x0), f0 = x0 - x0Floor, f1 = x1 - x1Ceil + 1.0;
+      const double a0 = 0.5 * s * (1.0 - f0) * (1.0 - f0), am = 0.5 * s * f1 * f1;
+      row[i0] += d * static_cast<float>(dy * a0);
+      if (i1 == i0 + 2) {
+        row[i0 + 1] += d * static_cast<float>(dy * (1.0 - a0 - am));
+      } else {
+        const double a1 = s * (1.5 - f0);
+        row[i0 + 1] += d * static_cast<float>(dy * (a1 - a0));
+        for (int x = i0 + 2; x < i1 - 1; ++x) row[x] += d * static_cast<float>(dy * s);
+        const double a2 = a1 + (i1 - i0 - 3) * s;
+        row[i1 - 1] += d * static_cast<float>(dy * (1.0 - a2 - am));
+      }
+      row[i1] += d * static_cast<float>(dy * am);
+    }
+  }
+}
+
+}  // namespace
+
+void CausticMap::buildWavefront(const WavefrontGrid& grid, int level, const std::vector<WavefrontVertex>& vertices,
+                                const PhotonCone& cone, const FloorRegion& region, tbb::task_arena* arena,
+                                double cellPerTriangle) {
+  beginWavefront(grid, level, vertices, cone, region, cellPerTriangle);
+  if (spreading()) spreadWavefront(arena, kAllTraced);
+}
+
+void CausticMap::clear() {
+  nodes_.clear();
+  ratios_.clear();
+  spreading_.grid = nullptr;
+  spreading_.vertices = nullptr;
+  spreading_.refined = nullptr;
+}
+
+void CausticMap::beginWavefront(const WavefrontGrid& grid, int level, const std::vector<WavefrontVertex>& vertices,
+                                const PhotonCone& cone, const FloorRegion& region, double cellPerTriangle,
+                                const std::vector<std::uint8_t>* refined) {
+  clear();
+  if (level < 0 || level >= grid.levels()) return;
+  Spreading& w = spreading_;
+  w.needed = grid.levelEnd(level);
+  w.grid = &grid;
+  w.vertices = &vertices;
+  w.apex = cone.apex;
+  w.step = 1 << (grid.levels() - 1 - level);
+  w.refined = refined && w.step > 1 ? refined : nullptr;
+  w.side = grid.side() / w.step;
+  const int side = w.side;
+  w.flux = static_cast<float>(cone.solidAngle / (2.0 * side * side));  // each light triangle's share of the intensity
+  // Cells `cellPerTriangle` as wide as the light triangles' mean landing, at most kMaxNodesPerSide a side.
+  const glm::dvec2 extent = glm::max(glm::dvec2(region.high - region.low), glm::dvec2(1e-6));
+  double cell = cellPerTriangle * std::sqrt(extent.x * extent.y / (static_cast<double>(side) * side));
+  cell = std::max({cell, extent.x / (kMaxNodesPerSide - 2 * kMargin), extent.y / (kMaxNodesPerSide - 2 * kMargin), 1e-6});
+  w.cell = cell;
+  w.columns = static_cast<int>(std::ceil(extent.x / cell)) + 2 * kMargin;
+  w.rows = static_cast<int>(std::ceil(extent.y / cell)) + 2 * kMargin;
+  w.low = glm::dvec2(region.low) - kMargin * cell;
+  // The light grid's squares in kBands bands, each spread in order into its own sums (on the arena's
+  // threads, over as many calls as it takes), added in order: the same map whatever the threads and
+  // however the calls cut it.
+  // A band's sums are zeroed when it first spreads (spreadWavefront), not here.
+  w.cells = static_cast<std::size_t>(w.columns + 2) * w.rows;
+  const std::uint64_t squares = static_cast<std::uint64_t>(side) * side;
+  w.bands.resize(static_cast<std::size_t>(std::min(kBands, side)));
+  for (std::size_t b = 0; b < w.bands.size(); ++b) {
+    Spreading::Band& band = w.bands[b];
+    band.through.clear();  // its memory kept (finishWavefront)
+    band.straight.clear();
+    band.next = b * squares / w.bands.size();
+    band.end = (b + 1) * squares / w.bands.size();
+  }
+}
+
+std::uint64_t CausticMap::squaresLeft() const {
+  std::uint64_t left = 0;
+  for (const Spreading::Band& band : spreading_.bands) left = std::max(left, band.end - band.next);
+  return spreading() ? left : 0;
+}
+
+void CausticMap::spreadBand(Spreading::Band& sums, std::uint64_t traced) const {
+  const Spreading& w = spreading_;
+  const WavefrontGrid& grid = *w.grid;
+  const std::vector<WavefrontVertex>& vertices = *w.vertices;
+  const int step = w.step, side = w.side;
+  const double cell = w.cell;
+  CellGrid cells;
+  cells.low = w.low;
+  cells.cell = w.cell;
+  cells.columns = w.columns;
+  cells.rows = w.rows;
+  using Sums = Spreading::Band;
+  const auto vertexAt = [&](int column, int row) -> const WavefrontVertex& { return vertices[grid.rank(column, row)]; };
+  // A branch's landings: the light through the slime spread; the light past it is U − S's (finishWavefront).
+  const auto depositBranch = [&](Sums& sums, const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c, bool isDirect,
+                                 const glm::vec3& power) {
+    if (!isDirect) spreadTriangle(a, b, c, cells, power, sums.through);
+  };
+  const auto square = [&](Sums& sums, const glm::dvec2& centre, double half, bool isDirect, bool isStraight, const glm::vec3& power) {
+    const glm::dvec2 p0 = centre - half, p1(centre.x + half, centre.y - half), p2 = centre + half, p3(centre.x - half, centre.y + half);
+    const glm::vec3 halfPower = 0.5f * power;
+    if (isStraight) {
+      spreadTriangle(p0, p1, p2, cells, halfPower.x, sums.straight), spreadTriangle(p0, p2, p3, cells, halfPower.x, sums.straight);
+    } else {
+      depositBranch(sums, p0, p1, p2, isDirect, halfPower), depositBranch(sums, p0, p2, p3, isDirect, halfPower);
+    }
+  };
+  const auto triangle = [&](Sums& sums, const WavefrontVertex& a, const WavefrontVertex& b, const WavefrontVertex& c, float fluxF) {
+    const WavefrontVertex* corner[3] = {&a, &b, &c};
+    // Which path reaches each corner's branches at all three corners (the index there, else −1).
+    const auto find = [](const WavefrontVertex& v, std::uint64_t path) {
+      for (int m = 0; m < v.count; ++m)
+        if (v.branches[m].path == path) return m;
+      return -1;
+    };
+    const auto isDirect = [](const WavefrontVertex& v) { return v.count == 1 && v.branches[0].path == kDirectPath; };
+    const int directCorners = isDirect(a) + isDirect(b) + isDirect(c);
+    if (directCorners == 3) return;  // all past the slime: U − S has its light
+    const bool straightLands = a.straight && b.straight && c.straight;
+    const glm::dvec2 sa(a.sx, a.sy), sb(b.sx, b.sy), sc(c.sx, c.sy);
+    // Each path the three corners share spreads over the floor triangle of its landings.
+    for (int k = 0; k < a.count; ++k) {
+      const WavefrontBranch& ba = a.branches[k];
+      const int mb = find(b, ba.path), mc = find(c, ba.path);
+      if (mb < 0 || mc < 0) continue;
+      const WavefrontBranch &bb = b.branches[mb], &bc = c.branches[mc];
+      const glm::vec3 power = fluxF * ((ba.weight + bb.weight + bc.weight) / 3.0f);
+      depositBranch(sums, {ba.x, ba.y}, {bb.x, bb.y}, {bc.x, bc.y}, ba.path == kDirectPath, power);
+    }
+    if (directCorners == 0 && straightLands)  // all three met the slime: the light it blocks, as a triangle
+      spreadTriangle(sa, sb, sc, cells, fluxF, sums.straight);
+    // A path at one or two corners only (the slime's outline, the edge of total internal reflection,
+    // a branch cut off at one corner): a third of the power for each of its landings, over a square
+    // as wide as the straight landing's triangle (at least a cell); where the triangle straddles the
+    // outline its straight light too.
+    double half = 0.5 * cell;
+    if (straightLands) half = std::max(half, 0.5 * std::max({glm::length(sb - sa), glm::length(sc - sb), glm::length(sa - sc)}));
+    const float third = fluxF / 3.0f;
+    for (int v = 0; v < 3; ++v) {
+      const WavefrontVertex& x = *corner[v];
+      for (int k = 0; k < x.count; ++k) {
+        const WavefrontBranch& branch = x.branches[k];
+        bool shared = true;
+        for (int o = 1; o < 3; ++o) shared = shared && find(*corner[(v + o) % 3], branch.path) >= 0;
+        if (!shared) square(sums, {branch.x, branch.y}, half, branch.path == kDirectPath, false, third * branch.weight);
+      }
+      if (directCorners > 0 && directCorners < 3 && !isDirect(x) && x.straight) square(sums, {x.sx, x.sy}, half, false, true, glm::vec3(third));
+    }
+  };
+  std::uint64_t q = sums.next;
+  for (; q < sums.end; ++q) {
+    const int row = static_cast<int>(q / static_cast<std::uint64_t>(side)), column = static_cast<int>(q % static_cast<std::uint64_t>(side));
+    if (traced != kAllTraced &&
+        std::max({grid.rank(column * step, row * step), grid.rank((column + 1) * step, row * step),
+                  grid.rank(column * step, (row + 1) * step), grid.rank((column + 1) * step, (row + 1) * step)}) >= traced)
+      break;  // a corner not traced yet: the band goes on from here
+    // A refined square (the moving map's, caustics.h): its four squares of the next finer level.
+    const int width = w.refined && (*w.refined)[q] ? step / 2 : step;
+    for (int y = row * step; y < (row + 1) * step; y += width)
+      for (int x = column * step; x < (column + 1) * step; x += width) {
+        const WavefrontVertex &v00 = vertexAt(x, y), &v10 = vertexAt(x + width, y), &v11 = vertexAt(x + width, y + width),
+                              &v01 = vertexAt(x, y + width);
+        triangle(sums, v00, v10, v11, width == step ? w.flux : 0.25f * w.flux);
+        triangle(sums, v00, v11, v01, width == step ? w.flux : 0.25f * w.flux);
+      }
+  }
+  sums.next = q;
+}
+
+bool CausticMap::spreadWavefront(tbb::task_arena* arena, std::uint64_t traced) {
+  if (!spreading()) return false;
+  Spreading& w = spreading_;
+  if (traced == kAllTraced && w.vertices->size() < w.needed) {  // vertices missing (an empty cone): no map
+    clear();
+    return false;
+  }
+  // The bands' sums zeroed as they are first needed: all at once for a whole map, else one a call,
+  // so that no viewer frame zeroes all four of the finest level's (tens of MB; 68 ms in one frame
+  // on a loaded 2-core machine); a band spreads once its sums are ready.
+  int zeroings = traced == kAllTraced ? static_cast<int>(w.bands.size()) : 1;
+  for (Spreading::Band& band : w.bands)
+    if (band.through.size() != w.cells && zeroings-- > 0) {
+      band.through.assign(w.cells, glm::vec3(0.0f));
+      band.straight.assign(w.cells, 0.0f);
+    }
+  const auto ready = [&](const Spreading::Band& band) { return band.through.size() == w.cells; };
+  traced = std::min<std::uint64_t>(traced, w.vertices->size());
+  const std::uint64_t left = squaresLeft();
+  if (left > 0) {
+    if (arena) {
+      handOff(this);  // the vertices, to the workers (tsan_handoff.h)
+      arena->execute([&] {
+        tbb::parallel_for(std::size_t{0}, w.bands.size(), [&](std::size_t b) {
+          takeOver(this);
+          if (ready(w.bands[b])) spreadBand(w.bands[b], traced);
+          handOff(this);  // the band's sums, back
+        });
+      });
+      takeOver(this);
+    } else {
+      for (Spreading::Band& band : w.bands)
+        if (ready(band)) spreadBand(band, traced);
+    }
+    if (squaresLeft() > 0) return false;
+  }
+  finishWavefront(arena);
+  return true;
+}
+
+void CausticMap::finishWavefront(tbb::task_arena* arena) {
+  Spreading& w = spreading_;
+  CellGrid cells;
+  cells.low = w.low;
+  cells.cell = w.cell;
+  cells.columns = w.columns;
+  cells.rows = w.rows;
+  const double cell = w.cell;
+  const glm::vec3 apex = w.apex;
+  cell_ = static_cast<float>(cell);
+  columns_ = cells.columns;
+  rows_ = cells.rows;
+  origin_ = glm::vec2(cells.low + 0.5 * cell);  // node (i, j): the centre of cell (i, j)
+  const std::size_t size = static_cast<std::size_t>(columns_) * rows_, stride = static_cast<std::size_t>(columns_) + 2;
+  std::vector<glm::vec3>& through = w.bands[0].through;
+  std::vector<float>& straight = w.bands[0].straight;
+  nodes_.resize(size);
+  ratios_.assign(size, glm::vec3(0.0f));
+  const float perArea = static_cast<float>(1.0 / (cell * cell));
+  // Row by row (each on its own: the same on any threads): the bands added in order, the running sums, E / I and g.
+  const auto floorRow = [&](int y) {
+    const std::size_t from = static_cast<std::size_t>(y) * stride, to = from + stride;
+    for (std::size_t b = 1; b < w.bands.size(); ++b)
+      for (std::size_t i = from; i < to; ++i) {
+        through[i] += w.bands[b].through[i];
+        straight[i] += w.bands[b].straight[i];
+      }
+    for (std::size_t i = from + 1; i < from + static_cast<std::size_t>(columns_); ++i) {
+      through[i] += through[i - 1];
+      straight[i] += straight[i - 1];
+    }
+    for (int x = 0; x < columns_; ++x) {
+        const std::size_t i = static_cast<std::size_t>(y) * columns_ + x, k = static_cast<std::size_t>(y) * (columns_ + 2) + x;
+        // (A row's running sum leaves a rounding's residue where its triangles end: never below zero.)
+        const glm::vec3 arrived = glm::max(through[k], glm::vec3(0.0f));
+        const float expected = std::max(straight[k], 0.0f);
+        nodes_[i] = arrived * perArea;
+        // The light that passed the slime (its triangles are not spread) and that of the directions
+        // outside the cone, which are not traced, reach what the straight light the slime blocks
+        // leaves of the unblocked light's I cos θ / r²:
+        //   g = [through + max(0, U − S)] / max(U, S),
+        // S the straight light the slime blocks, U the unblocked light over the cell (at its centre);
+        // with a slime of index 1, through = S and g = 1 still.
+        const glm::dvec3 toCell = glm::dvec3(cells.low.x + (x + 0.5) * cell, cells.low.y + (y + 0.5) * cell, 0.0) - glm::dvec3(apex);
+        const double r = glm::length(toCell);
+        const float unblocked = r > 0.0 ? static_cast<float>(static_cast<double>(apex.z) / (r * r * r) * cell * cell) : 0.0f;
+        const float reference = std::max(unblocked, expected);
+        if (reference > 0.0f) ratios_[i] = (arrived + glm::vec3(std::max(0.0f, unblocked - expected))) / reference;
+    }
+  };
+  if (arena) {
+    handOff(this);
+    arena->execute([&] {
+      tbb::parallel_for(0, rows_, [&](int y) {
+        takeOver(this);
+        floorRow(y);
+        handOff(this);
+      });
+    });
+    takeOver(this);
+  } else {
+    for (int y = 0; y < rows_; ++y) floorRow(y);
+  }
+  w.grid = nullptr;
+  w.vertices = nullptr;
+  // The bands' memory is kept for the next map this object builds (tens of MB for the finished map):
+  // a fresh allocation's page faults and zeroing made the viewer's still frame that begins the
+  // finest level a lump of 95-135 ms on a loaded 2-core machine; assign() reuses it.
 }
 
 }  // namespace slime

@@ -1,6 +1,7 @@
 // Photons from the point light through the slime to the floor (photon_tracer.h).
 #include "render/caustics/photon_tracer.h"
 
+#include "render/caustics/wavefront.h"
 #include "render/trace/optics.h"
 
 #include <glm/geometric.hpp>
@@ -79,6 +80,23 @@ PhotonCone photonCone(const SlimeGeometry& geometry, const glm::vec3& light) {
   }
   cone.solidAngle = 6.283185307179586 * (1.0 - static_cast<double>(cone.cosHalfAngle));
   return cone;
+}
+
+glm::vec3 PhotonTracer::shadingFacing(const SlimeHit& hit, const glm::vec3& outward, const glm::vec3& direction,
+                                        bool entering) const {
+  // As the eye's rays (whitted_tracer.cpp): with smooth normals the hit triangle's vertex normals
+  // interpolated by its barycentrics (the facet's own where that sum vanishes), facing the ray; an
+  // interpolated normal behind a silhouette gives way to the geometric one.
+  glm::vec3 smooth = outward;
+  if (parameters_.smoothNormals && !geometry_.analyticSphere && hit.primitive < geometry_.triangles.size()) {
+    const Triangle& triangle = geometry_.triangles[hit.primitive];
+    const glm::vec3 n = (1.0f - hit.u - hit.v) * geometry_.normals[triangle.x] + hit.u * geometry_.normals[triangle.y] +
+                        hit.v * geometry_.normals[triangle.z];
+    const float length = glm::length(n);
+    if (length > 1e-6f && std::isfinite(length)) smooth = n / length;
+  }
+  const glm::vec3 facing = entering ? smooth : -smooth;
+  return glm::dot(facing, direction) >= 0.0f ? (entering ? outward : -outward) : facing;
 }
 
 float PhotonTracer::surfaceTransmission(float cosine, bool entering, float& reflectedShare) const {
@@ -169,15 +187,15 @@ void PhotonTracer::tracePhoton(const Ray& fromLight, std::uint64_t index, std::v
     const bool entering = glm::dot(ray.direction, outward) < 0.0f;
     glm::vec3 weight = branch.weight;
     if (!entering) weight *= beerLambert(p.slimeAbsorption, hit.t);
-    const glm::vec3 facing = entering ? outward : -outward;
-    const float cosine = std::abs(glm::dot(ray.direction, outward));
+    const glm::vec3 facing = shadingFacing(hit, outward, ray.direction, entering);
+    const float cosine = std::abs(glm::dot(ray.direction, facing));
     float reflectedShare = 0.0f;
     const float transmitted = surfaceTransmission(cosine, entering, reflectedShare);
     ++crossings;
     const bool wasFirst = first;
     first = false;
     const bool canBranch = crossings < kMaxCrossings && size + 2 <= kMaxCrossings;
-    // Transmitted: Snell about the geometric normal.
+    // Transmitted: Snell about the shading normal (shadingFacing).
     if (transmitted > 0.0f) {
       const glm::vec3 w = weight * transmitted;
       const std::optional<glm::vec3> along = refract(ray.direction, facing, entering ? 1.0f : p.ior, entering ? p.ior : 1.0f);
@@ -215,6 +233,119 @@ void PhotonTracer::tracePhoton(const Ray& fromLight, std::uint64_t index, std::v
       stack[size++] = Branch{Ray{offsetRayOrigin(point, outward, along), along, 0.0f, kInfinity}, kept, true};
     } else {
       tally.dropped += glm::dvec3(kept);
+    }
+  }
+}
+
+namespace {
+
+// A path's hash after one more crossing (its outcome: 1 transmitted, 2 reflected; the piece crossed).
+std::uint64_t extendPath(std::uint64_t path, std::uint64_t outcome, std::uint64_t piece) {
+  std::uint64_t x = (path ^ (outcome + 4 * piece)) * 0x9E3779B97F4A7C15ull;
+  x ^= x >> 29;
+  return x == kDirectPath ? 1 : x;
+}
+
+}  // namespace
+
+void PhotonTracer::traceVertex(const Ray& fromLight, WavefrontVertex& vertex, PhotonTally& tally) const {
+  const ShadingParameters& p = parameters_;
+  tally.emitted += 1.0;
+  vertex.count = 0;
+  vertex.straight = fromLight.direction.z < 0.0f;
+  if (vertex.straight) {
+    const glm::vec3 point = straightLanding(fromLight);
+    vertex.sx = point.x, vertex.sy = point.y;
+  }
+  const auto direct = [&] {
+    if (vertex.straight) vertex.branches[vertex.count++] = WavefrontBranch{kDirectPath, vertex.sx, vertex.sy, glm::vec3(1.0f)};
+  };
+  if (!geometry_.mayHit(fromLight)) return direct();
+  struct PathBranch {
+    Branch branch;
+    std::uint64_t path;
+  };
+  PathBranch stack[kMaxCrossings + 1];
+  int size = 0;
+  stack[size++] = PathBranch{Branch{fromLight, glm::vec3(1.0f), false}, 0x243F6A8885A308D3ull};
+  int crossings = 0;
+  bool first = true;
+  const auto land = [&](const Ray& ray, float t, const glm::vec3& weight, std::uint64_t path) {
+    glm::vec3 point = ray.origin + t * ray.direction;
+    if (p.ior == 1.0f && vertex.straight) point = glm::vec3(vertex.sx, vertex.sy, 0.0f);  // as tracePhoton
+    tally.landed += glm::dvec3(weight);
+    if (vertex.count < kMaxWavefrontBranches) vertex.branches[vertex.count++] = WavefrontBranch{path, point.x, point.y, weight};
+    else tally.dropped += glm::dvec3(weight);
+  };
+  const auto pieceOf = [&](std::uint32_t primitive) -> std::uint64_t {
+    const auto& starts = geometry_.pieceTriangleStarts;
+    if (geometry_.analyticSphere || starts.size() < 2) return 0;
+    return static_cast<std::uint64_t>(std::upper_bound(starts.begin(), starts.end(), primitive) - starts.begin());
+  };
+  while (size > 0) {
+    const PathBranch top = stack[--size];
+    const Branch& branch = top.branch;
+    const Ray& ray = branch.ray;
+    const float tFloor = ray.direction.z < 0.0f ? std::max(0.0f, ray.origin.z) / -ray.direction.z : kInfinity;
+    SlimeHit hit;
+    if (branch.inside || first || geometry_.mayHit(ray)) hit = intersector_.intersect(ray);
+    const bool contact = branch.inside && hit.valid() && ray.direction.z < 0.0f &&
+                         ray.origin.z + hit.t * ray.direction.z <= kContactHeight;
+    if (!hit.valid() || hit.t > tFloor || contact) {
+      if (first) return direct();
+      if (branch.inside && !hit.valid() && tFloor == kInfinity) {
+        tally.dropped += glm::dvec3(branch.weight);
+        continue;
+      }
+      const glm::vec3 weight = branch.inside ? branch.weight * beerLambert(p.slimeAbsorption, tFloor) : branch.weight;
+      if (tFloor == kInfinity) tally.escaped += glm::dvec3(weight);
+      else land(ray, tFloor, weight, top.path);
+      continue;
+    }
+    if (first) tally.intercepted += 1.0;
+    const glm::vec3 point = ray.origin + hit.t * ray.direction;
+    const glm::vec3 outward = geometry_.geometricNormal(hit, point);
+    const bool entering = glm::dot(ray.direction, outward) < 0.0f;
+    const glm::vec3 facing = shadingFacing(hit, outward, ray.direction, entering);
+    glm::vec3 weight = branch.weight;
+    if (!entering) weight *= beerLambert(p.slimeAbsorption, hit.t);
+    const float cosine = std::abs(glm::dot(ray.direction, facing));
+    float reflectedShare = 0.0f;
+    const float transmitted = surfaceTransmission(cosine, entering, reflectedShare);
+    ++crossings;
+    const bool wasFirst = first;
+    first = false;
+    const bool canBranch = crossings < kMaxCrossings && size + 2 <= kMaxCrossings;
+    const std::uint64_t piece = pieceOf(hit.primitive);
+    if (transmitted > 0.0f) {
+      const glm::vec3 w = weight * transmitted;
+      const std::optional<glm::vec3> along = refract(ray.direction, facing, entering ? 1.0f : p.ior, entering ? p.ior : 1.0f);
+      const std::uint64_t path = extendPath(top.path, 1, piece);
+      if (along && largest(w) >= minVertexWeight_ && canBranch) {
+        const bool leavesForGood = !entering && geometry_.supports(hit.primitive);
+        Ray next{offsetRayOrigin(point, outward, *along), *along, 0.0f, kInfinity};
+        if (leavesForGood) {
+          const float t = next.direction.z < 0.0f ? std::max(0.0f, next.origin.z) / -next.direction.z : kInfinity;
+          if (t == kInfinity) tally.escaped += glm::dvec3(w);
+          else land(next, t, w, path);
+        } else {
+          stack[size++] = PathBranch{Branch{next, w, entering}, path};
+        }
+      } else if (along) {
+        tally.dropped += glm::dvec3(w);
+      }
+    }
+    const glm::vec3 r = weight * reflectedShare;
+    if (wasFirst || entering) {
+      tally.reflected += glm::dvec3(r);
+      continue;
+    }
+    if (largest(r) >= minVertexWeight_ && canBranch) {
+      const glm::vec3 along = reflect(ray.direction, facing);
+      stack[size++] = PathBranch{Branch{Ray{offsetRayOrigin(point, outward, along), along, 0.0f, kInfinity}, r, true},
+                                 extendPath(top.path, 2, piece)};
+    } else {
+      tally.dropped += glm::dvec3(r);
     }
   }
 }

@@ -46,24 +46,39 @@ struct PhotonCone {
 };
 PhotonCone photonCone(const SlimeGeometry& geometry, const glm::vec3& light);
 
+struct WavefrontVertex;  // wavefront.h
+
 class PhotonTracer {
  public:
-  PhotonTracer(const SlimeGeometry& geometry, const SlimeIntersector& intersector, const ShadingParameters& parameters)
-      : geometry_(geometry), intersector_(intersector), parameters_(parameters) {}
+  // `minVertexWeight`: the least weight a wavefront vertex's branch goes on with (traceVertex). By
+  // default the Whitted tracer's threshold itself: a vertex follows every branch, no roulette, those
+  // below it (a third partial reflection inside, F³ ≈ 10⁻⁴) cut off as the eye's rays cut them.
+  PhotonTracer(const SlimeGeometry& geometry, const SlimeIntersector& intersector, const ShadingParameters& parameters,
+               float minVertexWeight = kMinRayWeight)
+      : geometry_(geometry), intersector_(intersector), parameters_(parameters), minVertexWeight_(minVertexWeight) {}
   // Photons [first, first + count) of the cone's sequence: their floor landings appended to `landings`.
   // With `straight`, each photon that would meet the floor along its straight line from the light is
   // appended there too, at that point, with weight 1 if it missed the slime (the direct light) and 0
   // if it met it: the caustic map's reference for its ratio (caustic_map.h).
   void trace(const PhotonCone& cone, std::uint64_t first, std::uint64_t count, std::vector<PhotonLanding>& landings,
              PhotonTally& tally, std::vector<PhotonLanding>* straight = nullptr) const;
+  // One vertex of the light's wavefront (wavefront.h) along `fromLight`: every branch of its path
+  // tree followed (no Russian roulette: a partial reflection inside goes on with its weight F while
+  // that is at least minVertexWeight), Snell and Fresnel about the shading normal the eye's rays
+  // refract about (the hit triangle's vertex normals interpolated, with render.normals=smooth), so
+  // that neighbouring vertices land on a continuous wavefront and not facet by facet.
+  void traceVertex(const Ray& fromLight, WavefrontVertex& vertex, PhotonTally& tally) const;
 
  private:
   void tracePhoton(const Ray& fromLight, std::uint64_t index, std::vector<PhotonLanding>& landings, PhotonTally& tally) const;
   float surfaceTransmission(float cosine, bool entering, float& reflectedShare) const;
+  // The normal Snell and Fresnel use at a crossing, facing the incoming `direction` (`outward`: the geometric one).
+  glm::vec3 shadingFacing(const SlimeHit& hit, const glm::vec3& outward, const glm::vec3& direction, bool entering) const;
 
   const SlimeGeometry& geometry_;
   const SlimeIntersector& intersector_;
   const ShadingParameters& parameters_;
+  float minVertexWeight_ = kMinRayWeight;
 };
 
 }  // namespace slime
