@@ -365,9 +365,22 @@ json runPeers(const FrontOptions& options, const std::map<int, json>& statics) {
     }
     std::printf("front     peer %-12s running (%s)\n", label.c_str(), program.c_str());
     std::fflush(stdout);
-    const json report = runPeerFront(program, {"--front", "--resolutions", joined(options.resolutions), "--steps-ms",
-                                               joined(options.stepsMs), "--iterations", joined(options.iterations),
-                                               "--seconds", std::to_string(options.peerSeconds)});
+    // Each peer's stiffness is fitted to the same static sag its rest height is then measured against:
+    // our static solve's at each resolution.
+    std::vector<std::string> arguments = {"--front", "--resolutions", joined(options.resolutions), "--steps-ms",
+                                          joined(options.stepsMs), "--iterations", joined(options.iterations),
+                                          "--seconds", std::to_string(options.peerSeconds)};
+    std::vector<double> targets;
+    for (int resolution : options.resolutions) {
+      const auto oracle = statics.find(resolution);
+      if (oracle != statics.end() && oracle->second["rest_height_m"].is_number())
+        targets.push_back(oracle->second["rest_height_m"].get<double>());
+    }
+    if (targets.size() == options.resolutions.size()) {
+      arguments.push_back("--target-rest-height");
+      arguments.push_back(joined(targets));
+    }
+    const json report = runPeerFront(program, arguments);
     if (!report.is_object() || !report.contains("points")) {
       peers.push_back({{"program", label}, {"status", "failed: no front points written"}});
       std::printf("front     peer %-12s failed: no front points written\n", label.c_str());
