@@ -584,6 +584,8 @@ json runFront(const Settings& base, const FrontOptions& options) {
   report["wall_s"] = 1e-3 * watch.milliseconds();
   report["load_average_at_end"] = loadAverage();
   printGuide(report["guide"]);
+  report["peer_dominance"] = peerDominance(ours, report["peers"]);
+  printPeerDominance(report["peer_dominance"]);
   if (!options.outputDirectory.empty()) writeFrontFiles(report, options.outputDirectory);
   std::printf("front     %zu points in %.0f s wall\n", points.size(), report["wall_s"].get<double>());
   return report;

@@ -234,6 +234,61 @@ void printGuide(const json& guide) {
   std::fflush(stdout);
 }
 
+json peerDominance(const json& ours, const json& peers) {
+  static constexpr const char* kShared[] = {"torsional", "spheroidal", "damping", "rest_height"};
+  const auto error = [](const json& point, const char* key) {
+    const json& errors = point["errors"];
+    return errors.contains(key) && errors[key].is_number() ? errors[key].get<double>() : std::numeric_limits<double>::infinity();
+  };
+  json rows = json::array();
+  int stable = 0, met = 0;
+  for (const json& peer : peers) {
+    if (!peer.contains("points")) continue;
+    for (const json& point : peer["points"]) {
+      if (!point.value("stable", false)) continue;
+      ++stable;
+      const json* best = nullptr;
+      for (const json& candidate : ours) {
+        if (candidate["resolution"] != point["resolution"] || !candidate.value("stable", false)) continue;
+        const bool noWorse = std::all_of(std::begin(kShared), std::end(kShared),
+                                         [&](const char* key) { return error(candidate, key) <= error(point, key); });
+        if (noWorse && (best == nullptr || pointCost(candidate) < pointCost(*best))) best = &candidate;
+      }
+      json row = {{"peer", peer.value("peer", std::string("?"))}, {"resolution", point["resolution"]},
+                  {"step_ms", point["step_ms"]}, {"iterations", point["iterations"]}, {"cost_ms_per_ms", point["cost_ms_per_ms"]},
+                  {"ours", nullptr}, {"share", nullptr}};
+      if (best != nullptr) {
+        const double share = pointCost(*best) / pointCost(point);
+        row["ours"] = {{"integrator", (*best)["integrator"]}, {"step_ms", (*best)["step_ms"]},
+                       {"iterations", (*best)["iterations"]}, {"cost_ms_per_ms", (*best)["cost_ms_per_ms"]}};
+        row["share"] = share;
+        if (share <= 0.5) ++met;
+      }
+      rows.push_back(row);
+    }
+  }
+  return {{"stable_peer_points", stable}, {"beaten_at_half_cost", met}, {"points", rows}};
+}
+
+void printPeerDominance(const json& dominance) {
+  std::printf("\nPeers: %d of %d stable peer points have a point of ours at least as accurate on every oracle they share "
+              "(Lamb's two modes, damping, rest height) at no more than half their cost:\n",
+              dominance["beaten_at_half_cost"].get<int>(), dominance["stable_peer_points"].get<int>());
+  for (const json& row : dominance["points"]) {
+    std::printf("  %-6s res %d  step %5s ms  it %s  %.4g ms/ms: ", row["peer"].get<std::string>().c_str(),
+                row["resolution"].get<int>(), stepText(row).c_str(), iterationsText(row).c_str(), pointCost(row));
+    if (row["ours"].is_null()) {
+      std::printf("no point of ours is as accurate on all four\n");
+      continue;
+    }
+    const json& ours = row["ours"];
+    std::printf("%s step %s ms it %s, %.4g ms/ms (%.2f x)%s\n", ours["integrator"].get<std::string>().c_str(),
+                stepText(ours).c_str(), iterationsText(ours).c_str(), pointCost(ours), row["share"].get<double>(),
+                row["share"].get<double>() <= 0.5 ? "" : "  MISSED");
+  }
+  std::fflush(stdout);
+}
+
 void writeFrontFiles(json& report, const std::string& directory) {
   std::filesystem::create_directories(directory);
   const json points = allPoints(report);

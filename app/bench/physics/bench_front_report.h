@@ -32,6 +32,12 @@ std::string frontRowText(const nlohmann::json& point);
 nlohmann::json guideSummary(const nlohmann::json& points, const Settings& scene);
 void printGuide(const nlohmann::json& guide);
 
+// Issue 45's test of the peers: for each stable peer point, the cheapest of our points at the same
+// resolution with no larger error on any oracle the peer is measured on (Lamb's two modes, the damping,
+// the rest height; creep is ours alone), and its cost as a share of the peer's (the aim: at most 0.5).
+nlohmann::json peerDominance(const nlohmann::json& ours, const nlohmann::json& peers);
+void printPeerDominance(const nlohmann::json& dominance);
+
 // front.json, front.md and the charts into `directory` (made if missing). The charts need gnuplot on
 // the PATH; without it the report says "charts": "not drawn".
 void writeFrontFiles(nlohmann::json& report, const std::string& directory);

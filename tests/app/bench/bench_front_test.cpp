@@ -3,6 +3,7 @@
 // accuracy at resolution 1; projective dynamics at 16.7 ms damps it as backward Euler does), and the
 // pieces that judge points: the Pareto front, the peers' errors from their own fields.
 #include "app/bench/physics/bench_front.h"
+#include "app/bench/physics/bench_front_report.h"
 #include "core/settings/settings_io.h"
 
 #include <gtest/gtest.h>
@@ -50,6 +51,30 @@ TEST(BenchFront, PeerErrorsComeFromLambsTheoryOfTheirOwnMaterial) {
   json diverged = point;
   diverged["diverged"] = true;
   EXPECT_TRUE(peerPointErrors(diverged, 0.06)["errors"]["torsional"].is_null());
+}
+
+// Issue 45's test of a peer point: the cheapest of our points at its resolution no worse on any of the
+// four oracles it shares, and that point's cost as a share of the peer's.
+TEST(BenchFront, APeerPointIsBeatenOnlyByAPointNoWorseOnEveryOracle) {
+  const auto point = [](int resolution, double cost, double torsional, double spheroidal, double damping, double rest) {
+    return json{{"resolution", resolution}, {"stable", true}, {"cost_ms_per_ms", cost}, {"step_ms", 1.0}, {"iterations", 1},
+                {"integrator", "x"},
+                {"errors", {{"torsional", torsional}, {"spheroidal", spheroidal}, {"damping", damping}, {"rest_height", rest},
+                            {"creep", 0.5}}}};
+  };
+  const json ours = json::array({point(2, 0.01, 0.02, 0.02, 0.001, 0.001),    // cheap, worse damping than the peer
+                                 point(2, 0.04, 0.01, 0.01, 0.0001, 0.001),   // no worse on all four
+                                 point(2, 0.03, 0.01, 0.01, 0.0001, 0.5),     // cheaper, but its rest height worse
+                                 point(1, 0.001, 0.0, 0.0, 0.0, 0.0)});       // another resolution
+  json peerPoint = point(2, 0.1, 0.02, 0.02, 0.0005, 0.01);
+  peerPoint.erase("integrator");
+  const json peers = json::array({{{"peer", "jolt"}, {"points", json::array({peerPoint})}}});
+  const json dominance = peerDominance(ours, peers);
+  ASSERT_EQ(dominance["points"].size(), 1u);
+  EXPECT_EQ(dominance["stable_peer_points"], 1);
+  EXPECT_DOUBLE_EQ(dominance["points"][0]["ours"]["cost_ms_per_ms"].get<double>(), 0.04);
+  EXPECT_DOUBLE_EQ(dominance["points"][0]["share"].get<double>(), 0.4);
+  EXPECT_EQ(dominance["beaten_at_half_cost"], 1);
 }
 
 TEST(BenchFront, GuideAccuracyNeedsEveryCondition) {
