@@ -344,6 +344,9 @@ SceneCaustic compareSceneCaustic(const Settings& settings) {
     for (const PhotonLanding& l : straightLandings)
       if (const long c = cellOf(l); c >= 0) straight[static_cast<std::size_t>(c)] += 1.0, arrived[static_cast<std::size_t>(c)] += l.weight.y;
   });
+  // Taken once more after the workers: ThreadSanitizer does not see TBB's join, but it sees the mutex's
+  // hand-over from the last worker that added to the sums.
+  const std::lock_guard<std::mutex> summed(sums);
   const glm::vec3 light = parameters.lightPosition;
   std::size_t referenceBest = 0, mapBest = 0;
   std::vector<double> mapped(arrived.size(), 0.0), reference(arrived.size(), 0.0);
