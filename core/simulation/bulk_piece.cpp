@@ -138,6 +138,7 @@ std::unique_ptr<BulkPiece> BulkPiece::mergedWith(BulkPiece& other, double weldDi
   piece->settings_ = settings_;
   piece->drawnVolumeShare_ = drawnVolume / bodyVolume;
   piece->roundingLeft_ = kRoundingFlowTimes * settings_.slime.flowTime;
+  piece->sinceMerge_ = 0.0;
   // Where each new node came from, in this piece and in the other.
   const std::size_t ownNodes = body_.state.positions.size();
   std::vector<std::uint32_t> ownSource(order.size(), FloorAdhesion::kNoSource), otherSource(order.size(), FloorAdhesion::kNoSource);
@@ -360,6 +361,7 @@ void BulkPiece::substep(double h) {
 }
 
 void BulkPiece::endStep(const StepContext& context) {
+  sinceMerge_ += settings_.sim.dt;
   // projective flows its Maxwell branches every substep; the body's metrics follow as a copy.
   const int flowInterval = projectiveActive_
                                ? kRelaxInterval

@@ -11,6 +11,7 @@
 #include "core/simulation/tearing.h"
 
 #include <array>
+#include <limits>
 
 namespace slime {
 
@@ -36,6 +37,9 @@ class BulkPiece final : public Piece {
   const std::vector<glm::dvec3>& drawnPositions() const override;
   const std::vector<Triangle>& drawnTriangles() const override { return body_.drawn.triangles; }
   double volume() const override;
+  // Seconds since this piece was made by a merge (infinity for one never merged): the fused seam is not
+  // judged by the tear criterion until it has set (Simulation::tearPieces).
+  double secondsSinceMerge() const { return sinceMerge_; }
   double restVolume() const override { return body_.restVolume; }
   SlimeMetrics metrics() const override { return metricsOf(body_.freeInverseMasses); }
   std::size_t elementCount() const override { return body_.mesh.tetrahedra.size(); }
@@ -89,6 +93,7 @@ class BulkPiece final : public Piece {
   // (0: the icosphere's smooth map as it is).
   double drawnVolumeShare_ = 0.0;
   double roundingLeft_ = 0.0;  // s: a merged piece's long-term rest shape still flowing to its ball
+  double sinceMerge_ = std::numeric_limits<double>::infinity();  // s since the merge that made this piece
   BulkScratch scratch_;
   FloorAdhesion adhesion_;  // the sticky floor (slime.adhesion)
   mutable std::vector<glm::dvec3> drawnPositions_;  // placed from the body when first asked for
